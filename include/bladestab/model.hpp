@@ -1,0 +1,46 @@
+#pragma once
+// The Ritz model of a rotating blade (SPEC §2): mass, stiffness split into its speed-free and
+// centrifugal parts, gyroscopic and geometric matrices, load vectors. The Ω-dependence is kept
+// as coefficients so a speed sweep assembles once:
+//
+//   M f̈ + (C_D + Ω C_G1) ḟ + (K_S + Ω² K_C1 + F(t) G) f = Ω² P_cf1 + F(t) p_tip + friction  (23), (40)
+#include <Eigen/Dense>
+
+#include "bladestab/blade_properties.hpp"
+#include "bladestab/scene.hpp"
+
+namespace bladestab {
+
+// Where each field's generalized coordinates sit in f = [X; Y; Z] (θ, v, u). A field that the
+// model drops (θ for Euler–Bernoulli, u without axial motion) has count 0.
+struct DofLayout {
+  int theta_count = 0, lateral_count = 0, axial_count = 0;
+  int theta_offset() const { return 0; }
+  int lateral_offset() const { return theta_count; }
+  int axial_offset() const { return theta_count + lateral_count; }
+  int size() const { return theta_count + lateral_count + axial_count; }
+};
+
+struct BladeModel {
+  BladeProperties blade;
+  ModelSpec spec;
+  DofLayout layout;
+
+  Eigen::MatrixXd M;     // mass, symmetric positive definite
+  Eigen::MatrixXd K_S;   // speed-free stiffness, symmetric
+  Eigen::MatrixXd K_C1;  // centrifugal stiffness per Ω² (tension stiffening and spin softening), symmetric
+  Eigen::MatrixXd C_G1;  // gyroscopic (Coriolis) matrix per Ω, skew-symmetric; zero without coriolis
+  Eigen::MatrixXd G;     // geometric stiffness per newton of tip tension: ∫V_i' V_j'
+  Eigen::VectorXd P_cf1; // steady centrifugal load per Ω²: ρA ∫(r + s) W_i
+  Eigen::RowVectorXd tip_lateral;  // v(L) = tip_lateral · f
+  Eigen::RowVectorXd tip_axial;    // u(L) = tip_axial · f
+
+  Eigen::MatrixXd stiffness(double speed_rad_s, double tip_force_n = 0) const {
+    return K_S + speed_rad_s * speed_rad_s * K_C1 + tip_force_n * G;
+  }
+  Eigen::MatrixXd gyroscopic(double speed_rad_s) const { return speed_rad_s * C_G1; }
+};
+
+BladeModel assemble_model(const BladeSpec& blade, const ModelSpec& spec);
+
+}  // namespace bladestab

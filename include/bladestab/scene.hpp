@@ -1,0 +1,85 @@
+#pragma once
+// A scene: one TOML file describing a blade, how it is modelled, how it runs and how it is loaded.
+// All values are SI. `load_scene` reads and validates it; every key can be overridden with
+// "section.key=value" strings (the CLI's --set).
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace bladestab {
+
+struct BladeSpec {
+  double length = 0;             // L [m]
+  double hub_radius = 0;         // r [m]
+  double area = 0;               // A [m^2]
+  double inertia = 0;            // I [m^4]; from `slenderness` d̄ when given (I = d̄² A L², SPEC §3)
+  double youngs_modulus = 0;     // E [Pa]
+  double density = 0;            // ρ [kg/m^3]
+  double poisson = 0;            // ν
+  double shear_coefficient = 0;  // κ
+  double stagger_deg = 0;        // β [deg]
+};
+
+enum class BasisKind { sine, legendre };
+enum class BeamTheory { timoshenko, euler_bernoulli };
+
+struct ModelSpec {
+  BasisKind basis = BasisKind::legendre;
+  int terms = 0;  // shape functions per field
+  BeamTheory theory = BeamTheory::timoshenko;
+  bool axial = true;
+  bool coriolis = true;
+};
+
+struct OperationSpec {
+  double speed_rad_s = 0;  // Ω
+};
+
+enum class DampingModel { none, modal, rayleigh, paper };
+
+struct DampingSpec {
+  DampingModel model = DampingModel::none;
+  double ratio = 0;                    // ζ
+  std::vector<double> frequencies_hz;  // rayleigh: the two frequencies that get ratio ζ exactly
+};
+
+enum class PulseProfile { half_sine, cosine, triangular, sawtooth, rectangular, impulse };
+enum class LoadApproximation { cosine, fourier };
+enum class LoadMode { force, clearance };
+
+struct LoadSpec {
+  PulseProfile profile = PulseProfile::half_sine;
+  double fmax_over_fcr = 0;    // F̄_max = F_max / F_cr
+  double contact_time_rev = 0; // t̄_c = t_c Ω / 2π
+  int pulses_per_rev = 1;
+  int pulse_count = 0;         // 0: endless train
+  LoadApproximation approximation = LoadApproximation::cosine;
+  LoadMode mode = LoadMode::force;
+  double friction = 0;         // μ
+  double clearance = 0;        // δ [m]
+  std::optional<double> pulse_frequency_hz;  // default: pulses_per_rev · Ω / 2π
+};
+
+struct Scene {
+  std::string source;  // file name, for messages
+  BladeSpec blade;
+  ModelSpec model;
+  OperationSpec operation;
+  DampingSpec damping;
+  LoadSpec load;
+};
+
+// Reads `path`, applies `overrides` ("section.key=value", value in TOML syntax or a bare word),
+// validates everything. Throws InputError with a one-line message on any problem.
+Scene load_scene(const std::string& path, const std::vector<std::string>& overrides = {});
+
+// Same, from TOML text (used by tests and by scenes built in code).
+Scene parse_scene(const std::string& toml_text, const std::string& source_name,
+                  const std::vector<std::string>& overrides = {});
+
+const char* to_string(BasisKind);
+const char* to_string(BeamTheory);
+const char* to_string(DampingModel);
+const char* to_string(PulseProfile);
+
+}  // namespace bladestab

@@ -1,0 +1,14 @@
+#pragma once
+// The subcommands. Each registers its options on the app and returns the function that runs it.
+#include <functional>
+
+#include <CLI/CLI.hpp>
+
+namespace bladestab::cli {
+
+using Command = std::function<void()>;
+
+Command register_modes(CLI::App& app);
+Command register_campbell(CLI::App& app);
+
+}  // namespace bladestab::cli

@@ -1,0 +1,39 @@
+#pragma once
+// Command-line pieces shared by the subcommands.
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "bladestab/model.hpp"
+#include "bladestab/modes.hpp"
+#include "bladestab/scene.hpp"
+
+namespace bladestab::cli {
+
+enum class OutputFormat { table, json, csv };
+
+struct SceneOptions {
+  std::string path;
+  std::vector<std::string> overrides;  // --set section.key=value
+  std::string format = "table";
+  std::string solver = "auto";
+
+  Scene load() const { return load_scene(path, overrides); }
+  OutputFormat output_format() const;
+  EigenSolverKind eigen_solver() const;
+};
+
+// Adds SCENE, --set, --format and --solver to a subcommand.
+void add_scene_options(CLI::App& command, SceneOptions& options);
+
+// "start:stop:count" → count evenly spaced values; InputError naming `option` otherwise.
+std::vector<double> parse_range(const std::string& option, const std::string& text);
+
+// One line describing the model, e.g. "timoshenko, legendre basis, 16 terms/field (48 dofs), axial on, coriolis on".
+std::string describe_model(const BladeModel& model);
+
+// Writes text to a file, creating its directory; InputError if that fails.
+void write_file(const std::string& path, const std::string& text);
+
+}  // namespace bladestab::cli

@@ -1,0 +1,11 @@
+#pragma once
+// A one-line progress indicator on stderr, shown only when stderr is a terminal and the output
+// is for people (table format).
+#include <functional>
+#include <string>
+
+namespace bladestab::cli {
+
+std::function<void(int, int)> progress_reporter(const std::string& label, bool enabled);
+
+}  // namespace bladestab::cli

@@ -1,0 +1,44 @@
+#include "bladestab/damping.hpp"
+
+#include <fmt/format.h>
+
+#include "bladestab/input_error.hpp"
+
+namespace bladestab {
+
+Eigen::MatrixXd damping_matrix(const BladeModel& model, const DampingSpec& spec, double speed) {
+  const int n = model.layout.size();
+  constexpr double two_pi = 6.28318530717958647692;
+  switch (spec.model) {
+    case DampingModel::none:
+      return Eigen::MatrixXd::Zero(n, n);
+    case DampingModel::paper:
+      if (speed <= 0) {
+        throw InputError(fmt::format("damping.model = \"paper\": C_D = (2ζ/Ω) K_S is undefined at Ω = {} rad/s; "
+                                     "use \"modal\" or \"rayleigh\" for speeds down to 0", speed));
+      }
+      return (2 * spec.ratio / speed) * model.K_S;  // (37)
+    case DampingModel::rayleigh: {
+      // ζ(ω) = α/(2ω) + βω/2 equal to ζ at ω1 and ω2.
+      const double w1 = two_pi * spec.frequencies_hz[0], w2 = two_pi * spec.frequencies_hz[1];
+      const double alpha = 2 * spec.ratio * w1 * w2 / (w1 + w2);
+      const double beta = 2 * spec.ratio / (w1 + w2);
+      return alpha * model.M + beta * model.K_S;
+    }
+    case DampingModel::modal: {
+      Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(model.stiffness(speed), model.M);
+      if (eig.info() != Eigen::Success || eig.eigenvalues().minCoeff() <= 0) {
+        throw InputError(fmt::format("damping.model = \"modal\": the stiffness at Ω = {} rad/s is not positive "
+                                     "definite (the blade is statically unstable), so modal damping is undefined",
+                                     speed));
+      }
+      const Eigen::MatrixXd MPhi = model.M * eig.eigenvectors();  // Φ is M-orthonormal
+      const Eigen::VectorXd two_zeta_omega = 2 * spec.ratio * eig.eigenvalues().cwiseSqrt();
+      Eigen::MatrixXd C = MPhi * two_zeta_omega.asDiagonal() * MPhi.transpose();
+      return 0.5 * (C + C.transpose());
+    }
+  }
+  return Eigen::MatrixXd::Zero(n, n);
+}
+
+}  // namespace bladestab

@@ -1,0 +1,333 @@
+// Scene reading and validation. Every problem becomes one InputError line of the form
+//   "<file>: <section>.<key> = <value>: <what is allowed>"
+#include "bladestab/scene.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <functional>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include <fmt/format.h>
+#include <toml++/toml.h>
+
+#include "bladestab/input_error.hpp"
+
+namespace bladestab {
+namespace {
+
+std::string show(const toml::node& node) {
+  std::ostringstream out;
+  if (auto s = node.as_string()) {
+    out << '"' << s->get() << '"';
+  } else if (auto d = node.as_floating_point()) {
+    out << fmt::format("{}", d->get());
+  } else {
+    node.visit([&out](auto&& v) { out << v; });
+  }
+  return out.str();
+}
+
+// Reads the keys of one [section], remembering which were used so the rest can be reported as
+// unknown.
+class SectionReader {
+public:
+  SectionReader(const toml::table& root, std::string section, std::string source)
+      : section_(std::move(section)), source_(std::move(source)) {
+    const toml::node* node = root.get(section_);
+    if (node == nullptr) fail_plain(fmt::format("[{}]: missing section", section_));
+    table_ = node->as_table();
+    if (table_ == nullptr) fail_plain(fmt::format("{}: must be a [{}] table", section_, section_));
+  }
+
+  bool has(const std::string& key) const { return table_->contains(key); }
+
+  double number(const std::string& key, const std::function<bool(double)>& allowed,
+                const std::string& allowed_text) {
+    const toml::node& node = require(key);
+    std::optional<double> value;
+    if (node.is_floating_point()) value = node.as_floating_point()->get();
+    if (node.is_integer()) value = static_cast<double>(node.as_integer()->get());
+    if (!value) fail(key, node, "must be a number");
+    if (!std::isfinite(*value)) fail(key, node, "must be a finite number");
+    if (!allowed(*value)) fail(key, node, allowed_text);
+    return *value;
+  }
+
+  std::optional<double> optional_number(const std::string& key,
+                                        const std::function<bool(double)>& allowed,
+                                        const std::string& allowed_text) {
+    if (!has(key)) return std::nullopt;
+    return number(key, allowed, allowed_text);
+  }
+
+  int integer(const std::string& key, long lo, long hi) {
+    const toml::node& node = require(key);
+    if (!node.is_integer()) fail(key, node, "must be an integer");
+    const long value = static_cast<long>(node.as_integer()->get());
+    if (value < lo || value > hi) fail(key, node, fmt::format("must be an integer in [{}, {}]", lo, hi));
+    return static_cast<int>(value);
+  }
+
+  bool boolean(const std::string& key) {
+    const toml::node& node = require(key);
+    if (!node.is_boolean()) fail(key, node, "must be true or false");
+    return node.as_boolean()->get();
+  }
+
+  template <class Enum>
+  Enum choice(const std::string& key, const std::map<std::string, Enum>& options) {
+    const toml::node& node = require(key);
+    std::string names;
+    for (const auto& [name, unused] : options) names += (names.empty() ? "" : ", ") + fmt::format("\"{}\"", name);
+    if (!node.is_string()) fail(key, node, "must be one of " + names);
+    const auto it = options.find(node.as_string()->get());
+    if (it == options.end()) fail(key, node, "must be one of " + names);
+    return it->second;
+  }
+
+  std::vector<double> number_list(const std::string& key, std::size_t count,
+                                  const std::function<bool(double)>& allowed,
+                                  const std::string& allowed_text) {
+    const toml::node& node = require(key);
+    const toml::array* array = node.as_array();
+    const std::string what = fmt::format("must be a list of {} numbers, each {}", count, allowed_text);
+    if (array == nullptr || array->size() != count) fail(key, node, what);
+    std::vector<double> values;
+    for (const toml::node& item : *array) {
+      std::optional<double> v;
+      if (item.is_floating_point()) v = item.as_floating_point()->get();
+      if (item.is_integer()) v = static_cast<double>(item.as_integer()->get());
+      if (!v || !std::isfinite(*v) || !allowed(*v)) fail(key, node, what);
+      values.push_back(*v);
+    }
+    return values;
+  }
+
+  // Reports keys that were present but never read.
+  void reject_unknown() const {
+    for (const auto& [key, node] : *table_) {
+      const std::string name(key.str());
+      if (used_.count(name) == 0) {
+        std::string allowed;
+        for (const auto& k : known_) allowed += (allowed.empty() ? "" : ", ") + k;
+        fail_plain(fmt::format("{}.{} = {}: unknown key (known in [{}]: {})", section_, name,
+                               show(node), section_, allowed));
+      }
+    }
+  }
+
+  void known(std::initializer_list<const char*> keys) {
+    for (const char* k : keys) known_.insert(k);
+  }
+
+  [[noreturn]] void fail(const std::string& key, const toml::node& node, const std::string& what) const {
+    fail_plain(fmt::format("{}.{} = {}: {}", section_, key, show(node), what));
+  }
+  [[noreturn]] void fail_missing(const std::string& key, const std::string& what) const {
+    fail_plain(fmt::format("{}.{}: missing; {}", section_, key, what));
+  }
+
+private:
+  const toml::node& require(const std::string& key) {
+    known_.insert(key);
+    const toml::node* node = table_->get(key);
+    if (node == nullptr) fail_missing(key, "required");
+    used_.insert(key);
+    return *node;
+  }
+
+  [[noreturn]] void fail_plain(const std::string& message) const {
+    throw InputError(fmt::format("{}: {}", source_, message));
+  }
+
+  std::string section_;
+  std::string source_;
+  const toml::table* table_ = nullptr;
+  std::set<std::string> used_;
+  std::set<std::string> known_;
+};
+
+const auto positive = [](double x) { return x > 0; };
+const auto non_negative = [](double x) { return x >= 0; };
+
+void apply_override(toml::table& root, const std::string& assignment, const std::string& source) {
+  const auto eq = assignment.find('=');
+  const auto dot = assignment.find('.');
+  if (eq == std::string::npos || dot == std::string::npos || dot > eq || dot == 0 || dot + 1 == eq) {
+    throw InputError(fmt::format("{}: --set {}: must have the form section.key=value", source, assignment));
+  }
+  const std::string section = assignment.substr(0, dot);
+  const std::string key = assignment.substr(dot + 1, eq - dot - 1);
+  const std::string text = assignment.substr(eq + 1);
+  if (text.empty()) {
+    throw InputError(fmt::format("{}: --set {}: the value is empty", source, assignment));
+  }
+  toml::table parsed;
+  try {
+    parsed = toml::parse("value = " + text);
+  } catch (const toml::parse_error&) {
+    parsed.insert_or_assign("value", text);  // a bare word: take it as a string
+  }
+  toml::node* node = root.get(section);
+  if (node == nullptr) {
+    root.insert_or_assign(section, toml::table{});
+    node = root.get(section);
+  }
+  toml::table* table = node->as_table();
+  if (table == nullptr) throw InputError(fmt::format("{}: --set {}: {} is not a table", source, assignment, section));
+  table->insert_or_assign(key, *parsed.get("value"));
+}
+
+Scene read_scene(const toml::table& root, const std::string& source) {
+  Scene scene;
+  scene.source = source;
+  for (const auto& [key, node] : root) {
+    static const std::set<std::string> sections{"blade", "model", "operation", "damping", "load"};
+    if (sections.count(std::string(key.str())) == 0) {
+      throw InputError(fmt::format("{}: [{}]: unknown section (known: blade, model, operation, damping, load)",
+                                   source, key.str()));
+    }
+  }
+
+  SectionReader blade(root, "blade", source);
+  blade.known({"slenderness", "inertia"});
+  BladeSpec& b = scene.blade;
+  b.length = blade.number("length", positive, "must be > 0 (span L in m)");
+  b.hub_radius = blade.number("hub_radius", non_negative, "must be >= 0 (hub radius r in m)");
+  b.area = blade.number("area", positive, "must be > 0 (cross-section area in m^2)");
+  if (blade.has("slenderness") == blade.has("inertia")) {
+    blade.fail_missing("slenderness", "give exactly one of blade.slenderness (d̄) and blade.inertia (I in m^4)");
+  }
+  if (blade.has("slenderness")) {
+    const double d = blade.number("slenderness", [](double x) { return x > 0 && x < 1; },
+                                  "must be in (0, 1) (d̄ = sqrt(I/(A L²)))");
+    b.inertia = d * d * b.area * b.length * b.length;  // SPEC §3: d̄ = sqrt(I/(A L²))
+  } else {
+    b.inertia = blade.number("inertia", positive, "must be > 0 (second moment of area in m^4)");
+  }
+  b.youngs_modulus = blade.number("youngs_modulus", positive, "must be > 0 (Young's modulus E in Pa)");
+  b.density = blade.number("density", positive, "must be > 0 (density in kg/m^3)");
+  b.poisson = blade.number("poisson", [](double x) { return x > -1 && x < 0.5; },
+                           "must be in (-1, 0.5) (Poisson's ratio)");
+  b.shear_coefficient = blade.number("shear_coefficient", [](double x) { return x > 0 && x <= 1; },
+                                     "must be in (0, 1] (Timoshenko shear coefficient κ)");
+  b.stagger_deg = blade.number("stagger_deg", [](double x) { return x >= -90 && x <= 90; },
+                               "must be in [-90, 90] (stagger angle β in degrees)");
+  blade.reject_unknown();
+
+  SectionReader model(root, "model", source);
+  ModelSpec& m = scene.model;
+  m.basis = model.choice<BasisKind>("basis", {{"sine", BasisKind::sine}, {"legendre", BasisKind::legendre}});
+  m.terms = model.integer("terms", 1, 200);
+  m.theory = model.choice<BeamTheory>(
+      "theory", {{"timoshenko", BeamTheory::timoshenko}, {"euler-bernoulli", BeamTheory::euler_bernoulli}});
+  m.axial = model.boolean("axial");
+  m.coriolis = model.boolean("coriolis");
+  model.reject_unknown();
+
+  SectionReader operation(root, "operation", source);
+  scene.operation.speed_rad_s = operation.number("speed_rad_s", non_negative, "must be >= 0 (rotor speed Ω in rad/s)");
+  operation.reject_unknown();
+
+  SectionReader damping(root, "damping", source);
+  DampingSpec& d = scene.damping;
+  d.model = damping.choice<DampingModel>("model", {{"none", DampingModel::none},
+                                                    {"modal", DampingModel::modal},
+                                                    {"rayleigh", DampingModel::rayleigh},
+                                                    {"paper", DampingModel::paper}});
+  damping.known({"ratio", "frequencies_hz"});
+  if (d.model != DampingModel::none) {
+    d.ratio = damping.number("ratio", [](double x) { return x >= 0 && x < 1; },
+                             "must be in [0, 1) (damping ratio ζ)");
+  }
+  if (d.model == DampingModel::rayleigh) {
+    d.frequencies_hz = damping.number_list("frequencies_hz", 2, positive, "> 0 Hz");
+    if (d.frequencies_hz[0] == d.frequencies_hz[1]) {
+      throw InputError(fmt::format("{}: damping.frequencies_hz = [{}, {}]: the two frequencies must differ",
+                                   source, d.frequencies_hz[0], d.frequencies_hz[1]));
+    }
+  }
+  if (d.model == DampingModel::paper && scene.operation.speed_rad_s == 0) {
+    throw InputError(fmt::format("{}: damping.model = \"paper\": C_D = (2ζ/Ω) K_S needs operation.speed_rad_s > 0 "
+                                 "(use \"modal\" or \"rayleigh\" at rest)", source));
+  }
+  damping.reject_unknown();
+
+  SectionReader load(root, "load", source);
+  LoadSpec& l = scene.load;
+  l.profile = load.choice<PulseProfile>("profile", {{"half-sine", PulseProfile::half_sine},
+                                                     {"cosine", PulseProfile::cosine},
+                                                     {"triangular", PulseProfile::triangular},
+                                                     {"saw-tooth", PulseProfile::sawtooth},
+                                                     {"rectangular", PulseProfile::rectangular},
+                                                     {"impulse", PulseProfile::impulse}});
+  l.fmax_over_fcr = load.number("fmax_over_fcr", non_negative, "must be >= 0 (peak tip load F_max / F_cr)");
+  l.contact_time_rev = load.number("contact_time_rev", [](double x) { return x > 0 && x <= 1; },
+                                   "must be in (0, 1] (contact time as a fraction of a revolution)");
+  l.pulses_per_rev = load.integer("pulses_per_rev", 1, 1000);
+  l.pulse_count = load.integer("pulse_count", 0, 1000000000);
+  l.approximation = load.choice<LoadApproximation>(
+      "approximation", {{"cosine", LoadApproximation::cosine}, {"fourier", LoadApproximation::fourier}});
+  l.mode = load.choice<LoadMode>("mode", {{"force", LoadMode::force}, {"clearance", LoadMode::clearance}});
+  l.friction = load.number("friction", [](double x) { return x >= 0 && x <= 2; },
+                           "must be in [0, 2] (Coulomb friction coefficient μ)");
+  l.clearance = load.number("clearance", non_negative, "must be >= 0 (running clearance in m)");
+  l.pulse_frequency_hz = load.optional_number("pulse_frequency_hz", positive, "must be > 0 (pulse frequency in Hz)");
+  if (l.contact_time_rev * (l.pulses_per_rev) > 1 + 1e-12) {
+    throw InputError(fmt::format("{}: load.contact_time_rev = {}: pulses overlap; must be <= 1/pulses_per_rev = {}",
+                                 source, l.contact_time_rev, 1.0 / l.pulses_per_rev));
+  }
+  load.reject_unknown();
+  return scene;
+}
+
+}  // namespace
+
+Scene parse_scene(const std::string& toml_text, const std::string& source_name,
+                  const std::vector<std::string>& overrides) {
+  toml::table root;
+  try {
+    root = toml::parse(toml_text, source_name);
+  } catch (const toml::parse_error& e) {
+    const auto& where = e.source().begin;
+    throw InputError(fmt::format("{}:{}:{}: not valid TOML: {}", source_name, where.line, where.column,
+                                 e.description()));
+  }
+  for (const std::string& assignment : overrides) apply_override(root, assignment, source_name);
+  return read_scene(root, source_name);
+}
+
+Scene load_scene(const std::string& path, const std::vector<std::string>& overrides) {
+  std::ifstream in(path);
+  if (!in) throw InputError(fmt::format("{}: cannot read the scene file", path));
+  std::stringstream text;
+  text << in.rdbuf();
+  return parse_scene(text.str(), path, overrides);
+}
+
+const char* to_string(BasisKind k) { return k == BasisKind::sine ? "sine" : "legendre"; }
+const char* to_string(BeamTheory t) { return t == BeamTheory::timoshenko ? "timoshenko" : "euler-bernoulli"; }
+const char* to_string(DampingModel d) {
+  switch (d) {
+    case DampingModel::none: return "none";
+    case DampingModel::modal: return "modal";
+    case DampingModel::rayleigh: return "rayleigh";
+    case DampingModel::paper: return "paper";
+  }
+  return "?";
+}
+const char* to_string(PulseProfile p) {
+  switch (p) {
+    case PulseProfile::half_sine: return "half-sine";
+    case PulseProfile::cosine: return "cosine";
+    case PulseProfile::triangular: return "triangular";
+    case PulseProfile::sawtooth: return "saw-tooth";
+    case PulseProfile::rectangular: return "rectangular";
+    case PulseProfile::impulse: return "impulse";
+  }
+  return "?";
+}
+
+}  // namespace bladestab
