@@ -48,7 +48,8 @@ Eigenpairs arpack_eigenpairs(const SecondOrderSystem& sys, int count) {
     if (ido != -1 && ido != 1) break;
     apply_op(&workd[ipntr[0] - 1], &workd[ipntr[1] - 1]);
   }
-  if (info < 0 || (info == 1 && iparam[4] < nev)) {
+  // info = 1 (iteration limit) still leaves the converged pairs usable; need both members of `count` pairs.
+  if (info < 0 || iparam[4] < 2 * count) {
     throw std::runtime_error(fmt::format("ARPACK dnaupd failed (info {}, {} of {} converged)", info, iparam[4], nev));
   }
 

@@ -28,6 +28,27 @@ Eigen::VectorXcd to_dofs(const Eigen::LLT<Eigen::MatrixXd>& mass, const Eigen::V
   return q;
 }
 
+// Eigenpairs with Im λ ≥ 0 (one of each conjugate pair; real eigenvalues all), lifted to dofs.
+// `rows` holds p, or ṗ when `rows_are_velocity` (then p = ṗ/λ).
+Eigenpairs upper_half_plane(const Eigen::VectorXcd& values, const Eigen::MatrixXcd& rows,
+                            const Eigen::LLT<Eigen::MatrixXd>& mass, bool rows_are_velocity) {
+  std::vector<Eigen::Index> keep;
+  for (Eigen::Index k = 0; k < values.size(); ++k) {
+    const bool real = std::abs(values(k).imag()) <= 1e-12 * std::abs(values(k));
+    if (values(k).imag() > 0 || real) keep.push_back(k);
+  }
+  Eigenpairs out{Eigen::VectorXcd(keep.size()), Eigen::MatrixXcd(rows.rows(), keep.size())};
+  for (std::size_t j = 0; j < keep.size(); ++j) {
+    std::complex<double> lambda = values(keep[j]);
+    if (std::abs(lambda.imag()) <= 1e-12 * std::abs(lambda)) lambda.imag(0);
+    out.values(j) = lambda;
+    const Eigen::VectorXcd p = rows_are_velocity && lambda != 0.0 ? Eigen::VectorXcd(rows.col(keep[j]) / lambda)
+                                                                   : Eigen::VectorXcd(rows.col(keep[j]));
+    out.vectors.col(j) = to_dofs(mass, p);
+  }
+  return out;
+}
+
 Mode describe(const BladeModel& model, std::complex<double> lambda, Eigen::VectorXcd q) {
   Mode mode;
   mode.eigenvalue = lambda;
@@ -84,44 +105,39 @@ Eigenpairs dense_eigenpairs(const SecondOrderSystem& sys) {
   const Eigen::MatrixXd Ct = congruence(mass, sys.C);
 
   const Eigen::LLT<Eigen::MatrixXd> stiffness(Kt);
-  if (is_skew(sys.C) && stiffness.info() == Eigen::Success) {
-    // Conservative gyroscopic system: with K̃ = R Rᵀ and y = [Rᵀp; ṗ], ẏ = S y with S real skew,
-    // so −iS is Hermitian and its eigenvalues ω are the exact frequencies.
+  if (stiffness.info() == Eigen::Success) {
+    // K̃ = R Rᵀ > 0: with y = [Rᵀp; ṗ], ẏ = S y, S = [[0, Rᵀ], [−R, −C̃]]. Its entries scale like
+    // the frequencies, not their squares, so the small eigenvalues keep their relative accuracy.
     const Eigen::MatrixXd R = stiffness.matrixL();
     Eigen::MatrixXd S = Eigen::MatrixXd::Zero(2 * n, 2 * n);
     S.topRightCorner(n, n) = R.transpose();
     S.bottomLeftCorner(n, n) = -R;
-    S.bottomRightCorner(n, n) = -0.5 * (Ct - Ct.transpose());
-    const Eigen::MatrixXcd H = std::complex<double>(0, -1) * S.cast<std::complex<double>>();
-    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXcd> eig(H);
+    S.bottomRightCorner(n, n) = -Ct;
     Eigenpairs out{Eigen::VectorXcd(n), Eigen::MatrixXcd(n, n)};
-    for (Eigen::Index k = 0; k < n; ++k) {  // eigenvalues ascend: the last n are the positive ω
-      const double omega = eig.eigenvalues()(n + k);
-      out.values(k) = std::complex<double>(0, omega);
-      // ṗ = iω p  ⇒  p = y₂ / (iω)
-      const Eigen::VectorXcd p = eig.eigenvectors().col(n + k).tail(n) / std::complex<double>(0, omega);
-      out.vectors.col(k) = to_dofs(mass, p);
+    if (is_skew(sys.C)) {
+      // Conservative gyroscopic system: S is real skew, −iS Hermitian, its eigenvalues ω exact.
+      S.bottomRightCorner(n, n) = -0.5 * (Ct - Ct.transpose());  // skew to the last bit
+      const Eigen::MatrixXcd H = std::complex<double>(0, -1) * S.cast<std::complex<double>>();
+      Eigen::SelfAdjointEigenSolver<Eigen::MatrixXcd> eig(H);
+      for (Eigen::Index k = 0; k < n; ++k) {  // eigenvalues ascend: the last n are the positive ω
+        out.values(k) = std::complex<double>(0, eig.eigenvalues()(n + k));
+        out.vectors.col(k) = to_dofs(mass, eig.eigenvectors().col(n + k).tail(n) / out.values(k));  // p = ṗ/λ
+      }
+      return out;
     }
-    return out;
+    Eigen::ComplexEigenSolver<Eigen::MatrixXcd> eig(S.cast<std::complex<double>>());
+    if (eig.info() != Eigen::Success) throw std::runtime_error("eigenvalue iteration did not converge");
+    return upper_half_plane(eig.eigenvalues(), eig.eigenvectors().bottomRows(n), mass, true);
   }
 
-  // General case: first-order form ż = [[0, I], [−K̃, −C̃]] z.
-  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(2 * n, 2 * n);
+  // K̃ indefinite (statically unstable): first-order form ż = [[0, I], [−K̃, −C̃]] z, z = [p; ṗ].
+  Eigen::MatrixXcd A = Eigen::MatrixXcd::Zero(2 * n, 2 * n);
   A.topRightCorner(n, n).setIdentity();
-  A.bottomLeftCorner(n, n) = -Kt;
-  A.bottomRightCorner(n, n) = -Ct;
-  Eigen::EigenSolver<Eigen::MatrixXd> eig(A);
+  A.bottomLeftCorner(n, n) = -Kt.cast<std::complex<double>>();
+  A.bottomRightCorner(n, n) = -Ct.cast<std::complex<double>>();
+  Eigen::ComplexEigenSolver<Eigen::MatrixXcd> eig(A);
   if (eig.info() != Eigen::Success) throw std::runtime_error("eigenvalue iteration did not converge");
-  std::vector<Eigen::Index> keep;
-  for (Eigen::Index k = 0; k < 2 * n; ++k) {
-    if (eig.eigenvalues()(k).imag() >= 0) keep.push_back(k);
-  }
-  Eigenpairs out{Eigen::VectorXcd(keep.size()), Eigen::MatrixXcd(n, keep.size())};
-  for (std::size_t j = 0; j < keep.size(); ++j) {
-    out.values(j) = eig.eigenvalues()(keep[j]);
-    out.vectors.col(j) = to_dofs(mass, eig.eigenvectors().col(keep[j]).head(n));
-  }
-  return out;
+  return upper_half_plane(eig.eigenvalues(), eig.eigenvectors().topRows(n), mass, false);
 }
 
 ModalSolution solve_modes(const BladeModel& model, const SecondOrderSystem& system, double speed, int count,
@@ -140,9 +156,11 @@ ModalSolution solve_modes(const BladeModel& model, const SecondOrderSystem& syst
   for (Eigen::Index k = 0; k < pairs.values.size(); ++k) {
     solution.modes.push_back(describe(model, pairs.values(k), pairs.vectors.col(k)));
   }
+  // By |λ| (the undamped natural frequency for proportional damping), so that overdamped pairs
+  // stand where their stiffness puts them rather than first.
   std::sort(solution.modes.begin(), solution.modes.end(), [](const Mode& a, const Mode& b) {
-    return a.frequency_hz != b.frequency_hz ? a.frequency_hz < b.frequency_hz
-                                            : a.eigenvalue.real() > b.eigenvalue.real();
+    const double ra = std::abs(a.eigenvalue), rb = std::abs(b.eigenvalue);
+    return ra != rb ? ra < rb : a.eigenvalue.real() > b.eigenvalue.real();
   });
   if (static_cast<int>(solution.modes.size()) > count) solution.modes.resize(count);
   for (std::size_t k = 0; k < solution.modes.size(); ++k) solution.modes[k].index = static_cast<int>(k) + 1;

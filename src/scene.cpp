@@ -105,10 +105,14 @@ public:
     return values;
   }
 
-  // Reports keys that were present but never read.
-  void reject_unknown() const {
+  // Reports keys that were present but never read: unknown ones, and known ones that the other
+  // settings make meaningless (`unused_because` says which setting).
+  void reject_unknown(const std::string& unused_because = "") const {
     for (const auto& [key, node] : *table_) {
       const std::string name(key.str());
+      if (used_.count(name) == 0 && known_.count(name) != 0) {
+        fail_plain(fmt::format("{}.{} = {}: not used with {}", section_, name, show(node), unused_because));
+      }
       if (used_.count(name) == 0) {
         std::string allowed;
         for (const auto& k : known_) allowed += (allowed.empty() ? "" : ", ") + k;
@@ -124,6 +128,10 @@ public:
 
   [[noreturn]] void fail(const std::string& key, const toml::node& node, const std::string& what) const {
     fail_plain(fmt::format("{}.{} = {}: {}", section_, key, show(node), what));
+  }
+  [[noreturn]] void fail_both(const std::string& a, const std::string& b, const std::string& what) const {
+    fail_plain(fmt::format("{0}.{1} = {2} and {0}.{3} = {4}: {5}", section_, a, show(*table_->get(a)), b,
+                           show(*table_->get(b)), what));
   }
   [[noreturn]] void fail_missing(const std::string& key, const std::string& what) const {
     fail_plain(fmt::format("{}.{}: missing; {}", section_, key, what));
@@ -197,8 +205,11 @@ Scene read_scene(const toml::table& root, const std::string& source) {
   b.length = blade.number("length", positive, "must be > 0 (span L in m)");
   b.hub_radius = blade.number("hub_radius", non_negative, "must be >= 0 (hub radius r in m)");
   b.area = blade.number("area", positive, "must be > 0 (cross-section area in m^2)");
-  if (blade.has("slenderness") == blade.has("inertia")) {
+  if (!blade.has("slenderness") && !blade.has("inertia")) {
     blade.fail_missing("slenderness", "give exactly one of blade.slenderness (d̄) and blade.inertia (I in m^4)");
+  }
+  if (blade.has("slenderness") && blade.has("inertia")) {
+    blade.fail_both("slenderness", "inertia", "give exactly one of them (I = d̄² A L²)");
   }
   if (blade.has("slenderness")) {
     const double d = blade.number("slenderness", [](double x) { return x > 0 && x < 1; },
@@ -253,7 +264,7 @@ Scene read_scene(const toml::table& root, const std::string& source) {
     throw InputError(fmt::format("{}: damping.model = \"paper\": C_D = (2ζ/Ω) K_S needs operation.speed_rad_s > 0 "
                                  "(use \"modal\" or \"rayleigh\" at rest)", source));
   }
-  damping.reject_unknown();
+  damping.reject_unknown(fmt::format("damping.model = \"{}\"", to_string(d.model)));
 
   SectionReader load(root, "load", source);
   LoadSpec& l = scene.load;

@@ -1,0 +1,182 @@
+// Natural frequencies against closed-form references and the SPEC's converged values.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include "bladestab/damping.hpp"
+#include "bladestab/mode_convergence.hpp"
+#include "bladestab/modes.hpp"
+#include "reference/timoshenko_cantilever.hpp"
+#include "support/scenes.hpp"
+
+using namespace bladestab;
+using testing_support::paper_scene;
+
+namespace {
+
+constexpr double pi = 3.14159265358979323846;
+
+ModalSolution modes_of(const Scene& s, int count = 0, EigenSolverKind solver = EigenSolverKind::dense) {
+  const BladeModel m = assemble_model(s.blade, s.model);
+  const double W = s.operation.speed_rad_s;
+  return solve_modes(m, system_at(m, W, damping_matrix(m, s.damping, W)), W, count, solver);
+}
+
+std::vector<double> lambdas(const ModalSolution& sol, bool want_axial, std::size_t count) {
+  std::vector<double> out;
+  for (const Mode& m : sol.modes) {
+    if ((m.family == ModeFamily::axial) == want_axial && out.size() < count) out.push_back(m.lambda);
+  }
+  return out;
+}
+
+// Roots x of 1 + cos x cosh x = 0 (Euler–Bernoulli cantilever), by bisection: Λ = x².
+double euler_bernoulli_lambda(int n) {
+  double a = (n - 0.5) * pi - 0.5, b = (n - 0.5) * pi + 0.5;
+  const auto f = [](double x) { return 1 + std::cos(x) * std::cosh(x); };
+  for (int i = 0; i < 200; ++i) {
+    const double c = 0.5 * (a + b);
+    ((f(a) > 0) == (f(c) > 0) ? a : b) = c;
+  }
+  return 0.25 * (a + b) * (a + b);
+}
+
+}  // namespace
+
+TEST_CASE("at rest, Legendre Ritz frequencies match Huang's closed-form Timoshenko cantilever", "[modes]") {
+  const double E_over_kappaG = 2 * (1 + 0.3) / 0.833;
+  for (double d : {0.01, 0.05, 0.1, 0.3}) {
+    const Scene s = paper_scene({"operation.speed_rad_s=0", "model.terms=20", "blade.slenderness=" + std::to_string(d)});
+    const std::vector<double> exact = reference::timoshenko_cantilever_lambdas(d, E_over_kappaG, 5);
+    const std::vector<double> ours = lambdas(modes_of(s), false, 5);
+    REQUIRE(ours.size() == 5);
+    for (int k = 0; k < 5; ++k) {
+      INFO("d = " << d << ", mode " << k + 1);
+      CHECK(ours[k] == Approx(exact[k]).epsilon(1e-5));
+    }
+  }
+}
+
+TEST_CASE("the SPEC's closed-form values are what the reference gives", "[modes]") {
+  const std::vector<double> d001 = reference::timoshenko_cantilever_lambdas(0.01, 2 * 1.3 / 0.833, 5);
+  const std::vector<double> spec{3.51265, 21.8889, 60.7407, 117.515, 191.177};
+  for (int k = 0; k < 5; ++k) CHECK(d001[k] == Approx(spec[k]).epsilon(5e-6));
+}
+
+TEST_CASE("axial modes are (2n-1)(pi/2)/d", "[modes]") {
+  for (const char* basis : {"legendre", "sine"}) {
+    const Scene s = paper_scene({"operation.speed_rad_s=0", std::string("model.basis=") + basis});
+    const std::vector<double> ours = lambdas(modes_of(s), true, 3);
+    REQUIRE(ours.size() == 3);
+    for (int n = 1; n <= 3; ++n) {
+      INFO(basis << " axial mode " << n);
+      CHECK(ours[n - 1] == Approx((2 * n - 1) * (pi / 2) / 0.01).epsilon(1e-6));
+    }
+  }
+  // Hz, SPEC §7: 1279.6 and 3838.8.
+  const ModalSolution sol = modes_of(paper_scene({"operation.speed_rad_s=0"}), 12);
+  std::vector<double> hz;
+  for (const Mode& m : sol.modes) if (m.family == ModeFamily::axial) hz.push_back(m.frequency_hz);
+  CHECK(hz.at(0) == Approx(1279.6).epsilon(1e-4));
+  CHECK(hz.at(1) == Approx(3838.8).epsilon(1e-4));
+}
+
+TEST_CASE("Euler-Bernoulli theory gives the classical cantilever values", "[modes]") {
+  for (const char* basis : {"legendre", "sine"}) {
+    const Scene s = paper_scene({"operation.speed_rad_s=0", "model.theory=euler-bernoulli", "model.axial=false",
+                                 std::string("model.basis=") + basis});
+    const std::vector<double> ours = lambdas(modes_of(s), false, 3);
+    const double tolerance = std::string(basis) == "legendre" ? 1e-10 : 1e-3;  // sine: algebraic convergence
+    for (int n = 1; n <= 3; ++n) {
+      INFO(basis << " mode " << n);
+      CHECK(ours[n - 1] == Approx(euler_bernoulli_lambda(n)).epsilon(tolerance));
+    }
+  }
+  CHECK(euler_bernoulli_lambda(1) == Approx(3.51602).epsilon(2e-6));
+  CHECK(euler_bernoulli_lambda(2) == Approx(22.0345).epsilon(2e-6));
+  CHECK(euler_bernoulli_lambda(3) == Approx(61.6972).epsilon(2e-6));
+}
+
+TEST_CASE("rotating paper blade at 300 rad/s matches the SPEC's converged values", "[modes]") {
+  const std::vector<double> coupled{8.3518, 28.9467, 68.5778, 126.004, 200.105};
+  const std::vector<double> uncoupled{8.3573, 28.9497, 68.5802, 126.006, 200.107};
+  for (bool coriolis : {true, false}) {
+    const Scene s = paper_scene({std::string("model.coriolis=") + (coriolis ? "true" : "false"), "model.terms=24"});
+    const ModalSolution sol = modes_of(s);
+    const std::vector<double> ours = lambdas(sol, false, 5);
+    const auto& expected = coriolis ? coupled : uncoupled;
+    for (int k = 0; k < 5; ++k) {
+      INFO("coriolis " << coriolis << ", mode " << k + 1);
+      CHECK(ours[k] == Approx(expected[k]).epsilon(1e-4));
+    }
+    if (coriolis) CHECK(sol.modes[0].frequency_hz == Approx(68.035).epsilon(1e-5));  // SPEC §7
+    for (const Mode& m : sol.modes) CHECK(m.damping_ratio == 0);       // undamped: exactly imaginary
+  }
+}
+
+TEST_CASE("convergence at d = 0.1, mode 3: Legendre exponential, sine algebraic", "[modes][convergence]") {
+  const double exact = reference::timoshenko_cantilever_lambdas(0.1, 2 * 1.3 / 0.833, 3)[2];
+  const auto error = [&](const char* basis, int terms) {
+    const Scene s = paper_scene({"operation.speed_rad_s=0", "blade.slenderness=0.1", "model.axial=false",
+                                 std::string("model.basis=") + basis, "model.terms=" + std::to_string(terms)});
+    return std::abs(lambdas(modes_of(s), false, 3)[2] / exact - 1);
+  };
+  CHECK(error("legendre", 14) < 1e-10);
+  CHECK(error("legendre", 6) == Approx(2e-3).epsilon(0.1));
+  CHECK(error("sine", 14) > 0.005);
+  CHECK(error("sine", 14) < 0.02);
+  CHECK(error("sine", 10) > error("sine", 14));
+}
+
+TEST_CASE("ARPACK shift-invert agrees with dense LAPACK", "[modes][arpack]") {
+  for (const auto& damping : {std::vector<std::string>{"model.terms=50"},
+                              std::vector<std::string>{"model.terms=50", "damping.model=rayleigh", "damping.ratio=0.02",
+                                                       "damping.frequencies_hz=[50, 2000]"}}) {
+    const Scene s = paper_scene(damping);
+    const ModalSolution dense = modes_of(s, 8, EigenSolverKind::dense);
+    const ModalSolution arpack = modes_of(s, 8, EigenSolverKind::arpack);
+    REQUIRE(arpack.solver == EigenSolverKind::arpack);
+    REQUIRE(arpack.modes.size() == 8);
+    const BladeModel m = assemble_model(s.blade, s.model);
+    for (int k = 0; k < 8; ++k) {
+      INFO(damping.size() << " overrides, mode " << k + 1);
+      // Shift-invert resolves the lowest modes best: measured 1e-13 on mode 1, 2e-9 on mode 8 (damped).
+      CHECK(std::abs(arpack.modes[k].eigenvalue - dense.modes[k].eigenvalue) < 1e-8 * std::abs(dense.modes[k].eigenvalue));
+      CHECK(modal_assurance(arpack.modes[k].shape, dense.modes[k].shape, m.M) > 1 - 1e-8);
+      CHECK(arpack.modes[k].family == dense.modes[k].family);
+    }
+  }
+  // The automatic choice takes ARPACK for large models.
+  CHECK(modes_of(paper_scene({"model.terms=50"}), 5, EigenSolverKind::automatic).solver == EigenSolverKind::arpack);
+}
+
+TEST_CASE("damping models give the damping ratios they promise", "[modes][damping]") {
+  // Modal damping at rest: every mode gets exactly ζ.
+  const ModalSolution modal = modes_of(paper_scene({"operation.speed_rad_s=0", "damping.model=modal", "damping.ratio=0.03"}), 10);
+  for (const Mode& m : modal.modes) CHECK(m.damping_ratio == Approx(0.03).epsilon(1e-9));
+  // Rayleigh: ζ(ω) = α/(2ω) + βω/2 with ζ met at both given frequencies.
+  const double f1 = 50, f2 = 2000, z = 0.02, w1 = 2 * pi * f1, w2 = 2 * pi * f2;
+  const double alpha = 2 * z * w1 * w2 / (w1 + w2), beta = 2 * z / (w1 + w2);
+  const ModalSolution ray = modes_of(paper_scene({"operation.speed_rad_s=0", "damping.model=rayleigh", "damping.ratio=0.02",
+                                                  "damping.frequencies_hz=[50, 2000]"}), 6);
+  for (const Mode& m : ray.modes) {
+    const double wn = std::abs(m.eigenvalue);  // undamped natural frequency
+    CHECK(m.damping_ratio == Approx(alpha / (2 * wn) + beta * wn / 2).epsilon(1e-9));
+  }
+  // Paper (37): C_D = (2ζ/Ω) K_S.
+  const Scene p = paper_scene({"damping.model=paper", "damping.ratio=0.01"});
+  const BladeModel m = assemble_model(p.blade, p.model);
+  CHECK((damping_matrix(m, p.damping, 300) - (2 * 0.01 / 300) * m.K_S).norm() == 0);
+}
+
+TEST_CASE("error estimates are honest and --tolerance raises the number of terms", "[modes][convergence]") {
+  const Scene s = paper_scene({"model.terms=8", "operation.speed_rad_s=0", "blade.slenderness=0.1", "model.axial=false"});
+  const ConvergedModes loose = modes_with_error_estimate(s, 3, EigenSolverKind::dense);
+  const double exact = reference::timoshenko_cantilever_lambdas(0.1, 2 * 1.3 / 0.833, 3)[2];
+  const double true_error = std::abs(loose.solution.modes[2].lambda / exact - 1);
+  CHECK(loose.relative_error[2] == Approx(true_error).epsilon(0.05));  // exponential convergence: estimate ≈ error
+  const ConvergedModes tight = modes_with_error_estimate(s, 3, EigenSolverKind::dense, 1e-9);
+  CHECK(tight.model.spec.terms > 8);
+  CHECK(tight.max_relative_error() <= 1e-9);
+  CHECK(std::abs(tight.solution.modes[2].lambda / exact - 1) < 1e-9);
+}

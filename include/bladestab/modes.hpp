@@ -38,7 +38,7 @@ struct Mode {
 struct ModalSolution {
   double speed_rad_s = 0;
   EigenSolverKind solver = EigenSolverKind::dense;  // the one actually used
-  std::vector<Mode> modes;                          // sorted by frequency
+  std::vector<Mode> modes;                          // sorted by |λ| (natural frequency)
 };
 
 // All eigenpairs, dense. Undamped gyroscopic systems with K > 0 go through a Hermitian form, so

@@ -1,0 +1,296 @@
+// Bad input end to end: run the real `bladestab` program on broken scenes and command lines and check
+// that it refuses them the way the input-error contract says (include/bladestab/input_error.hpp):
+//   - exit status exactly 2 (1 means an internal failure, a signal means a crash),
+//   - nothing on stdout,
+//   - exactly one line on stderr, "bladestab: error: ...", naming the offending key or option, the
+//     offending value and what is allowed.
+//
+// The ctest names carry "(bad_input)" so that `ctest -R bad_input` selects them.
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <catch2/catch.hpp>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::string valid_scene = BLADESTAB_SOURCE_DIR "/stability_maps/sinha2005/blade.toml";
+
+// A private scratch directory for this test process: captured output, edited scenes, campbell --out.
+const fs::path& scratch() {
+  struct Dir {
+    fs::path path;
+    Dir() {
+      std::string pattern = (fs::temp_directory_path() / "bladestab_bad_input_XXXXXX").string();
+      if (mkdtemp(pattern.data()) == nullptr) throw std::runtime_error("mkdtemp failed for " + pattern);
+      path = pattern;
+    }
+    ~Dir() {
+      std::error_code ec;
+      fs::remove_all(path, ec);
+    }
+  };
+  static const Dir dir;
+  return dir.path;
+}
+
+std::string read_text(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+std::string shell_quote(const std::string& word) {
+  std::string quoted = "'";
+  for (char c : word) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return quoted + "'";
+}
+
+struct Outcome {
+  std::string command;  // for messages
+  int wait_status = 0;  // as returned by std::system
+  std::string out, err;
+};
+
+// Runs bladestab with `args`, stdin from /dev/null, stdout and stderr captured in files. `exec` makes
+// the shell become bladestab, so a crash shows up as a signal rather than as exit status 128+n.
+Outcome run_bladestab(const std::vector<std::string>& args) {
+  static int runs = 0;
+  ++runs;
+  const fs::path out = scratch() / ("stdout_" + std::to_string(runs));
+  const fs::path err = scratch() / ("stderr_" + std::to_string(runs));
+  Outcome o;
+  o.command = shell_quote(BLADESTAB_EXE);
+  for (const std::string& a : args) o.command += " " + shell_quote(a);
+  const std::string line = "exec " + o.command + " </dev/null >" + shell_quote(out.string()) + " 2>" +
+                           shell_quote(err.string());
+  o.wait_status = std::system(line.c_str());
+  REQUIRE(o.wait_status != -1);
+  o.out = read_text(out);
+  o.err = read_text(err);
+  return o;
+}
+
+std::string describe(int wait_status) {
+  if (WIFEXITED(wait_status)) return "exit status " + std::to_string(WEXITSTATUS(wait_status));
+  if (WIFSIGNALED(wait_status)) return "killed by signal " + std::to_string(WTERMSIG(wait_status));
+  return "wait status " + std::to_string(wait_status);
+}
+
+// The one check every case makes. Each entry of `expected` must occur in the error line; an entry
+// "a|b" is satisfied by either a or b.
+void expect_rejected(const std::vector<std::string>& args, const std::vector<std::string>& expected) {
+  const Outcome o = run_bladestab(args);
+  INFO("command: " << o.command);
+  INFO("result:  " << describe(o.wait_status));
+  INFO("stdout:  " << o.out);
+  INFO("stderr:  " << o.err);
+
+  CHECK(WIFEXITED(o.wait_status));
+  CHECK(WEXITSTATUS(o.wait_status) == 2);
+  CHECK(o.out.empty());
+  CHECK(std::count(o.err.begin(), o.err.end(), '\n') == 1);
+  CHECK((!o.err.empty() && o.err.back() == '\n'));
+  CHECK_THAT(o.err, Catch::Matchers::StartsWith("bladestab: error: "));
+  for (const std::string& entry : expected) {
+    std::vector<std::string> options;
+    std::istringstream split(entry);
+    for (std::string option; std::getline(split, option, '|');) options.push_back(option);
+    const bool found = std::any_of(options.begin(), options.end(),
+                                   [&](const std::string& s) { return o.err.find(s) != std::string::npos; });
+    INFO("expected the error line to contain: " << entry);
+    CHECK(found);
+  }
+}
+
+// `bladestab modes <valid scene> extra...`
+std::vector<std::string> modes(std::vector<std::string> extra = {}) {
+  extra.insert(extra.begin(), {"modes", valid_scene});
+  return extra;
+}
+
+// `bladestab campbell <valid scene> --speeds <speeds> extra...`, writing nothing outside the scratch dir.
+std::vector<std::string> campbell(const std::string& speeds, const std::vector<std::string>& extra = {}) {
+  std::vector<std::string> args{"campbell", valid_scene, "--speeds", speeds, "--out", scratch().string(),
+                                "--chart", "none"};
+  args.insert(args.end(), extra.begin(), extra.end());
+  return args;
+}
+
+// A copy of the valid scene in the scratch dir with the line `key = ...` replaced by `replacement`
+// (which may be empty or several lines), and `appended` added at the end.
+std::string edited_scene(const std::string& file_name, const std::string& key, const std::string& replacement,
+                         const std::string& appended = "") {
+  std::istringstream in(read_text(valid_scene));
+  std::string text;
+  bool replaced = key.empty();
+  for (std::string line; std::getline(in, line);) {
+    const bool match = !replaced && line.rfind(key, 0) == 0 &&
+                       line.find_first_not_of(' ', key.size()) == line.find('=', key.size());
+    if (match) {
+      if (!replacement.empty()) text += replacement + "\n";
+      replaced = true;
+    } else {
+      text += line + "\n";
+    }
+  }
+  REQUIRE(replaced);
+  text += appended;
+  const fs::path path = scratch() / file_name;
+  std::ofstream(path) << text;
+  return path.string();
+}
+
+struct SetCase {
+  std::string assignment;             // --set section.key=value on the valid scene
+  std::vector<std::string> expected;  // see expect_rejected
+};
+
+void run_set_cases(const std::vector<SetCase>& cases) {
+  for (const SetCase& c : cases) {
+    DYNAMIC_SECTION("modes --set " << c.assignment) { expect_rejected(modes({"--set", c.assignment}), c.expected); }
+  }
+}
+
+}  // namespace
+
+TEST_CASE("bad input: out-of-range and non-finite scene numbers (bad_input)", "[bad_input]") {
+  run_set_cases({
+      {"blade.youngs_modulus=-1", {"blade.youngs_modulus = -1", "must be > 0"}},
+      {"blade.youngs_modulus=0", {"blade.youngs_modulus = 0", "must be > 0"}},
+      {"blade.youngs_modulus=nan", {"blade.youngs_modulus = nan", "finite"}},
+      {"blade.density=inf", {"blade.density = inf", "finite"}},
+      {"blade.poisson=0.5", {"blade.poisson = 0.5", "(-1, 0.5)"}},
+      {"blade.poisson=0.6", {"blade.poisson = 0.6", "(-1, 0.5)"}},
+      {"blade.poisson=-1", {"blade.poisson = -1", "(-1, 0.5)"}},
+      {"blade.shear_coefficient=1.5", {"blade.shear_coefficient = 1.5", "(0, 1]"}},
+      {"blade.shear_coefficient=0", {"blade.shear_coefficient = 0", "(0, 1]"}},
+      {"blade.stagger_deg=91", {"blade.stagger_deg = 91", "[-90, 90]"}},
+      {"model.terms=0", {"model.terms = 0", "[1, 200]"}},
+      {"operation.speed_rad_s=-5", {"operation.speed_rad_s = -5", ">= 0"}},
+      {"load.contact_time_rev=0", {"load.contact_time_rev = 0", "(0, 1]"}},
+      {"load.friction=-0.1", {"load.friction = -0.1", "[0, 2]"}},
+  });
+}
+
+TEST_CASE("bad input: wrong types and unknown choices in the scene (bad_input)", "[bad_input]") {
+  run_set_cases({
+      {"model.terms=2.5", {"model.terms = 2.5", "integer"}},
+      {"model.terms=ten", {"model.terms = \"ten\"", "integer"}},
+      {"model.basis=chebyshev", {"model.basis = \"chebyshev\"", "\"legendre\"", "\"sine\""}},
+      {"model.theory=timoshenk", {"model.theory = \"timoshenk\"", "\"timoshenko\"", "\"euler-bernoulli\""}},
+      {"model.axial=yes", {"model.axial = \"yes\"", "true or false"}},
+      {"damping.model=viscous", {"damping.model = \"viscous\"", "\"modal\"", "\"rayleigh\""}},
+      {"load.profile=square", {"load.profile = \"square\"", "\"half-sine\"", "\"rectangular\""}},
+      {"blade.colour=red", {"blade.colour = \"red\"", "unknown key", "youngs_modulus"}},
+  });
+}
+
+TEST_CASE("bad input: inconsistent scene settings (bad_input)", "[bad_input]") {
+  SECTION("paper damping at speed 0") {
+    expect_rejected(modes({"--set", "damping.model=paper", "--set", "damping.ratio=0.01", "--set",
+                           "operation.speed_rad_s=0"}),
+                    {"damping.model = \"paper\"", "operation.speed_rad_s > 0"});
+  }
+  SECTION("modal damping without a ratio") {
+    expect_rejected(modes({"--set", "damping.model=modal"}), {"damping.ratio", "missing", "required"});
+  }
+  SECTION("rayleigh damping with equal frequencies") {
+    expect_rejected(modes({"--set", "damping.model=rayleigh", "--set", "damping.ratio=0.01", "--set",
+                           "damping.frequencies_hz=[100, 100]"}),
+                    {"damping.frequencies_hz = [100, 100]", "must differ"});
+  }
+  SECTION("overlapping pulses") {
+    expect_rejected(modes({"--set", "load.pulses_per_rev=2", "--set", "load.contact_time_rev=0.6"}),
+                    {"load.contact_time_rev = 0.6", "1/pulses_per_rev"});
+  }
+}
+
+TEST_CASE("bad input: broken scene files (bad_input)", "[bad_input]") {
+  struct FileCase {
+    std::string file;                        // name of the edited copy
+    std::string key, replacement, appended;  // see edited_scene
+    std::vector<std::string> expected;       // "{scene}" stands for the edited copy's path
+  };
+  const std::vector<FileCase> cases = {
+      {"no_length.toml", "length", "", "", {"blade.length", "missing", "required"}},
+      {"neither.toml", "slenderness", "", "", {"blade.slenderness", "blade.inertia", "missing", "exactly one"}},
+      {"both.toml", "slenderness", "slenderness = 0.01\ninertia = 2.239e-7", "",
+       {"blade.slenderness", "blade.inertia", "exactly one", "0.01|2.239e-07|2.239e-7"}},
+      {"unknown_key.toml", "speed_rad_s", "speed_rad_s = 300.0\nrpm = 2865", "",
+       {"operation.rpm = 2865", "unknown key", "speed_rad_s"}},
+      {"unknown_section.toml", "", "", "\n[rotor]\nblades = 24\n", {"[rotor]", "unknown section", "known: blade"}},
+      {"invalid.toml", "length", "length = 1.0.0", "", {"{scene}:9:", "not valid TOML"}},
+      {"terms_string.toml", "terms", "terms = \"ten\"", "", {"model.terms = \"ten\"", "integer"}},
+      {"terms_float.toml", "terms", "terms = 2.5", "", {"model.terms = 2.5", "integer"}},
+      {"modulus_nan.toml", "youngs_modulus", "youngs_modulus = nan", "", {"blade.youngs_modulus = nan", "finite"}},
+      {"density_inf.toml", "density", "density = inf", "", {"blade.density = inf", "finite"}},
+  };
+  for (const FileCase& c : cases) {
+    DYNAMIC_SECTION("modes " << c.file) {
+      const std::string path = edited_scene(c.file, c.key, c.replacement, c.appended);
+      std::vector<std::string> expected = c.expected;
+      for (std::string& e : expected) {
+        if (const auto at = e.find("{scene}"); at != std::string::npos) e.replace(at, 7, path);
+      }
+      expect_rejected({"modes", path}, expected);
+    }
+  }
+}
+
+TEST_CASE("bad input: missing scene file and malformed --set (bad_input)", "[bad_input]") {
+  SECTION("nonexistent scene file") {
+    const std::string missing = (scratch() / "no_such_scene.toml").string();
+    expect_rejected({"modes", missing}, {missing, "cannot read"});
+  }
+  SECTION("empty scene file") {
+    const std::string empty = (scratch() / "empty.toml").string();
+    std::ofstream{empty};
+    expect_rejected({"modes", empty}, {empty, "[blade]", "missing section"});
+  }
+  SECTION("--set without '='") {
+    expect_rejected(modes({"--set", "blade.length"}), {"--set blade.length", "section.key=value"});
+  }
+  SECTION("--set without '.'") {
+    expect_rejected(modes({"--set", "bladelength=1"}), {"--set bladelength=1", "section.key=value"});
+  }
+  SECTION("--set with an empty value") {
+    expect_rejected(modes({"--set", "blade.length="}), {"--set blade.length=", "empty"});
+  }
+}
+
+TEST_CASE("bad input: campbell options (bad_input)", "[bad_input]") {
+  SECTION("reversed speed range") {
+    expect_rejected(campbell("600:0:10"), {"--speeds 600:0:10", "start < stop"});
+  }
+  SECTION("a single speed") { expect_rejected(campbell("0:600:1"), {"--speeds 0:600:1", "count >= 2"}); }
+  SECTION("speeds not a range") { expect_rejected(campbell("abc"), {"--speeds abc", "start:stop:count"}); }
+  SECTION("negative speeds") { expect_rejected(campbell("-10:600:10"), {"--speeds -10:600:10", ">= 0"}); }
+  SECTION("engine order 0") {
+    expect_rejected(campbell("0:600:10", {"--engine-orders", "0"}), {"--engine-orders", " 0 ", ">= 1"});
+  }
+  SECTION("no modes to track") {
+    expect_rejected(campbell("0:600:10", {"--count", "0"}), {"--count 0", ">= 1"});
+  }
+}
+
+TEST_CASE("bad input: modes options and command-line parse errors (bad_input)", "[bad_input]") {
+  SECTION("--count 0") { expect_rejected(modes({"--count", "0"}), {"--count 0", ">= 1"}); }
+  SECTION("--tolerance 2") { expect_rejected(modes({"--tolerance", "2"}), {"--tolerance 2", "(0, 1)"}); }
+  SECTION("--count not a number") { expect_rejected(modes({"--count", "abc"}), {"--count", "abc", "integer"}); }
+  SECTION("--format unknown") { expect_rejected(modes({"--format", "xml"}), {"--format", "xml", "json"}); }
+  SECTION("unknown option") { expect_rejected(modes({"--bogus"}), {"--bogus", "--help"}); }
+  SECTION("unknown subcommand") {
+    expect_rejected({"frobnicate", valid_scene}, {"frobnicate", "modes", "campbell"});
+  }
+}
