@@ -17,10 +17,17 @@ namespace {
 
 constexpr double rpm_per_rad_s = 60 / 6.28318530717958647692;
 
+// "sinha2005/blade" for stability_maps/sinha2005/blade.toml.
+std::string scene_title(const Scene& scene) {
+  const std::filesystem::path p(scene.source);
+  const std::string folder = p.parent_path().filename().string();
+  return (folder.empty() ? "" : folder + "/") + p.stem().string();
+}
+
 std::string campbell_json(const Scene& scene, const BladeModel& model, const CampbellDiagram& d) {
   JsonWriter json;
   json.begin_object()
-      .value("title", fmt::format("{} — Campbell diagram", std::filesystem::path(scene.source).stem().string()))
+      .value("title", fmt::format("{} — Campbell diagram", scene_title(scene)))
       .value("scene", scene.source)
       .value("model", describe_model(model))
       .value("damping", to_string(scene.damping.model))

@@ -89,8 +89,10 @@ void print_modes(const SceneOptions& options, const Scene& scene, const Converge
       for (std::size_t k = 0; k < sol.modes.size(); ++k) {
         const Mode& m = sol.modes[k];
         const int digits = digits_for(result.relative_error[k]);
+        // ζ below 1e-12 is rounding in an undamped model's eigenvalues, not damping.
+        const double zeta = std::abs(m.damping_ratio) < 1e-12 ? 0.0 : m.damping_ratio;
         fmt::print("{:>4}  {:<9} {:>16.{}g} {:>16.{}g} {:>10.3g} {:>10.1e}\n", m.index, to_string(m.family),
-                   m.frequency_hz, digits, m.lambda, digits, m.damping_ratio, result.relative_error[k]);
+                   m.frequency_hz, digits, m.lambda, digits, zeta, result.relative_error[k]);
       }
       break;
     }
