@@ -76,6 +76,12 @@ JsonWriter& JsonWriter::value(const char* key, double v) {
   return *this;
 }
 
+JsonWriter& JsonWriter::null_value(const char* key) {
+  prefix(key);
+  out_ += "null";
+  return *this;
+}
+
 JsonWriter& JsonWriter::value(const char* key, int v) {
   prefix(key);
   out_ += std::to_string(v);

@@ -17,6 +17,7 @@ public:
   JsonWriter& value(const char* key, bool v);
   JsonWriter& value(const char* key, const std::string& v);
   JsonWriter& value(const char* key, const char* v) { return value(key, std::string(v)); }
+  JsonWriter& null_value(const char* key);
   JsonWriter& element(double v) { return value(nullptr, v); }
   JsonWriter& element(int v) { return value(nullptr, v); }
   JsonWriter& numbers(const char* key, const std::vector<double>& values);

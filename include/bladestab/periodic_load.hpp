@@ -1,0 +1,53 @@
+#pragma once
+// The tip load as a periodic function of time (SPEC §3, Appendix A): a train of compressive
+// pulses F(t) ≤ 0, its exact complex Fourier coefficients, and the series the frequency domain
+// uses — the paper's cosine approximation (42) or the true pulse's series, truncated.
+#include <complex>
+#include <vector>
+
+#include "bladestab/blade_properties.hpp"
+#include "bladestab/scene.hpp"
+
+namespace bladestab {
+
+struct PulseTrain {
+  PulseProfile profile = PulseProfile::half_sine;
+  double peak_n = 0;          // F_max > 0 (the force is −F_max at its peak)
+  double contact_time_s = 0;  // t_c
+  double period_s = 0;        // T_p, time between pulses
+  int count = 0;              // pulses in all; 0 = endless
+
+  double angular_frequency() const;  // θ = 2π / T_p
+  // F(t) of the true pulse train [N]; 0 outside the contact windows and after the last pulse.
+  double force(double t) const;
+  // F_m = (1/T_p) ∫₀^{T_p} F(t) e^{−i m θ t} dt, exact closed form for every profile.
+  std::complex<double> fourier_coefficient(int m) const;
+  // (1/T_p) ∫ F² dt, for Parseval's tail bound.
+  double mean_square() const;
+};
+
+// From the scene: F_max = F̄_max F_cr, T_p = 1/f_p with f_p = load.pulse_frequency_hz or
+// pulses_per_rev · Ω/2π, t_c = contact_time_rev · 2π/Ω (a fraction of a revolution).
+// InputError when the scene gives no pulse frequency (Ω = 0 and no pulse_frequency_hz).
+PulseTrain pulse_train(const Scene& scene);
+
+// F(t) ≈ Σ_{|m| ≤ M} F_m e^{i m θ t}, stored for m = 0..M (F_{−m} = conj F_m).
+struct LoadSeries {
+  double angular_frequency = 0;              // θ
+  std::vector<std::complex<double>> coefficients;
+  double relative_tail = 0;                  // ‖F − series‖₂ / ‖F‖₂ (Parseval); 0 for the cosine approximation
+  bool cosine_approximation = false;
+  int harmonics() const { return static_cast<int>(coefficients.size()) - 1; }
+};
+
+// The cosine approximation (42): −F_max/2 + (F_max/2) cos θt, i.e. F_0 = −F_max/2, F_1 = F_max/4.
+LoadSeries cosine_approximation(const PulseTrain& train);
+
+// The true pulse's series with the fewest harmonics M ≤ max_harmonics whose relative L2 tail is
+// at most `relative_tail` (the impulse has no convergent series: InputError).
+LoadSeries fourier_series(const PulseTrain& train, double relative_tail, int max_harmonics);
+
+// What the scene's load.approximation asks for.
+LoadSeries load_series(const Scene& scene, double relative_tail = 1e-2, int max_harmonics = 200);
+
+}  // namespace bladestab

@@ -1,0 +1,43 @@
+#pragma once
+// The blade under a periodic tip load as a linear time-periodic (LTP) system ẏ = A(t) y
+// (SPEC §4), written in scaled modal coordinates of the unloaded blade at speed Ω:
+//
+//   q = Φ η,  Φᵀ M Φ = I,  Φᵀ K(Ω) Φ = Λ = diag(ω_k²),  y = [D η; η̇],  D = diag(ω_k)
+//
+//   A(t) = A₀ + (F(t) − F₀) B,   A₀ = [[0, D], [−(Λ + F₀ Ĝ) D⁻¹, −Ĉ]],   B = [[0, 0], [−Ĝ D⁻¹, 0]]
+//
+// with Ĝ = Φᵀ G Φ and Ĉ = Φᵀ C Φ. Displacements and velocities then carry the same units, so the
+// monodromy matrix is well conditioned even with the 46 kHz rotation modes present; keeping only
+// the modes below a cut-off is a modal truncation (SPEC §6).
+#include <complex>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "bladestab/model.hpp"
+#include "bladestab/periodic_load.hpp"
+
+namespace bladestab {
+
+struct PeriodicSystem {
+  Eigen::MatrixXd A0;  // mean state matrix (includes the mean load F₀)
+  Eigen::MatrixXd B;   // state matrix per newton of tip force
+  std::vector<std::complex<double>> load;  // F_m, m = 0..M (F_{−m} = conj F_m)
+  double angular_frequency = 0;            // θ
+  Eigen::VectorXd modal_frequencies;       // ω_k of the kept modes [rad/s]
+  int kept_modes = 0, all_modes = 0;
+
+  double period() const;
+  int state_size() const { return static_cast<int>(A0.rows()); }
+  // F(t) − F₀ from the series.
+  double load_variation(double t) const;
+  Eigen::MatrixXd A(double t) const { return A0 + load_variation(t) * B; }
+  // A_m of A(t) = Σ A_m e^{imθt}: A₀ for m = 0, F_m B otherwise.
+  Eigen::MatrixXcd harmonic(int m) const;
+};
+
+// `cutoff_hz` ≤ 0 keeps every mode.
+PeriodicSystem periodic_system(const BladeModel& model, double speed_rad_s, const Eigen::MatrixXd& damping,
+                               const LoadSeries& load, double cutoff_hz = 0);
+
+}  // namespace bladestab
