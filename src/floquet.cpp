@@ -66,7 +66,7 @@ bool refine_harmonics(const PeriodicSystem& sys, Method method, int start, int m
   for (int q = start; q <= max_q && sys.state_size() * (2 * q + 1) <= max_size; q += 2) {
     const Eigen::VectorXcd current = method(sys, q);
     out = {current, std::abs(max_abs(current) - max_abs(previous)), q, 0};
-    if (out.error <= tol) return true;
+    if (out.error <= tol * std::max(1.0, max_abs(current))) return true;
     previous = current;
   }
   return false;
@@ -80,7 +80,7 @@ Attempt refine_steps(const PeriodicSystem& sys, int start, double tol) {
   for (int steps = 2 * start; steps <= max_steps; steps *= 2) {
     const Eigen::VectorXcd current = monodromy_multipliers(sys, steps);
     const double error = std::abs(max_abs(current) - max_abs(previous));
-    if (std::isfinite(error) && error <= tol) return {current, error, 0, steps};
+    if (std::isfinite(error) && error <= tol * std::max(1.0, max_abs(current))) return {current, error, 0, steps};
     previous = current;
   }
   throw std::runtime_error(fmt::format("the monodromy matrix did not converge to {:g} within {} steps", tol, max_steps));

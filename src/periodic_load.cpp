@@ -115,8 +115,8 @@ PulseTrain pulse_train(const Scene& scene) {
   } else if (speed > 0) {
     t.period_s = 2 * pi / (l.pulses_per_rev * speed);
   } else {
-    throw InputError("operation.speed_rad_s = 0: the pulses have no frequency; give load.pulse_frequency_hz "
-                     "(in Hz, > 0) or a speed > 0");
+    t.period_s = 1;
+    t.frequency_known = false;
   }
   // t̄_c is a fraction of a revolution; without rotation, a fraction of the pulse period.
   const double revolution = speed > 0 ? 2 * pi / speed : t.period_s * l.pulses_per_rev;
@@ -131,6 +131,7 @@ PulseTrain pulse_train(const Scene& scene) {
 LoadSeries cosine_approximation(const PulseTrain& train) {
   LoadSeries series;
   series.angular_frequency = train.angular_frequency();
+  series.frequency_known = train.frequency_known;
   series.coefficients = {cplx(-train.peak_n / 2, 0), cplx(train.peak_n / 4, 0)};
   series.cosine_approximation = true;
   return series;
@@ -143,6 +144,7 @@ LoadSeries fourier_series(const PulseTrain& train, double relative_tail, int max
   }
   LoadSeries series;
   series.angular_frequency = train.angular_frequency();
+  series.frequency_known = train.frequency_known;
   const double total = train.mean_square();
   double captured = std::norm(train.fourier_coefficient(0));
   series.coefficients.push_back(train.fourier_coefficient(0));

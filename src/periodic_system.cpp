@@ -64,6 +64,8 @@ PeriodicSystem periodic_system(const BladeModel& model, double speed, const Eige
   sys.load = load.coefficients;
   sys.angular_frequency = load.angular_frequency;
   sys.modal_frequencies = w;
+  sys.modal_G = G;
+  sys.modal_C = C;
   sys.kept_modes = kept;
   sys.all_modes = static_cast<int>(omega2.size());
   return sys;

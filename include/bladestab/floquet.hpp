@@ -21,7 +21,7 @@ const char* to_string(FloquetMethod);
 struct FloquetOptions {
   FloquetMethod method = FloquetMethod::automatic;
   int harmonics = 0;        // q; 0 = raise until the tolerance is met
-  double tolerance = 1e-6;  // on max|ρ|
+  double tolerance = 1e-6;  // on max|ρ|, relative once max|ρ| > 1
 };
 
 struct FloquetResult {

@@ -16,6 +16,8 @@ struct PulseTrain {
   double contact_time_s = 0;  // t_c
   double period_s = 0;        // T_p, time between pulses
   int count = 0;              // pulses in all; 0 = endless
+  bool frequency_known = true; // false: Ω = 0 and no pulse_frequency_hz; the period is a nominal 1 s
+                               // (the series' shape depends only on t_c/T_p, so boundaries in θ still work)
 
   double angular_frequency() const;  // θ = 2π / T_p
   // F(t) of the true pulse train [N]; 0 outside the contact windows and after the last pulse.
@@ -28,7 +30,6 @@ struct PulseTrain {
 
 // From the scene: F_max = F̄_max F_cr, T_p = 1/f_p with f_p = load.pulse_frequency_hz or
 // pulses_per_rev · Ω/2π, t_c = contact_time_rev · 2π/Ω (a fraction of a revolution).
-// InputError when the scene gives no pulse frequency (Ω = 0 and no pulse_frequency_hz).
 PulseTrain pulse_train(const Scene& scene);
 
 // F(t) ≈ Σ_{|m| ≤ M} F_m e^{i m θ t}, stored for m = 0..M (F_{−m} = conj F_m).
@@ -37,6 +38,7 @@ struct LoadSeries {
   std::vector<std::complex<double>> coefficients;
   double relative_tail = 0;                  // ‖F − series‖₂ / ‖F‖₂ (Parseval); 0 for the cosine approximation
   bool cosine_approximation = false;
+  bool frequency_known = true;
   int harmonics() const { return static_cast<int>(coefficients.size()) - 1; }
 };
 

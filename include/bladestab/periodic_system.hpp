@@ -25,6 +25,7 @@ struct PeriodicSystem {
   std::vector<std::complex<double>> load;  // F_m, m = 0..M (F_{−m} = conj F_m)
   double angular_frequency = 0;            // θ
   Eigen::VectorXd modal_frequencies;       // ω_k of the kept modes [rad/s]
+  Eigen::MatrixXd modal_G, modal_C;        // Ĝ = Φᵀ G Φ, Ĉ = Φᵀ C Φ (second-order modal form)
   int kept_modes = 0, all_modes = 0;
 
   double period() const;

@@ -11,5 +11,6 @@ using Command = std::function<void()>;
 Command register_modes(CLI::App& app);
 Command register_campbell(CLI::App& app);
 Command register_stability(CLI::App& app);
+Command register_boundaries(CLI::App& app);
 
 }  // namespace bladestab::cli

@@ -45,6 +45,7 @@ int main(int argc, char** argv) {
   run["modes"] = register_modes(app);
   run["campbell"] = register_campbell(app);
   run["stability"] = register_stability(app);
+  run["boundaries"] = register_boundaries(app);
   if (argc < 2) {
     fmt::print(stderr, "bladestab: error: a command is required: {} (see bladestab --help)\n", command_names(run));
     return 2;

@@ -118,6 +118,10 @@ Command register_stability(CLI::App& app) {
     const BladeModel model = assemble_model(scene.blade, scene.model);
     const double speed = scene.operation.speed_rad_s;
     const LoadSeries load = load_series(scene);
+    if (!load.frequency_known) {
+      throw InputError("operation.speed_rad_s = 0: the pulses have no frequency; give load.pulse_frequency_hz "
+                       "(in Hz, > 0) or a speed > 0");
+    }
     const PeriodicSystem sys = periodic_system(model, speed, damping_matrix(model, scene.damping, speed), load, *cutoff);
     const FloquetResult result = floquet_multipliers(sys, {parse_method(*method), *harmonics, *tolerance});
     print(*options, scene, model, sys, load, result);
