@@ -24,17 +24,44 @@ campbell
          "speed_rpm": float, "frequency_hz": float}
       ]
     }
+
+map
+    Stability map (Ince-Strutt style): Floquet max|rho| shading plus the
+    rho = -1 / rho = +1 boundary curves.
+    {
+      "title":   str (optional),
+      "x_label": str (optional),              e.g. "pulse frequency θ [rad/s]",
+      "y_label": str (optional),              e.g. "F̄_max = F_max / F_cr",
+      "grid": {                               optional; empty x means no grid
+        "x": [float, ...],                    ascending, >= 2 values,
+        "y": [float, ...],                    ascending, >= 2 values,
+        "max_abs_multiplier": [[float|null, ...], ...]
+                                              one row per y, len(x) values each
+      },
+      "curves": [                             optional boundary curves
+        {"multiplier": -1 | 1, "mode": int (optional), "order": int (optional),
+         "x": [float|null, ...], "y": [float|null, ...]}  same length; null = gap
+      ],
+      "markers": [                            optional
+        {"x": float, "y": float, "label": str (optional)}
+      ]
+    }
 """
 
 import json
 import math
 import os
+import re
 import sys
 
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402  (backend must be chosen first)
+import numpy as np  # noqa: E402  (ships with matplotlib)
+from matplotlib.colors import ListedColormap, Normalize  # noqa: E402
+from matplotlib.lines import Line2D  # noqa: E402
+from matplotlib.patches import Patch  # noqa: E402
 
 RAD_S_TO_RPM = 60.0 / (2.0 * math.pi)
 FIGSIZE = (8.0, 5.5)
@@ -265,11 +292,256 @@ def chart_campbell(data, ax):
                          (c["rpm"], c["freq"]))
 
 # --------------------------------------------------------------------------
+# Stability map (Ince-Strutt style)
+# --------------------------------------------------------------------------
+
+STABLE_LIMIT = 1.0 + 1e-9     # max|rho| at or below this counts as stable
+MAP_SHADE_MIN = 0.05          # smallest upper end of the log10 max|rho| scale
+MAP_SHADE_PERCENTILE = 98.0   # upper end: this percentile of unstable cells
+# multiplier -> (legend label, colour, linestyle)
+MAP_FAMILIES = {
+    -1: ("boundary ρ = −1", "#0b2f7a", "-"),
+    1: ("boundary ρ = +1", "#0a5c1e", "--"),
+}
+MAP_NOTE = ("shading: Floquet max|ρ| (shows combination resonances too);"
+            " lines: ±1 boundary equations")
+
+
+def _ascending(values, what):
+    if len(values) < 2:
+        raise InputError(f"{what} needs at least two values")
+    if any(b <= a for a, b in zip(values, values[1:])):
+        raise InputError(f"{what} must be strictly ascending")
+    return values
+
+
+def _map_grid(data):
+    """Validate the grid; return (x, y, values[ny][nx]) or None if absent."""
+    grid = data.get("grid")
+    if grid is None:
+        return None
+    if not isinstance(grid, dict):
+        raise InputError("'grid' is not an object")
+    for key in ("x", "y", "max_abs_multiplier"):
+        if key not in grid:
+            raise InputError(f"missing key 'grid.{key}'")
+    x = _numbers(grid["x"], "grid.x")
+    if not x:
+        return None
+    x = _ascending(x, "grid.x")
+    y = _ascending(_numbers(grid["y"], "grid.y"), "grid.y")
+    rows = grid["max_abs_multiplier"]
+    if not isinstance(rows, list):
+        raise InputError("grid.max_abs_multiplier is not a list")
+    if len(rows) != len(y):
+        raise InputError(f"grid.max_abs_multiplier has {len(rows)} rows,"
+                         f" expected {len(y)} (one per grid.y)")
+    values = []
+    for j, row in enumerate(rows):
+        row = _numbers(row, f"grid.max_abs_multiplier[{j}]", allow_null=True)
+        if len(row) != len(x):
+            raise InputError(f"grid.max_abs_multiplier[{j}] has {len(row)}"
+                             f" values, expected {len(x)} (one per grid.x)")
+        for i, v in enumerate(row):
+            if v < 0.0:
+                raise InputError(f"grid.max_abs_multiplier[{j}][{i}] = {v:g}"
+                                 " is negative")
+        values.append(row)
+    return x, y, values
+
+
+def _map_curves(data):
+    curves = []
+    for i, curve in enumerate(_optional_list(data, "curves")):
+        if not isinstance(curve, dict):
+            raise InputError(f"curves[{i}] is not an object")
+        if "multiplier" not in curve:
+            raise InputError(f"curves[{i}] is missing key 'multiplier'")
+        multiplier = _number(curve["multiplier"], f"curves[{i}].multiplier")
+        if multiplier not in (-1.0, 1.0):
+            raise InputError(f"curves[{i}].multiplier = {multiplier:g},"
+                             " expected -1 or 1")
+        for key in ("mode", "order"):
+            if curve.get(key) is not None:
+                _integer(curve[key], f"curves[{i}].{key}")
+        for key in ("x", "y"):
+            if key not in curve:
+                raise InputError(f"curves[{i}] is missing key '{key}'")
+        xs = _numbers(curve["x"], f"curves[{i}].x", allow_null=True)
+        ys = _numbers(curve["y"], f"curves[{i}].y", allow_null=True)
+        if len(xs) != len(ys):
+            raise InputError(f"curves[{i}] has {len(xs)} x values"
+                             f" but {len(ys)} y values")
+        # A null in either coordinate breaks the line there.
+        points = [(a, b) if math.isfinite(a) and math.isfinite(b)
+                  else (math.nan, math.nan) for a, b in zip(xs, ys)]
+        curves.append({"multiplier": int(multiplier),
+                       "x": [p[0] for p in points], "y": [p[1] for p in points]})
+    return curves
+
+
+def _map_markers(data):
+    markers = []
+    for i, marker in enumerate(_optional_list(data, "markers")):
+        if not isinstance(marker, dict):
+            raise InputError(f"markers[{i}] is not an object")
+        x = _number(marker.get("x"), f"markers[{i}].x")
+        y = _number(marker.get("y"), f"markers[{i}].y")
+        label = marker.get("label")
+        if label is not None and not isinstance(label, str):
+            raise InputError(f"markers[{i}].label is not a string")
+        markers.append({"x": x, "y": y, "label": label or ""})
+    return markers
+
+
+def _map_shading(ax, grid):
+    """Shade log10 max|rho| over the grid; return the legend handles."""
+    x, y, values = grid
+    rho = np.array(values, dtype=float)
+    missing = np.isnan(rho)
+    unstable = ~missing & (rho > STABLE_LIMIT)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        level = np.log10(np.where(unstable, rho, 1.0))
+    finite = level[unstable & np.isfinite(level)]
+    top = MAP_SHADE_MIN
+    if finite.size:
+        top = max(float(np.percentile(finite, MAP_SHADE_PERCENTILE)), MAP_SHADE_MIN)
+    # Stable cells fall below the scale ("under" = white), divergent ones
+    # (inf) above it; missing cells are "bad" (light grey).
+    level = np.where(unstable, np.minimum(level, 2.0 * top + 1.0), -1.0)
+    level = np.ma.masked_array(level, mask=missing)
+
+    base = matplotlib.colormaps["OrRd"]
+    cmap = ListedColormap(base(np.linspace(0.18, 0.92, 256)), name="bladestab_map")
+    cmap.set_under("white")
+    cmap.set_bad("0.82")
+    mesh = ax.pcolormesh(x, y, level, shading="nearest", cmap=cmap,
+                         norm=Normalize(vmin=0.0, vmax=top),
+                         rasterized=rho.size > 1000, zorder=0)
+    above = bool((level.filled(-1.0) > top).any())
+    cbar = ax.figure.colorbar(mesh, ax=ax, extend="max" if above else "neither",
+                              pad=0.02, fraction=0.05)
+    cbar.set_label("log10 max|ρ|")
+    cbar.ax.tick_params(labelsize=8)
+
+    handles = [Patch(facecolor=cmap(0.55), edgecolor="none",
+                     label="unstable (max|ρ| > 1)")]
+    if missing.any():
+        handles.append(Patch(facecolor="0.82", edgecolor="none", label="no data"))
+    return handles
+
+
+def _cell_edges(values):
+    """Outer edges of nearest-shaded cells centred on ascending values."""
+    return (values[0] - 0.5 * (values[1] - values[0]),
+            values[-1] + 0.5 * (values[-1] - values[-2]))
+
+
+# Combining accents matplotlib cannot stack on the previous glyph itself.
+COMBINING_ACCENTS = {"\u0304": "bar", "\u0302": "hat", "\u0307": "dot",
+                     "\u0303": "tilde"}
+ACCENTED = re.compile("([A-Za-z0-9])([" + "".join(COMBINING_ACCENTS) + "])")
+
+
+def _display_text(text):
+    """Draw e.g. "F̄" (F + combining macron) as upright mathtext; matplotlib's
+    plain text layout would drop the accent."""
+    if not ACCENTED.search(text):
+        return text
+    text = text.replace("$", r"\$")
+    return ACCENTED.sub(lambda m: f"$\\{COMBINING_ACCENTS[m.group(2)]}"
+                        f"{{\\mathrm{{{m.group(1)}}}}}$", text)
+
+
+def chart_map(data, ax):
+    """Stability map: Floquet max|rho| shading with the +-1 boundary curves."""
+    grid = _map_grid(data)
+    curves = _map_curves(data)
+    markers = _map_markers(data)
+    for key in ("title", "x_label", "y_label"):
+        if data.get(key) is not None and not isinstance(data[key], str):
+            raise InputError(f"'{key}' is not a string")
+
+    # Axis extent: the grid's cells, else the curves'; y always from 0.
+    if grid is not None:
+        x_lo, x_hi = _cell_edges(grid[0])
+        if grid[0][0] >= 0.0:
+            x_lo = max(x_lo, 0.0)  # speeds and frequencies are not negative
+        y_hi = _cell_edges(grid[1])[1]
+    else:
+        xs = [v for c in curves for v in c["x"] if math.isfinite(v)]
+        ys = [v for c in curves for v in c["y"] if math.isfinite(v)]
+        xs += [m["x"] for m in markers]
+        ys += [m["y"] for m in markers]
+        if not xs:
+            raise InputError("nothing to draw: no grid, curves or markers")
+        x_lo, x_hi = min(xs), max(xs)
+        y_hi = 1.05 * max(max(ys), 0.0)
+        if x_hi <= x_lo:
+            pad = 0.05 * abs(x_lo) or 1.0
+            x_lo, x_hi = x_lo - pad, x_hi + pad
+        if y_hi <= 0.0:
+            y_hi = 1.0
+    ax.set_xlim(x_lo, x_hi)
+    ax.set_ylim(0.0, y_hi)
+
+    handles = _map_shading(ax, grid) if grid is not None else []
+
+    # Boundary curves, one legend entry per multiplier family.
+    legend_lines = {}
+    for curve in curves:
+        label, color, style = MAP_FAMILIES[curve["multiplier"]]
+        (line,) = ax.plot(curve["x"], curve["y"], color=color, linestyle=style,
+                          linewidth=1.6, zorder=3)
+        legend_lines.setdefault(curve["multiplier"], line)
+        # Points with no neighbour would be invisible as a line.
+        cx, cy = curve["x"], curve["y"]
+        isolated = [i for i in range(len(cx)) if math.isfinite(cx[i])
+                    and not any(0 <= j < len(cx) and math.isfinite(cx[j])
+                                for j in (i - 1, i + 1))]
+        ax.plot([cx[i] for i in isolated], [cy[i] for i in isolated],
+                linestyle="none", marker=".", color=color, zorder=3)
+    for multiplier in sorted(legend_lines):
+        line = legend_lines[multiplier]
+        handles.append(Line2D(
+            [], [], color=line.get_color(), linestyle=line.get_linestyle(),
+            linewidth=line.get_linewidth(), label=MAP_FAMILIES[multiplier][0]))
+
+    if markers:
+        ax.plot([m["x"] for m in markers], [m["y"] for m in markers],
+                linestyle="none", marker="x", markersize=7, color="black",
+                markeredgewidth=1.6, zorder=4, clip_on=False)
+
+    ax.set_xlabel(_display_text(data.get("x_label") or "x"))
+    ax.set_ylabel(_display_text(data.get("y_label") or "y"))
+    ax.set_title(_display_text(data.get("title") or "Stability map"))
+    # Grid lines over the shading (zorder 0) and under the curves (zorder 3).
+    ax.grid(True, which="major", color="0.88", linewidth=0.6, alpha=0.7)
+    ax.set_axisbelow(False)
+
+    anchor = ax.xaxis.label
+    if handles:
+        anchor = ax.legend(handles=handles, loc="upper center",
+                           bbox_to_anchor=(0.5, -0.13), ncol=len(handles),
+                           fontsize=8, frameon=False, borderaxespad=0.0)
+    ax.annotate(MAP_NOTE, xy=(0.5, 0.0), xycoords=anchor, xytext=(0, -4),
+                textcoords="offset points", ha="center", va="top",
+                fontsize=7, color="0.45", annotation_clip=False)
+
+    labelled = [m for m in markers if m["label"]]
+    if labelled and len(labelled) <= 12:
+        ax.figure.tight_layout()  # settle the layout before measuring labels
+        for m in labelled:
+            _place_label(ax, _display_text(m["label"]), (m["x"], m["y"]))
+
+
+# --------------------------------------------------------------------------
 # Dispatch
 # --------------------------------------------------------------------------
 
 CHARTS = {
     "campbell": chart_campbell,
+    "map": chart_map,
 }
 
 

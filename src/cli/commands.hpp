@@ -12,5 +12,6 @@ Command register_modes(CLI::App& app);
 Command register_campbell(CLI::App& app);
 Command register_stability(CLI::App& app);
 Command register_boundaries(CLI::App& app);
+Command register_map(CLI::App& app);
 
 }  // namespace bladestab::cli

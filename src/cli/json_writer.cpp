@@ -112,6 +112,18 @@ JsonWriter& JsonWriter::numbers(const char* key, const std::vector<double>& valu
   return *this;
 }
 
+JsonWriter& JsonWriter::numbers_or_null(const char* key, const std::vector<double>& values) {
+  prefix(key);
+  out_ += "[";
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    if (std::isinf(values[i])) throw std::logic_error(fmt::format("infinite value in JSON list {}", key));
+    out_ += i ? ", " : "";
+    out_ += std::isnan(values[i]) ? std::string("null") : fmt::format("{}", values[i]);
+  }
+  out_ += "]";
+  return *this;
+}
+
 JsonWriter& JsonWriter::numbers(const char* key, const std::vector<int>& values) {
   prefix(key);
   out_ += "[";

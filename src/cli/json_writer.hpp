@@ -22,6 +22,8 @@ public:
   JsonWriter& element(int v) { return value(nullptr, v); }
   JsonWriter& numbers(const char* key, const std::vector<double>& values);
   JsonWriter& numbers(const char* key, const std::vector<int>& values);
+  // Like numbers(), but NaN stands for "no value" and is written as null.
+  JsonWriter& numbers_or_null(const char* key, const std::vector<double>& values);
 
   const std::string& str() const { return out_; }
 

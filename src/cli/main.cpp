@@ -6,6 +6,7 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include "bladestab/blas_threads.hpp"
 #include "bladestab/input_error.hpp"
 #include "commands.hpp"
 
@@ -39,6 +40,7 @@ std::string expected_type(const CLI::App& app, const std::string& message) {
 
 int main(int argc, char** argv) {
   using namespace bladestab::cli;
+  bladestab::use_single_threaded_blas();
   CLI::App app{"bladestab: modes, Campbell diagrams and dynamic stability of rotating Timoshenko blades"};
   app.require_subcommand(1);
   std::map<std::string, Command> run;
@@ -46,6 +48,7 @@ int main(int argc, char** argv) {
   run["campbell"] = register_campbell(app);
   run["stability"] = register_stability(app);
   run["boundaries"] = register_boundaries(app);
+  run["map"] = register_map(app);
   if (argc < 2) {
     fmt::print(stderr, "bladestab: error: a command is required: {} (see bladestab --help)\n", command_names(run));
     return 2;

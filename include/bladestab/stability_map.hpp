@@ -1,0 +1,46 @@
+#pragma once
+// Stability maps (SPEC §4 "Charts"): regions of dynamic instability in the (θ, F̄_max) plane at
+// the scene's speed (Ince–Strutt) or in the (Ω, F̄_max) plane with θ = k Ω (an engine order).
+// The ±1 boundaries are traced as curves from the boundary eigenproblems — along F̄ in the θ
+// plane (all θ at once), along Ω in the speed plane (all F̄ at once) — and a coarser grid of
+// Floquet max|ρ| shades the regions, which also reveals combination resonances.
+#include <functional>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "bladestab/floquet.hpp"
+#include "bladestab/scene.hpp"
+
+namespace bladestab {
+
+enum class MapPlane { theta_fmax, speed_fmax };
+
+struct MapOptions {
+  MapPlane plane = MapPlane::theta_fmax;
+  std::vector<double> grid_x, grid_fbar;  // shading grid: θ or Ω [rad/s], F̄
+  std::vector<double> trace;              // curve parameter: F̄ values (θ plane) or Ω values (speed plane)
+  int engine_order = 1;                   // speed plane: θ = k Ω
+  int approximation = 4;                  // harmonics per family in the boundary equations
+  double tolerance = 1e-3;                // on max|ρ| of the shading
+  int threads = 2;
+};
+
+struct BoundaryCurve {
+  int multiplier = -1, mode = 0, order = 0;
+  std::vector<double> x, fbar;  // θ or Ω, F̄
+};
+
+struct StabilityMap {
+  MapPlane plane = MapPlane::theta_fmax;
+  std::vector<double> grid_x, grid_fbar;
+  Eigen::MatrixXd max_abs_multiplier;  // rows: F̄, columns: x; NaN where the point has no periodic load
+  double max_error_estimate = 0;
+  std::vector<BoundaryCurve> curves;
+};
+
+// `progress(done, total)` counts shading points and traced parameter values.
+StabilityMap stability_map(const Scene& scene, const MapOptions& options,
+                           const std::function<void(int, int)>& progress = {});
+
+}  // namespace bladestab

@@ -1,0 +1,192 @@
+// bladestab map SCENE --plane theta-fmax|speed-fmax: stability map, CSV/JSON data and a chart.
+#include <cmath>
+#include <filesystem>
+
+#include <fmt/format.h>
+
+#include "bladestab/damping.hpp"
+#include "bladestab/input_error.hpp"
+#include "bladestab/modes.hpp"
+#include "bladestab/stability_map.hpp"
+#include "chart.hpp"
+#include "commands.hpp"
+#include "json_writer.hpp"
+#include "options.hpp"
+#include "progress.hpp"
+
+namespace bladestab::cli {
+namespace {
+
+std::string map_json(const Scene& scene, const BladeModel& model, const MapOptions& o, const StabilityMap& m) {
+  const bool theta = m.plane == MapPlane::theta_fmax;
+  const std::string stem = std::filesystem::path(scene.source).parent_path().filename().string() + "/" +
+                           std::filesystem::path(scene.source).stem().string();
+  JsonWriter json;
+  json.begin_object()
+      .value("title", theta ? fmt::format("{} — stability map at Ω = {:g} rad/s", stem, scene.operation.speed_rad_s)
+                            : fmt::format("{} — stability map, θ = {}·Ω", stem, o.engine_order))
+      .value("plane", theta ? "theta-fmax" : "speed-fmax")
+      .value("scene", scene.source)
+      .value("model", describe_model(model))
+      .value("x_label", theta ? "pulse frequency θ [rad/s]" : "rotor speed Ω [rad/s]")
+      .value("y_label", "F̄_max = F_max / F_cr")
+      .value("approximation", o.approximation)
+      .value("shading_method", "Floquet multipliers, method auto")
+      .value("shading_max_relative_error", m.max_error_estimate)
+      .begin_object("grid")
+      .numbers("x", m.grid_x)
+      .numbers("y", m.grid_fbar)
+      .begin_array("max_abs_multiplier");
+  for (Eigen::Index j = 0; j < m.max_abs_multiplier.rows(); ++j) {
+    const Eigen::RowVectorXd row = m.max_abs_multiplier.row(j);
+    json.numbers_or_null(nullptr, std::vector<double>(row.data(), row.data() + row.size()));
+  }
+  json.end_array().end_object().begin_array("curves");
+  for (const BoundaryCurve& c : m.curves) {
+    json.begin_object()
+        .value("multiplier", c.multiplier)
+        .value("mode", c.mode)
+        .value("order", c.order)
+        .numbers("x", c.x)
+        .numbers("y", c.fbar)
+        .end_object();
+  }
+  json.end_array();
+  if (theta && scene.operation.speed_rad_s > 0) {  // where the scene itself sits
+    const double theta_scene = scene.load.pulse_frequency_hz ? 6.28318530717958647692 * *scene.load.pulse_frequency_hz
+                                                             : scene.load.pulses_per_rev * scene.operation.speed_rad_s;
+    json.begin_array("markers")
+        .begin_object()
+        .value("x", theta_scene)
+        .value("y", scene.load.fmax_over_fcr)
+        .value("label", "scene")
+        .end_object()
+        .end_array();
+  }
+  json.end_object();
+  return json.str();
+}
+
+std::string curves_csv(const StabilityMap& m) {
+  std::string csv = "curve,multiplier,mode,order,x_rad_s,fmax_over_fcr\n";
+  for (std::size_t k = 0; k < m.curves.size(); ++k) {
+    const BoundaryCurve& c = m.curves[k];
+    for (std::size_t i = 0; i < c.x.size(); ++i) {
+      csv += fmt::format("{},{},{},{},{},{}\n", k + 1, c.multiplier, c.mode, c.order, c.x[i], c.fbar[i]);
+    }
+  }
+  return csv;
+}
+
+std::string grid_csv(const StabilityMap& m) {
+  std::string csv = "x_rad_s,fmax_over_fcr,max_abs_multiplier\n";
+  for (std::size_t j = 0; j < m.grid_fbar.size(); ++j) {
+    for (std::size_t i = 0; i < m.grid_x.size(); ++i) {
+      const double v = m.max_abs_multiplier(j, i);
+      csv += fmt::format("{},{},{}\n", m.grid_x[i], m.grid_fbar[j], std::isnan(v) ? std::string() : fmt::format("{}", v));
+    }
+  }
+  return csv;
+}
+
+}  // namespace
+
+Command register_map(CLI::App& app) {
+  auto* command = app.add_subcommand("map", "stability map: instability regions in (θ, F̄) or (Ω, F̄)");
+  auto options = std::make_shared<SceneOptions>();
+  auto plane = std::make_shared<std::string>();
+  auto theta = std::make_shared<std::string>();
+  auto speeds = std::make_shared<std::string>();
+  auto fmax = std::make_shared<std::string>("0:10:21");
+  auto trace = std::make_shared<int>(201);
+  auto order = std::make_shared<int>(0);
+  auto approximation = std::make_shared<int>(4);
+  auto tolerance = std::make_shared<double>(1e-3);
+  auto out = std::make_shared<std::string>(".");
+  auto chart = std::make_shared<std::string>("png");
+  add_scene_options(*command, *options);
+  command->add_option("--plane", *plane, "theta-fmax (at the scene's speed) or speed-fmax (θ = kΩ)")
+      ->required()
+      ->check(CLI::IsMember({"theta-fmax", "speed-fmax"}));
+  command->add_option("--theta", *theta, "θ grid [rad/s] start:stop:count (default: ω1/4 to 2.5 ω1, 41 points)");
+  command->add_option("--speeds", *speeds, "Ω grid [rad/s] start:stop:count (speed-fmax plane; required there)");
+  command->add_option("--fmax", *fmax, "F̄_max grid start:stop:count (default 0:10:21)");
+  command->add_option("--trace", *trace, "parameter values for tracing the boundary curves (default 201)");
+  command->add_option("--engine-order", *order, "k in θ = kΩ (default: load.pulses_per_rev)");
+  command->add_option("--approximation", *approximation, "harmonics per family in the boundary equations (default 4)");
+  command->add_option("--tolerance", *tolerance, "accuracy of max|ρ| in the shading (default 1e-3)");
+  command->add_option("--out", *out, "directory for map_<plane>.json, _curves.csv, _grid.csv and the chart");
+  command->add_option("--chart", *chart, "png (default), svg or none")->check(CLI::IsMember({"png", "svg", "none"}));
+  return [=] {
+    Scene scene = options->load();
+    const bool theta_plane = *plane == "theta-fmax";
+    MapOptions o;
+    o.plane = theta_plane ? MapPlane::theta_fmax : MapPlane::speed_fmax;
+    o.grid_fbar = parse_range("--fmax", *fmax);
+    if (o.grid_fbar.front() < 0) throw InputError(fmt::format("--fmax {}: F̄_max must be >= 0", *fmax));
+    if (*trace < 2 || *trace > 100000) throw InputError(fmt::format("--trace {}: must be an integer in [2, 100000]", *trace));
+    if (*approximation < 1 || *approximation > 40) {
+      throw InputError(fmt::format("--approximation {}: must be an integer in [1, 40]", *approximation));
+    }
+    if (!(*tolerance > 0 && *tolerance < 1)) throw InputError(fmt::format("--tolerance {}: must be in (0, 1)", *tolerance));
+    o.engine_order = *order > 0 ? *order : scene.load.pulses_per_rev;
+    if (*order < 0) throw InputError(fmt::format("--engine-order {}: must be an integer >= 1", *order));
+    o.approximation = *approximation;
+    o.tolerance = *tolerance;
+    const BladeModel model = assemble_model(scene.blade, scene.model);
+    if (theta_plane) {
+      if (scene.operation.speed_rad_s <= 0 && scene.damping.model == DampingModel::paper) {
+        throw InputError("damping.model = \"paper\" needs operation.speed_rad_s > 0");
+      }
+      if (theta->empty()) {
+        const double w1 = solve_modes(model, system_at(model, scene.operation.speed_rad_s, Eigen::MatrixXd::Zero(model.layout.size(), model.layout.size())),
+                                      scene.operation.speed_rad_s, 1, EigenSolverKind::dense).modes.at(0).eigenvalue.imag();
+        o.grid_x = parse_range("--theta", fmt::format("{}:{}:41", w1 / 4, 2.5 * w1));
+      } else {
+        o.grid_x = parse_range("--theta", *theta);
+      }
+      if (o.grid_x.front() <= 0) throw InputError(fmt::format("--theta {}: pulse frequencies must be > 0", *theta));
+      o.trace = parse_range("--fmax", fmt::format("{}:{}:{}", o.grid_fbar.front(), o.grid_fbar.back(), *trace));
+    } else {
+      if (speeds->empty()) throw InputError("--speeds: required for --plane speed-fmax (start:stop:count in rad/s)");
+      o.grid_x = parse_range("--speeds", *speeds);
+      if (o.grid_x.front() <= 0) throw InputError(fmt::format("--speeds {}: speeds must be > 0", *speeds));
+      o.trace = parse_range("--speeds", fmt::format("{}:{}:{}", o.grid_x.front(), o.grid_x.back(), *trace));
+    }
+    const bool for_people = options->output_format() == OutputFormat::table;
+    const StabilityMap m = stability_map(scene, o, progress_reporter("map: points", for_people));
+
+    const std::string json = map_json(scene, model, o, m);
+    const std::filesystem::path dir(*out);
+    const std::string base = theta_plane ? "map_theta_fmax" : "map_speed_fmax";
+    std::vector<std::string> files{(dir / (base + "_curves.csv")).string(), (dir / (base + "_grid.csv")).string(),
+                                   (dir / (base + ".json")).string()};
+    write_file(files[0], curves_csv(m));
+    write_file(files[1], grid_csv(m));
+    write_file(files[2], json);
+    if (*chart != "none") {
+      files.push_back((dir / (base + "." + *chart)).string());
+      draw_chart("map", files[2], files.back());
+    }
+    switch (options->output_format()) {
+      case OutputFormat::json: fmt::print("{}", json); break;
+      case OutputFormat::csv: fmt::print("{}", curves_csv(m)); break;
+      case OutputFormat::table: {
+        int unstable = 0, points = 0;
+        for (Eigen::Index k = 0; k < m.max_abs_multiplier.size(); ++k) {
+          const double v = m.max_abs_multiplier.data()[k];
+          if (!std::isnan(v)) ++points, unstable += v > 1 + 1e-6;
+        }
+        fmt::print("scene     {}\nmodel     {}\nplane     {}{}\n", scene.source, describe_model(model), *plane,
+                   theta_plane ? fmt::format(" at Ω = {:g} rad/s", scene.operation.speed_rad_s)
+                               : fmt::format(", θ = {}·Ω", o.engine_order));
+        fmt::print("curves    {} boundary curves ({} harmonics per family)\n", m.curves.size(), o.approximation);
+        fmt::print("shading   {} of {} grid points unstable; max|ρ| relative error ≤ {:.1e}\n", unstable, points,
+                   m.max_error_estimate);
+        fmt::print("written   {}\n", fmt::join(files, ", "));
+      }
+    }
+  };
+}
+
+}  // namespace bladestab::cli
