@@ -295,7 +295,7 @@ def chart_campbell(data, ax):
 # Stability map (Ince-Strutt style)
 # --------------------------------------------------------------------------
 
-STABLE_LIMIT = 1.0 + 1e-9     # max|rho| at or below this counts as stable
+STABLE_LIMIT = 1.0 + 1e-9     # default: max|rho| at or below this counts as stable ("stable_below" overrides)
 MAP_SHADE_MIN = 0.05          # smallest upper end of the log10 max|rho| scale
 MAP_SHADE_PERCENTILE = 98.0   # upper end: this percentile of unstable cells
 # multiplier -> (legend label, colour, linestyle)
@@ -394,12 +394,12 @@ def _map_markers(data):
     return markers
 
 
-def _map_shading(ax, grid):
+def _map_shading(ax, grid, stable_below=STABLE_LIMIT):
     """Shade log10 max|rho| over the grid; return the legend handles."""
     x, y, values = grid
     rho = np.array(values, dtype=float)
     missing = np.isnan(rho)
-    unstable = ~missing & (rho > STABLE_LIMIT)
+    unstable = ~missing & (rho > stable_below)
     with np.errstate(divide="ignore", invalid="ignore"):
         level = np.log10(np.where(unstable, rho, 1.0))
     finite = level[unstable & np.isfinite(level)]
@@ -485,7 +485,7 @@ def chart_map(data, ax):
     ax.set_xlim(x_lo, x_hi)
     ax.set_ylim(0.0, y_hi)
 
-    handles = _map_shading(ax, grid) if grid is not None else []
+    handles = _map_shading(ax, grid, _number(data.get("stable_below", STABLE_LIMIT), "stable_below")) if grid is not None else []
 
     # Boundary curves, one legend entry per multiplier family.
     legend_lines = {}

@@ -32,35 +32,52 @@ PeriodicSystem system_for(const BladeModel& model, const Scene& scene) {
   return periodic_system(model, speed, damping_matrix(model, scene.damping, speed), load_series(scene));
 }
 
-// Groups boundary points (parameter index, x, F̄) into curves by (multiplier, mode, order) and
-// rank within that group at each parameter value; a curve is cut where a parameter value lacks it.
-struct Tracer {
-  using Key = std::tuple<int, int, int, int>;
-  std::map<Key, std::vector<std::tuple<int, double, double>>> points;
+// Joins boundary points into curves by continuity: at each new parameter value, every curve
+// still open takes the nearest point of its family (±1) within `max_jump`; points left over
+// start new curves and curves left over end. The curve's mode and order are its first point's.
+class Tracer {
+public:
+  explicit Tracer(double max_jump) : max_jump_(max_jump) {}
 
-  void add(int index, std::vector<Boundary> found, double fcr, bool x_is_theta, double x_fixed, double fbar_fixed) {
-    std::map<std::tuple<int, int, int>, int> rank;
-    for (const Boundary& b : found) {
-      const int r = rank[{b.multiplier, b.mode, b.order}]++;
-      const double x = x_is_theta ? b.theta_rad_s : x_fixed;
-      const double y = x_is_theta ? fbar_fixed : b.peak_force_n / fcr;
-      points[{b.multiplier, b.mode, b.order, r}].emplace_back(index, x, y);
-    }
-  }
-
-  std::vector<BoundaryCurve> curves() const {
-    std::vector<BoundaryCurve> out;
-    for (const auto& [key, list] : points) {
-      int last = -2;
-      for (const auto& [index, x, y] : list) {
-        if (index != last + 1) out.push_back({std::get<0>(key), std::get<1>(key), std::get<2>(key), {}, {}});
-        out.back().x.push_back(x);
-        out.back().fbar.push_back(y);
-        last = index;
+  // `value` is the coordinate that varies between curves (θ in the θ plane, F̄ in the speed plane).
+  void add(int index, const std::vector<Boundary>& found, const std::vector<double>& value, double x_fixed,
+           bool x_is_value) {
+    std::vector<bool> used(found.size(), false);
+    for (Open& open : open_) {
+      if (open.index != index - 1) continue;
+      int best = -1;
+      for (std::size_t k = 0; k < found.size(); ++k) {
+        if (used[k] || found[k].multiplier != curves_[open.curve].multiplier) continue;
+        const double jump = std::abs(value[k] - open.value);
+        if (jump <= max_jump_ && (best < 0 || jump < std::abs(value[best] - open.value))) best = static_cast<int>(k);
       }
+      if (best < 0) continue;
+      used[best] = true;
+      append(open.curve, value[best], x_fixed, x_is_value);
+      open = {open.curve, index, value[best]};
     }
-    return out;
+    for (std::size_t k = 0; k < found.size(); ++k) {
+      if (used[k]) continue;
+      curves_.push_back({found[k].multiplier, found[k].mode, found[k].order, {}, {}});
+      append(static_cast<int>(curves_.size()) - 1, value[k], x_fixed, x_is_value);
+      open_.push_back({static_cast<int>(curves_.size()) - 1, index, value[k]});
+    }
   }
+
+  const std::vector<BoundaryCurve>& curves() const { return curves_; }
+
+private:
+  struct Open {
+    int curve, index;
+    double value;
+  };
+  void append(int curve, double value, double fixed, bool x_is_value) {
+    curves_[curve].x.push_back(x_is_value ? value : fixed);
+    curves_[curve].fbar.push_back(x_is_value ? fixed : value);
+  }
+  double max_jump_;
+  std::vector<Open> open_;
+  std::vector<BoundaryCurve> curves_;
 };
 
 }  // namespace
@@ -91,34 +108,32 @@ StabilityMap stability_map(const Scene& scene, const MapOptions& o, const std::f
   map.grid_fbar = o.grid_fbar;
   map.max_abs_multiplier = Eigen::MatrixXd::Constant(ny, nx, std::nan(""));
 
-  // Boundary curves.
-  Tracer tracer;
+  // Boundary curves, traced within the plotted window.
+  const double x_lo = o.grid_x.front(), x_hi = o.grid_x.back(), y_hi = o.grid_fbar.back();
+  Tracer tracer(0.05 * (theta_plane ? x_hi - x_lo : y_hi));
   for (std::size_t i = 0; i < o.trace.size(); ++i) {
+    std::vector<Boundary> found;
+    std::vector<double> value;
     if (theta_plane) {
       const double fbar = o.trace[i];
       if (fbar > 0) {
         const Scene at = scene_at(scene, speed, two_pi, fbar);  // θ is the unknown; any value will do
-        tracer.add(static_cast<int>(i), boundary_frequencies(system_for(model, at), fbar * fcr, o.approximation), fcr,
-                   true, 0, fbar);
+        for (const Boundary& b : boundary_frequencies(system_for(model, at), fbar * fcr, o.approximation)) {
+          if (b.theta_rad_s >= x_lo && b.theta_rad_s <= x_hi) found.push_back(b), value.push_back(b.theta_rad_s);
+        }
       }
+      tracer.add(static_cast<int>(i), found, value, fbar, true);
     } else {
       const double W = o.trace[i], theta = o.engine_order * W;
       const Scene at = scene_at(scene, W, theta, 1.0);
-      tracer.add(static_cast<int>(i), boundary_loads(system_for(model, at), fcr, theta, o.approximation), fcr, false,
-                 W, 0);
+      for (const Boundary& b : boundary_loads(system_for(model, at), fcr, theta, o.approximation)) {
+        if (b.peak_force_n / fcr <= y_hi) found.push_back(b), value.push_back(b.peak_force_n / fcr);
+      }
+      tracer.add(static_cast<int>(i), found, value, W, false);
     }
     tick();
   }
   map.curves = tracer.curves();
-  const double x_lo = o.grid_x.front(), x_hi = o.grid_x.back();
-  const double y_hi = o.grid_fbar.back();
-  for (BoundaryCurve& c : map.curves) {  // keep what lies in the plotted window
-    BoundaryCurve kept{c.multiplier, c.mode, c.order, {}, {}};
-    for (std::size_t k = 0; k < c.x.size(); ++k) {
-      if (c.x[k] >= x_lo && c.x[k] <= x_hi && c.fbar[k] <= y_hi) kept.x.push_back(c.x[k]), kept.fbar.push_back(c.fbar[k]);
-    }
-    c = kept;
-  }
   map.curves.erase(std::remove_if(map.curves.begin(), map.curves.end(), [](const BoundaryCurve& c) { return c.x.size() < 2; }),
                    map.curves.end());
 

@@ -1,4 +1,5 @@
 // bladestab map SCENE --plane theta-fmax|speed-fmax: stability map, CSV/JSON data and a chart.
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
@@ -33,6 +34,8 @@ std::string map_json(const Scene& scene, const BladeModel& model, const MapOptio
       .value("approximation", o.approximation)
       .value("shading_method", "Floquet multipliers, method auto")
       .value("shading_max_relative_error", m.max_error_estimate)
+      // Within the shading's accuracy, max|ρ| this close to 1 cannot be told from stable.
+      .value("stable_below", 1 + std::max(o.tolerance, m.max_error_estimate))
       .begin_object("grid")
       .numbers("x", m.grid_x)
       .numbers("y", m.grid_fbar)
@@ -175,7 +178,7 @@ Command register_map(CLI::App& app) {
         int unstable = 0, points = 0;
         for (Eigen::Index k = 0; k < m.max_abs_multiplier.size(); ++k) {
           const double v = m.max_abs_multiplier.data()[k];
-          if (!std::isnan(v)) ++points, unstable += v > 1 + 1e-6;
+          if (!std::isnan(v)) ++points, unstable += v > 1 + std::max(o.tolerance, m.max_error_estimate);
         }
         fmt::print("scene     {}\nmodel     {}\nplane     {}{}\n", scene.source, describe_model(model), *plane,
                    theta_plane ? fmt::format(" at Ω = {:g} rad/s", scene.operation.speed_rad_s)

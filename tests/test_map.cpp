@@ -1,0 +1,86 @@
+// Stability maps: traced boundaries carry a Floquet multiplier at ±1 (an independent check by
+// monodromy), and the shading agrees with the Mathieu tongue it surrounds.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include "bladestab/damping.hpp"
+#include "bladestab/stability_map.hpp"
+#include "support/scenes.hpp"
+
+using namespace bladestab;
+using testing_support::paper_scene;
+
+namespace {
+std::vector<double> linspace(double a, double b, int n) {
+  std::vector<double> v(n);
+  for (int i = 0; i < n; ++i) v[i] = a + (b - a) * i / (n - 1);
+  return v;
+}
+
+// The multiplier closest to `target` (±1) at a map point.
+double distance_to_multiplier(const Scene& base, double speed, double theta, double fbar, double target) {
+  Scene s = base;
+  s.operation.speed_rad_s = speed;
+  s.load.pulse_frequency_hz = theta / (2 * 3.14159265358979323846);
+  s.load.fmax_over_fcr = fbar;
+  const BladeModel m = assemble_model(s.blade, s.model);
+  const PeriodicSystem sys = periodic_system(m, speed, damping_matrix(m, s.damping, speed), load_series(s));
+  const Eigen::VectorXcd rho = monodromy_multipliers(sys, 2048);
+  double best = 1e300;
+  for (Eigen::Index k = 0; k < rho.size(); ++k) best = std::min(best, std::abs(rho(k) - target));
+  return best;
+}
+}  // namespace
+
+TEST_CASE("speed-plane map: every traced boundary point has a multiplier at +1 or -1", "[map]") {
+  const Scene scene = paper_scene({"model.terms=3", "model.axial=false"});
+  MapOptions o;
+  o.plane = MapPlane::speed_fmax;
+  o.grid_x = linspace(100, 600, 3);
+  o.grid_fbar = linspace(0, 3, 3);  // below the static buckling load (F̄ ≈ 3.9 at 100 rad/s)
+  o.trace = linspace(100, 600, 26);
+  o.approximation = 8;               // converged to 8 digits here (6 is not, near F̄ = 3.9)
+  const StabilityMap map = stability_map(scene, o);
+  REQUIRE(map.curves.size() >= 2);
+  int checked = 0;
+  for (const BoundaryCurve& c : map.curves) {
+    for (std::size_t k = 0; k < c.x.size(); k += 2) {
+      INFO("curve ρ = " << c.multiplier << ", mode " << c.mode << ", order " << c.order << " at Ω = " << c.x[k]
+                        << ", F̄ = " << c.fbar[k]);
+      // At a boundary two multipliers meet at ±1 and split like the square root of the distance
+      // from it: 2e-4 in ρ is ~1e-8 in F̄.
+      CHECK(distance_to_multiplier(scene, c.x[k], c.x[k], c.fbar[k], c.multiplier) < 2e-4);
+      ++checked;
+    }
+  }
+  CHECK(checked >= 8);
+}
+
+TEST_CASE("theta-plane map of Mathieu's equation: unstable inside the principal tongue, stable outside", "[map][mathieu]") {
+  const Scene scene = paper_scene({"model.theory=euler-bernoulli", "model.terms=1", "model.axial=false",
+                                   "model.basis=sine", "operation.speed_rad_s=300"});
+  const BladeModel model = assemble_model(scene.blade, scene.model);
+  const double w0 = std::sqrt(model.stiffness(300)(0, 0) / model.M(0, 0));
+  const double fcr = model.blade.critical_load();
+  // Centre of the principal tongue: twice the frequency under the mean load −F_max/2.
+  const auto centre = [&](double fbar) { return 2 * std::sqrt(model.stiffness(300, -fbar / 2 * fcr)(0, 0) / model.M(0, 0)); };
+  MapOptions o;
+  o.plane = MapPlane::theta_fmax;
+  o.grid_x = {0.6 * centre(0.6), centre(0.6), 1.4 * centre(0.6)};  // left of, inside, right of the tongue at F̄ = 0.6
+  o.grid_fbar = {0.6};
+  o.trace = linspace(0, 1, 21);
+  o.approximation = 8;
+  o.tolerance = 1e-8;
+  const StabilityMap map = stability_map(scene, o);
+  CHECK(map.max_abs_multiplier(0, 0) < 1 + 1e-8);
+  CHECK(map.max_abs_multiplier(0, 1) > 1 + 1e-3);  // 1.045: spinning stiffens the single mode
+  CHECK(map.max_abs_multiplier(0, 2) < 1 + 1e-8);
+  // The two edges of the principal tongue reach down to θ = 2ω0 at F̄ → 0.
+  CHECK(centre(0) == Approx(2 * w0).epsilon(1e-14));
+  int edges = 0;
+  for (const BoundaryCurve& c : map.curves) {
+    if (c.multiplier == -1 && std::abs(c.x.front() / centre(c.fbar.front()) - 1) < 0.05) ++edges;
+  }
+  CHECK(edges == 2);
+}
