@@ -52,12 +52,15 @@ Pencil harmonic_balance(const PeriodicSystem& sys, int multiplier, int K) {
   return p;
 }
 
-// Dominant (harmonic, mode) of an eigenvector: the mode index and the order |k|.
-void classify(const Pencil& p, const Eigen::VectorXcd& c, Boundary& b) {
+// Dominant (harmonic, mode) of an eigenvector: the mode index and the order |k|. Returns false
+// when, beyond the first approximation, it peaks in the highest harmonic kept: such a root is an
+// artefact of the truncation (it moves when harmonics are added) and is dropped.
+bool classify(const Pencil& p, const Eigen::VectorXcd& c, int approximation, Boundary& b) {
   Eigen::Index at = 0;
   c.cwiseAbs().maxCoeff(&at);
   b.mode = static_cast<int>(at % p.n) + 1;
   b.order = std::abs(p.harmonics[at / p.n]);
+  return approximation == 1 || b.order < p.harmonics.back();
 }
 
 void add_family(const PeriodicSystem& sys, int multiplier, int approximation, double scale, std::vector<Boundary>& out) {
@@ -80,8 +83,7 @@ void add_family(const PeriodicSystem& sys, int multiplier, int approximation, do
     b.theta_rad_s = 1 / mu.real();
     b.peak_force_n = scale;
     b.multiplier = multiplier;
-    classify(p, eig.eigenvectors().col(j).head(N), b);
-    out.push_back(b);
+    if (classify(p, eig.eigenvectors().col(j).head(N), approximation, b)) out.push_back(b);
   }
 }
 
@@ -112,8 +114,7 @@ std::vector<Boundary> boundary_loads(const PeriodicSystem& sys, double system_pe
       b.theta_rad_s = theta;
       b.peak_force_n = -system_peak_force_n / nu.real();
       b.multiplier = multiplier;
-      classify(p, eig.eigenvectors().col(j), b);
-      out.push_back(b);
+      if (classify(p, eig.eigenvectors().col(j), approximation, b)) out.push_back(b);
     }
   }
   std::sort(out.begin(), out.end(), [](const Boundary& a, const Boundary& b) { return a.peak_force_n < b.peak_force_n; });

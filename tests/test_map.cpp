@@ -39,13 +39,13 @@ TEST_CASE("speed-plane map: every traced boundary point has a multiplier at +1 o
   o.plane = MapPlane::speed_fmax;
   o.grid_x = linspace(100, 600, 3);
   o.grid_fbar = linspace(0, 3, 3);  // below the static buckling load (F̄ ≈ 3.9 at 100 rad/s)
-  o.trace = linspace(100, 600, 26);
+  o.trace = linspace(100, 600, 51);
   o.approximation = 8;               // converged to 8 digits here (6 is not, near F̄ = 3.9)
   const StabilityMap map = stability_map(scene, o);
   REQUIRE(map.curves.size() >= 2);
   int checked = 0;
   for (const BoundaryCurve& c : map.curves) {
-    for (std::size_t k = 0; k < c.x.size(); k += 2) {
+    for (std::size_t k = 0; k < c.x.size(); ++k) {
       INFO("curve ρ = " << c.multiplier << ", mode " << c.mode << ", order " << c.order << " at Ω = " << c.x[k]
                         << ", F̄ = " << c.fbar[k]);
       // At a boundary two multipliers meet at ±1 and split like the square root of the distance
@@ -54,7 +54,7 @@ TEST_CASE("speed-plane map: every traced boundary point has a multiplier at +1 o
       ++checked;
     }
   }
-  CHECK(checked >= 8);
+  CHECK(checked >= 6);
 }
 
 TEST_CASE("theta-plane map of Mathieu's equation: unstable inside the principal tongue, stable outside", "[map][mathieu]") {

@@ -8,6 +8,9 @@
 // S = {±1, ±3, …, ±(2K−1)} (−1) or {0, ±2, …, ±2K} (+1) for the K-th approximation. This is a
 // quadratic eigenproblem in θ at fixed load (K = 1 is Bolotin's first approximation (B.15)) and,
 // since every F_m is proportional to F_max, a linear one in F_max at fixed θ.
+// Beyond the first approximation, a root whose eigenvector peaks in the highest harmonic kept is
+// not resolved by the truncation and is dropped; raise the approximation to see high-order (thin)
+// regions.
 // Combination resonances (|ρ| leaving the unit circle away from ±1) are not boundaries of this
 // kind; only the Floquet multipliers show them.
 #include <vector>
