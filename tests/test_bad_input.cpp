@@ -294,3 +294,45 @@ TEST_CASE("bad input: modes options and command-line parse errors (bad_input)", 
     expect_rejected({"frobnicate", valid_scene}, {"frobnicate", "modes", "campbell"});
   }
 }
+
+TEST_CASE("bad input: stability, boundaries and map options (bad_input)", "[bad_input]") {
+  const auto with = [](std::vector<std::string> args) {
+    args.insert(args.begin() + 1, valid_scene);
+    return args;
+  };
+  SECTION("stability --method unknown") {
+    expect_rejected(with({"stability", "--method", "floquet"}), {"--method", "floquet", "koopman-hill"});
+  }
+  SECTION("stability --tolerance 0") {
+    expect_rejected(with({"stability", "--tolerance", "0"}), {"--tolerance 0", "(0, 1)"});
+  }
+  SECTION("stability --harmonics 100") {
+    expect_rejected(with({"stability", "--harmonics", "100"}), {"--harmonics 100", "[1, 60]"});
+  }
+  SECTION("stability at rest without a pulse frequency") {
+    expect_rejected(with({"stability", "--set", "operation.speed_rad_s=0"}),
+                    {"operation.speed_rad_s = 0", "load.pulse_frequency_hz"});
+  }
+  SECTION("stability with a Fourier series of an impulse") {
+    expect_rejected(with({"stability", "--set", "load.profile=impulse", "--set", "load.approximation=fourier"}),
+                    {"load.profile = \"impulse\"", "Fourier series"});
+  }
+  SECTION("boundaries --approximation 0") {
+    expect_rejected(with({"boundaries", "--approximation", "0"}), {"--approximation 0", "[1, 40]"});
+  }
+  SECTION("boundaries --at-theta -5") {
+    expect_rejected(with({"boundaries", "--at-theta", "-5"}), {"--at-theta -5", "> 0"});
+  }
+  SECTION("map without a plane") { expect_rejected(with({"map"}), {"--plane", "required"}); }
+  SECTION("map speed plane without speeds") {
+    expect_rejected(with({"map", "--plane", "speed-fmax", "--chart", "none"}), {"--speeds", "required"});
+  }
+  SECTION("map empty F range") {
+    expect_rejected(with({"map", "--plane", "theta-fmax", "--fmax", "5:5:3", "--chart", "none"}),
+                    {"--fmax 5:5:3", "start < stop"});
+  }
+  SECTION("map negative pulse frequency") {
+    expect_rejected(with({"map", "--plane", "theta-fmax", "--theta", "-100:100:3", "--chart", "none"}),
+                    {"--theta -100:100:3", "> 0"});
+  }
+}
