@@ -17,13 +17,6 @@ namespace {
 
 constexpr double rpm_per_rad_s = 60 / 6.28318530717958647692;
 
-// "sinha2005/blade" for stability_maps/sinha2005/blade.toml.
-std::string scene_title(const Scene& scene) {
-  const std::filesystem::path p(scene.source);
-  const std::string folder = p.parent_path().filename().string();
-  return (folder.empty() ? "" : folder + "/") + p.stem().string();
-}
-
 std::string campbell_json(const Scene& scene, const BladeModel& model, const CampbellDiagram& d) {
   JsonWriter json;
   json.begin_object()

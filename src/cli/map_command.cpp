@@ -20,8 +20,7 @@ namespace {
 
 std::string map_json(const Scene& scene, const BladeModel& model, const MapOptions& o, const StabilityMap& m) {
   const bool theta = m.plane == MapPlane::theta_fmax;
-  const std::string stem = std::filesystem::path(scene.source).parent_path().filename().string() + "/" +
-                           std::filesystem::path(scene.source).stem().string();
+  const std::string stem = scene_title(scene);
   JsonWriter json;
   json.begin_object()
       .value("title", theta ? fmt::format("{} — stability map at Ω = {:g} rad/s", stem, scene.operation.speed_rad_s)

@@ -70,6 +70,12 @@ std::string describe_model(const BladeModel& model) {
                      s.coriolis ? "on" : "off");
 }
 
+std::string scene_title(const Scene& scene) {
+  const std::filesystem::path p(scene.source);
+  const std::string folder = p.parent_path().filename().string();
+  return (folder.empty() ? "" : folder + "/") + p.stem().string();
+}
+
 void write_file(const std::string& path, const std::string& text) {
   const std::filesystem::path p(path);
   std::error_code ec;

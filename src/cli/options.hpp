@@ -33,6 +33,9 @@ std::vector<double> parse_range(const std::string& option, const std::string& te
 // One line describing the model, e.g. "timoshenko, legendre basis, 16 terms/field (48 dofs), axial on, coriolis on".
 std::string describe_model(const BladeModel& model);
 
+// "sinha2005/blade" for stability_maps/sinha2005/blade.toml: the scene's name in chart titles.
+std::string scene_title(const Scene& scene);
+
 // Writes text to a file, creating its directory; InputError if that fails.
 void write_file(const std::string& path, const std::string& text);
 
