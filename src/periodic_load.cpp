@@ -50,7 +50,9 @@ double PulseTrain::force(double t) const {
   const double p = std::floor(t / period_s);
   if (count > 0 && p >= count) return 0;
   const double tau = t - p * period_s, c = contact_time_s, F = peak_n;
-  if (tau > c) return 0;
+  // Half-open window [0, t_c): at a pulse's end the force is already off, so an integrator step
+  // that lands there starts the next step with the right-hand limit.
+  if (tau >= c && c < period_s) return 0;
   switch (profile) {  // Appendix A, SPEC §3 table
     case PulseProfile::half_sine: return -F * std::sin(pi * tau / c);                      // (38)
     case PulseProfile::cosine: return -F / 2 + F / 2 * std::cos(2 * pi * tau / c);        // (A.2)
@@ -60,6 +62,17 @@ double PulseTrain::force(double t) const {
     case PulseProfile::impulse: return -F;  // a short rectangle; the impulse is F_max t_c
   }
   return 0;
+}
+
+std::vector<double> PulseTrain::edges(double t0, double t1) const {
+  std::vector<double> out;
+  for (long p = std::max(0L, static_cast<long>(std::floor(t0 / period_s))); p * period_s <= t1; ++p) {
+    if (count > 0 && p >= count) break;
+    for (double e : {p * period_s, p * period_s + contact_time_s}) {
+      if (e >= t0 && e <= t1) out.push_back(e);
+    }
+  }
+  return out;
 }
 
 cplx PulseTrain::fourier_coefficient(int m) const {

@@ -20,8 +20,11 @@ struct PulseTrain {
                                // (the series' shape depends only on t_c/T_p, so boundaries in θ still work)
 
   double angular_frequency() const;  // θ = 2π / T_p
-  // F(t) of the true pulse train [N]; 0 outside the contact windows and after the last pulse.
+  // F(t) of the true pulse train [N]; 0 outside the contact windows [start, start + t_c) and
+  // after the last pulse.
   double force(double t) const;
+  // Pulse starts and ends in [t0, t1]: where F or F' jumps, so integrator steps land there.
+  std::vector<double> edges(double t0, double t1) const;
   // F_m = (1/T_p) ∫₀^{T_p} F(t) e^{−i m θ t} dt, exact closed form for every profile.
   std::complex<double> fourier_coefficient(int m) const;
   // (1/T_p) ∫ F² dt, for Parseval's tail bound.

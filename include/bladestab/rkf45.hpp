@@ -1,0 +1,41 @@
+#pragma once
+// Runge–Kutta–Fehlberg 4(5) (SPEC §5; Fehlberg's six-stage pair, nodes 0, 1/4, 3/8, 12/13, 1, 1/2)
+// for ẋ = f(t, x). Knows nothing of blades: the system is a function, as in Boost.Odeint, so a
+// higher-order pair or an implicit method can stand beside it.
+//  - adaptive: the step is chosen so the embedded error estimate stays below rtol·|x| + atol
+//    (the fifth-order solution is propagated, the fourth-order one only measures the error);
+//  - fixed: a constant step (the paper's (54)), shortened only to land on a breakpoint.
+// Steps land exactly on every breakpoint (pulse edges: F and F' jump there). Output between
+// steps is dense: cubic Hermite interpolation from the values and slopes at both ends.
+#include <functional>
+#include <vector>
+
+#include <Eigen/Dense>
+
+namespace bladestab {
+
+using OdeFunction = std::function<void(double t, const Eigen::VectorXd& x, Eigen::VectorXd& dxdt)>;
+// Called at each output time with the interpolated state.
+using OdeObserver = std::function<void(double t, const Eigen::VectorXd& x)>;
+
+struct StepControl {
+  bool adaptive = true;
+  double rtol = 1e-8, atol = 1e-14;
+  double fixed_step = 0;   // fixed mode
+  double first_step = 0;   // adaptive: 0 = choose from the initial slope
+  double max_step = 0;     // adaptive: 0 = unlimited
+};
+
+struct StepStatistics {
+  long accepted = 0, rejected = 0, evaluations = 0;
+  double smallest_step = 0, largest_step = 0;
+};
+
+// Integrates x from t0 to t1. `breakpoints` (any order, outside (t0, t1) ignored) are landed on;
+// `outputs` (increasing) are reported to `observer` by dense output. Returns the statistics; x
+// holds x(t1). Throws std::runtime_error if the step size underflows.
+StepStatistics rkf45_integrate(const OdeFunction& f, Eigen::VectorXd& x, double t0, double t1,
+                               const StepControl& control, std::vector<double> breakpoints,
+                               const std::vector<double>& outputs, const OdeObserver& observer);
+
+}  // namespace bladestab

@@ -1,0 +1,59 @@
+#pragma once
+// Time-domain response of the rotating blade to its tip rub (SPEC §5, (47)–(52)):
+//
+//   M f̈ + C ḟ + (K(Ω) + F(t) G) f = Ω² P_cf + F(t) p_u + R(t) p_v
+//
+// with the true pulse train F(t) ≤ 0 on the tip (axially, p_u = W_i(L), and through the
+// geometric stiffness G), and Coulomb friction R = −μ|F| cos β · tanh(v_rel/ε) on the lateral
+// tip, v_rel = ΩR + cos β · v̇(L) the tip's speed past the casing (regularized sign, ε = 1 mm/s:
+// the tip moves at ΩR ≈ 450 m/s, so the friction never sticks in practice). Integrated in first-
+// order form x = [f; ḟ] by RKF45, adaptive or with the paper's fixed step (54), landing on every
+// pulse edge.
+#include <functional>
+#include <optional>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "bladestab/model.hpp"
+#include "bladestab/periodic_load.hpp"
+#include "bladestab/rkf45.hpp"
+#include "bladestab/scene.hpp"
+
+namespace bladestab {
+
+struct TransientOptions {
+  double revolutions = 10;
+  bool adaptive = true;
+  double tolerance = 1e-8;   // rtol of the adaptive steps
+  int samples_per_revolution = 200;
+  double friction_velocity = 1e-3;              // ε of the regularized sign [m/s]
+  std::optional<Eigen::VectorXd> initial_state; // x = [f; ḟ]; default: the steady rotating equilibrium
+  std::function<void(int, int)> progress;       // (revolutions done, total)
+};
+
+struct TransientSample {
+  double time_s, revolutions;
+  double tip_lateral_m, tip_axial_m, tip_lateral_velocity_m_s, tip_axial_velocity_m_s;
+  double axial_force_n, friction_force_n;
+  double strain_energy_j;   // ½ fᵀ K_S f: bending, shear and axial strain (55), (56)
+  double kinetic_energy_j;  // ½ ḟᵀ M ḟ (57), (58)
+  double total_energy_j;    // ½ ḟᵀ M ḟ + ½ fᵀ K(Ω) f − Ω² P_cfᵀ f, conserved without load and damping
+};
+
+struct TransientResult {
+  std::vector<TransientSample> samples;
+  StepStatistics steps;
+  double fixed_step_s = 0;  // the paper's (54) step, when used
+  double static_tip_axial_m = 0;  // the rotating equilibrium's tip stretch
+};
+
+// The steady rotating equilibrium: K(Ω) f = Ω² P_cf, ḟ = 0.
+Eigen::VectorXd rotating_equilibrium(const BladeModel& model, double speed_rad_s);
+
+// The paper's fixed step (54): Δt = (1/8)(2π/ω_max), ω_max from M f̈ + K(Ω) f = 0.
+double paper_fixed_step(const BladeModel& model, double speed_rad_s);
+
+TransientResult run_transient(const BladeModel& model, const Scene& scene, const TransientOptions& options);
+
+}  // namespace bladestab
