@@ -6,6 +6,8 @@
 #include <cmath>
 
 #include "bladestab/damping.hpp"
+#include "bladestab/modes.hpp"
+#include "bladestab/response_analysis.hpp"
 #include "bladestab/transient.hpp"
 #include "support/scenes.hpp"
 
@@ -75,4 +77,52 @@ TEST_CASE("growth per revolution under the periodic cosine load equals the Floqu
   const double growth = std::pow(peak[15] / peak[10], 1.0 / 5);
   INFO("peaks " << peak[10] << " … " << peak[15]);
   CHECK(growth == Approx(2.1992274).epsilon(0.01));
+}
+
+TEST_CASE("the paper's Fig. 10/11 single pulse: mode-1 lateral response, 2 mm stretch, first axial line", "[transient][paper]") {
+  const Scene s = paper_scene({"model.terms=8", "load.pulse_count=1"});  // half-sine, F̄ = 5, t̄c = 0.01, μ = 0
+  const BladeModel m = assemble_model(s.blade, s.model);
+  TransientOptions o;
+  o.revolutions = 20;
+  o.tolerance = 1e-7;
+  const TransientResult r = run_transient(m, s, o);
+  std::vector<double> lat, ax, revs;
+  for (const TransientSample& p : r.samples) lat.push_back(p.tip_lateral_m), ax.push_back(p.tip_axial_m), revs.push_back(p.revolutions);
+  const double rate = 200 * 300 / (2 * 3.14159265358979323846);
+  const Spectrum lateral = amplitude_spectrum(lat, rate), axial = amplitude_spectrum(ax, rate);
+  // First coupled bending mode of the same model, from the gyroscopic eigenproblem.
+  const ModalSolution modes = solve_modes(m, system_at(m, 300, damping_matrix(m, s.damping, 300)), 300, 6, EigenSolverKind::dense);
+  double f_axial = 0;
+  for (const Mode& mode : modes.modes) if (mode.family == ModeFamily::axial && f_axial == 0) f_axial = mode.frequency_hz;
+  CHECK(dominant_frequency(lateral) == Approx(modes.modes[0].frequency_hz).epsilon(0.003));
+  CHECK(dominant_frequency(axial, 600) == Approx(f_axial).epsilon(0.003));
+  CHECK(f_axial == Approx(1280).epsilon(0.001));
+  double mean = 0;
+  for (double a : ax) mean += a / ax.size();
+  CHECK(mean == Approx(2.0e-3).epsilon(0.02));
+  CHECK(growth_per_revolution(revs, lat, 10) == Approx(1).epsilon(0.01));  // undamped, one pulse: steady
+}
+
+// The issue asks for 1e-6; the paper's step (54) does not give it: it resolves the 46 kHz rotation
+// modes with h·ω = 0.79 and the higher axial modes, which the pulses excite, with h·ω ≈ 0.2.
+// Measured: 2.0e-3 of the lateral peak, 1.0e-3 of the axial peak. Asserted at that level.
+TEST_CASE("fixed (paper) and adaptive steps agree on a 5-revolution pulse-train history", "[transient]") {
+  const Scene s = paper_scene({"model.terms=8"});  // endless half-sine train, F̄ = 5
+  const BladeModel m = assemble_model(s.blade, s.model);
+  TransientOptions adaptive, fixed;
+  adaptive.revolutions = fixed.revolutions = 5;
+  adaptive.tolerance = 1e-9;
+  fixed.adaptive = false;
+  const TransientResult a = run_transient(m, s, adaptive), f = run_transient(m, s, fixed);
+  REQUIRE(a.samples.size() == f.samples.size());
+  double peak_lat = 0, peak_ax = 0, d_lat = 0, d_ax = 0;
+  for (std::size_t k = 0; k < a.samples.size(); ++k) {
+    peak_lat = std::max(peak_lat, std::abs(a.samples[k].tip_lateral_m));
+    peak_ax = std::max(peak_ax, std::abs(a.samples[k].tip_axial_m));
+    d_lat = std::max(d_lat, std::abs(a.samples[k].tip_lateral_m - f.samples[k].tip_lateral_m));
+    d_ax = std::max(d_ax, std::abs(a.samples[k].tip_axial_m - f.samples[k].tip_axial_m));
+  }
+  INFO("adaptive " << a.steps.accepted << " steps, fixed " << f.steps.accepted << " steps of " << f.fixed_step_s << " s");
+  CHECK(d_lat < 3e-3 * peak_lat);
+  CHECK(d_ax < 1.5e-3 * peak_ax);
 }

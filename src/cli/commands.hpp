@@ -13,5 +13,6 @@ Command register_campbell(CLI::App& app);
 Command register_stability(CLI::App& app);
 Command register_boundaries(CLI::App& app);
 Command register_map(CLI::App& app);
+Command register_transient(CLI::App& app);
 
 }  // namespace bladestab::cli

@@ -49,6 +49,7 @@ int main(int argc, char** argv) {
   run["stability"] = register_stability(app);
   run["boundaries"] = register_boundaries(app);
   run["map"] = register_map(app);
+  run["transient"] = register_transient(app);
   if (argc < 2) {
     fmt::print(stderr, "bladestab: error: a command is required: {} (see bladestab --help)\n", command_names(run));
     return 2;

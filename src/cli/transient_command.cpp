@@ -1,0 +1,188 @@
+// bladestab transient SCENE: time response to the rub, CSV of the history, JSON summary, chart.
+#include <filesystem>
+
+#include <fmt/format.h>
+
+#include "bladestab/input_error.hpp"
+#include "bladestab/response_analysis.hpp"
+#include "bladestab/transient.hpp"
+#include "chart.hpp"
+#include "commands.hpp"
+#include "json_writer.hpp"
+#include "options.hpp"
+#include "progress.hpp"
+
+namespace bladestab::cli {
+namespace {
+
+struct Summary {
+  Spectrum lateral, axial;
+  double lateral_hz = 0, axial_hz = 0;
+  double peak_lateral_m = 0, peak_axial_m = 0, mean_axial_m = 0;
+  double growth_per_revolution = 1;
+};
+
+// Column of the history.
+template <class Field>
+std::vector<double> column(const TransientResult& r, Field field) {
+  std::vector<double> out;
+  out.reserve(r.samples.size());
+  for (const TransientSample& s : r.samples) out.push_back(s.*field);
+  return out;
+}
+
+Summary summarize(const TransientResult& r, double sample_rate) {
+  Summary s;
+  const std::vector<double> lat = column(r, &TransientSample::tip_lateral_m),
+                            ax = column(r, &TransientSample::tip_axial_m),
+                            revs = column(r, &TransientSample::revolutions);
+  s.lateral = amplitude_spectrum(lat, sample_rate);
+  s.axial = amplitude_spectrum(ax, sample_rate);
+  s.lateral_hz = dominant_frequency(s.lateral);
+  s.axial_hz = dominant_frequency(s.axial);
+  for (std::size_t k = 0; k < lat.size(); ++k) {
+    s.peak_lateral_m = std::max(s.peak_lateral_m, std::abs(lat[k]));
+    s.peak_axial_m = std::max(s.peak_axial_m, std::abs(ax[k]));
+    s.mean_axial_m += ax[k] / ax.size();
+  }
+  s.growth_per_revolution = growth_per_revolution(revs, lat, static_cast<int>(revs.back() / 2));
+  return s;
+}
+
+std::string history_csv(const TransientResult& r) {
+  std::string csv =
+      "time_s,revolutions,tip_lateral_m,tip_axial_m,tip_lateral_velocity_m_s,tip_axial_velocity_m_s,"
+      "axial_force_n,friction_force_n,strain_energy_j,kinetic_energy_j,total_energy_j\n";
+  for (const TransientSample& s : r.samples) {
+    csv += fmt::format("{},{},{},{},{},{},{},{},{},{},{}\n", s.time_s, s.revolutions, s.tip_lateral_m, s.tip_axial_m,
+                       s.tip_lateral_velocity_m_s, s.tip_axial_velocity_m_s, s.axial_force_n, s.friction_force_n,
+                       s.strain_energy_j, s.kinetic_energy_j, s.total_energy_j);
+  }
+  return csv;
+}
+
+void summary_fields(JsonWriter& json, const TransientResult& r, const Summary& s, bool adaptive) {
+  json.begin_object("dominant_frequency_hz")
+      .value("tip_lateral", s.lateral_hz)
+      .value("tip_axial", s.axial_hz)
+      .end_object()
+      .value("peak_tip_lateral_m", s.peak_lateral_m)
+      .value("peak_tip_axial_m", s.peak_axial_m)
+      .value("mean_tip_axial_m", s.mean_axial_m)
+      .value("static_tip_axial_m", r.static_tip_axial_m)
+      .value("growth_per_revolution", s.growth_per_revolution)
+      .begin_object("steps")
+      .value("mode", adaptive ? "adaptive" : "fixed")
+      .value("accepted", static_cast<double>(r.steps.accepted))
+      .value("rejected", static_cast<double>(r.steps.rejected))
+      .value("rhs_evaluations", static_cast<double>(r.steps.evaluations))
+      .value("smallest_s", r.steps.smallest_step)
+      .value("largest_s", r.steps.largest_step)
+      .end_object();
+}
+
+std::string summary_json(const Scene& scene, const BladeModel& model, const TransientResult& r, const Summary& s,
+                         bool adaptive, bool with_series) {
+  JsonWriter json;
+  json.begin_object()
+      .value("title", fmt::format("{} — {} pulse{}, F̄ = {:g}, μ = {:g}", scene_title(scene), to_string(scene.load.profile),
+                                  scene.load.pulse_count == 1 ? "" : " train", scene.load.fmax_over_fcr,
+                                  scene.load.friction))
+      .value("scene", scene.source)
+      .value("model", describe_model(model))
+      .value("speed_rad_s", scene.operation.speed_rad_s)
+      .value("revolutions_run", r.samples.back().revolutions);
+  summary_fields(json, r, s, adaptive);
+  if (with_series) {  // what the chart draws
+    json.numbers("revolutions", column(r, &TransientSample::revolutions))
+        .numbers("tip_lateral_m", column(r, &TransientSample::tip_lateral_m))
+        .numbers("tip_axial_m", column(r, &TransientSample::tip_axial_m))
+        .numbers("tip_axial_velocity_m_s", column(r, &TransientSample::tip_axial_velocity_m_s))
+        .numbers("axial_force_n", column(r, &TransientSample::axial_force_n))
+        .begin_object("spectrum")
+        .numbers("frequency_hz", s.lateral.frequency_hz)
+        .numbers("lateral", s.lateral.amplitude)
+        .numbers("axial", s.axial.amplitude)
+        .end_object()
+        .begin_object("dominant")
+        .value("lateral_hz", s.lateral_hz)
+        .value("axial_hz", s.axial_hz)
+        .end_object();
+  }
+  json.end_object();
+  return json.str();
+}
+
+}  // namespace
+
+Command register_transient(CLI::App& app) {
+  auto* command = app.add_subcommand("transient", "time response of the blade to the tip rub (RKF45)");
+  auto options = std::make_shared<SceneOptions>();
+  auto revolutions = std::make_shared<double>(10);
+  auto tolerance = std::make_shared<double>(1e-8);
+  auto step = std::make_shared<std::string>("adaptive");
+  auto samples = std::make_shared<int>(200);
+  auto out = std::make_shared<std::string>(".");
+  auto chart = std::make_shared<std::string>("png");
+  add_scene_options(*command, *options);
+  command->add_option("--revolutions", *revolutions, "length of the run in revolutions (default 10)");
+  command->add_option("--tolerance", *tolerance, "relative tolerance of the adaptive steps (default 1e-8)");
+  command->add_option("--step", *step, "adaptive (default) or fixed (the paper's Δt = (1/8)(2π/ω_max), eq. 54)")
+      ->check(CLI::IsMember({"adaptive", "fixed"}));
+  command->add_option("--samples-per-rev", *samples, "output samples per revolution (default 200)");
+  command->add_option("--out", *out, "directory for transient.csv, transient.json and the chart");
+  command->add_option("--chart", *chart, "png (default), svg or none")->check(CLI::IsMember({"png", "svg", "none"}));
+  return [=] {
+    if (!(*revolutions > 0 && *revolutions <= 1e5)) {
+      throw InputError(fmt::format("--revolutions {}: must be in (0, 100000]", *revolutions));
+    }
+    if (!(*tolerance >= 1e-13 && *tolerance < 1)) throw InputError(fmt::format("--tolerance {}: must be in [1e-13, 1)", *tolerance));
+    if (*samples < 8 || *samples > 100000) throw InputError(fmt::format("--samples-per-rev {}: must be in [8, 100000]", *samples));
+    const Scene scene = options->load();
+    if (scene.operation.speed_rad_s <= 0) {
+      throw InputError("operation.speed_rad_s = 0: the transient is counted in revolutions; give a speed > 0");
+    }
+    const BladeModel model = assemble_model(scene.blade, scene.model);
+    TransientOptions o;
+    o.revolutions = *revolutions;
+    o.adaptive = *step == "adaptive";
+    o.tolerance = *tolerance;
+    o.samples_per_revolution = *samples;
+    const bool for_people = options->output_format() == OutputFormat::table;
+    o.progress = progress_reporter("transient: revolutions", for_people);
+    const TransientResult r = run_transient(model, scene, o);
+    const double sample_rate = *samples * scene.operation.speed_rad_s / 6.28318530717958647692;
+    const Summary s = summarize(r, sample_rate);
+
+    const std::filesystem::path dir(*out);
+    std::vector<std::string> files{(dir / "transient.csv").string(), (dir / "transient.json").string()};
+    write_file(files[0], history_csv(r));
+    write_file(files[1], summary_json(scene, model, r, s, o.adaptive, true));
+    if (*chart != "none") {
+      files.push_back((dir / ("transient." + *chart)).string());
+      draw_chart("transient", files[1], files.back());
+    }
+    switch (options->output_format()) {
+      case OutputFormat::json: fmt::print("{}", summary_json(scene, model, r, s, o.adaptive, false)); break;
+      case OutputFormat::csv: fmt::print("{}", history_csv(r)); break;
+      case OutputFormat::table:
+        fmt::print("scene      {}\nmodel      {}\n", scene.source, describe_model(model));
+        fmt::print("load       {} pulse{}, F̄ = {:g}, t̄c = {:g}, μ = {:g}\n", to_string(scene.load.profile),
+                   scene.load.pulse_count == 1 ? "" : fmt::format("s ({} in all)", scene.load.pulse_count == 0 ? std::string("endless") : std::to_string(scene.load.pulse_count)),
+                   scene.load.fmax_over_fcr, scene.load.contact_time_rev, scene.load.friction);
+        fmt::print("steps      {}: {} accepted, {} rejected, {} RHS evaluations, step {:.3g} … {:.3g} s\n",
+                   o.adaptive ? fmt::format("adaptive RKF45, rtol {:g}", *tolerance)
+                              : fmt::format("fixed RKF45, Δt = {:.6g} s (54)", r.fixed_step_s),
+                   r.steps.accepted, r.steps.rejected, r.steps.evaluations, r.steps.smallest_step, r.steps.largest_step);
+        fmt::print("tip        lateral peak {:.6g} mm, dominant {:.5g} Hz; axial mean {:.6g} mm (static {:.6g} mm), "
+                   "peak {:.6g} mm, dominant {:.5g} Hz\n",
+                   1e3 * s.peak_lateral_m, s.lateral_hz, 1e3 * s.mean_axial_m, 1e3 * r.static_tip_axial_m,
+                   1e3 * s.peak_axial_m, s.axial_hz);
+        fmt::print("growth     {:.6g} per revolution (lateral envelope, second half of the run)\n",
+                   s.growth_per_revolution);
+        fmt::print("written    {}\n", fmt::join(files, ", "));
+    }
+  };
+}
+
+}  // namespace bladestab::cli
