@@ -85,7 +85,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402  (backend must be chosen first)
 import numpy as np  # noqa: E402  (ships with matplotlib)
-from matplotlib.collections import PolyCollection  # noqa: E402
+from matplotlib.collections import LineCollection, PolyCollection  # noqa: E402
 from matplotlib.colors import ListedColormap, Normalize  # noqa: E402
 from matplotlib.lines import Line2D  # noqa: E402
 from matplotlib.patches import Patch  # noqa: E402
@@ -574,6 +574,7 @@ AXIAL_COLOR = "#b8322a"
 CONTACT_COLOR = "#f0a030"
 SPECTRUM_DECADES = 6.0        # log axis floor: this many decades below the peak
 RASTERIZE_POINTS = 20000      # longer time series are rasterized (SVG size)
+DENSE_CHUNK = 500             # phase-plane orbit drawn in chunks of this many
 
 
 def _array(values, what):
@@ -610,7 +611,7 @@ def _transient_series(data):
     if positive.size:
         i = positive[0]
         raise InputError(f"axial_force_n[{i}] = {series['axial_force_n'][i]:g}"
-                         " is positive (the rub pulse pushes, F <= 0)")
+                         " is positive (the rub force is <= 0)")
     return rev, series
 
 
@@ -690,6 +691,21 @@ def _contact_windows(ax, rev, force):
         edgecolors=CONTACT_COLOR, linewidths=0.4, alpha=0.22, zorder=0,
         rasterized=len(boxes) > 2000), autolim=False)
     return True
+
+
+def _dense_line(ax, x, y, color, linewidth, **kwargs):
+    """Plot a long line that path simplification cannot thin (a phase-plane
+    orbit) in chunks sharing their end points: Agg fills many short paths far
+    faster than one long self-crossing one."""
+    if x.size <= DENSE_CHUNK:
+        ax.plot(x, y, color=color, linewidth=linewidth, **kwargs)
+        return
+    points = np.column_stack((x, y))
+    chunks = [points[i:i + DENSE_CHUNK + 1]
+              for i in range(0, points.shape[0] - 1, DENSE_CHUNK)]
+    ax.add_collection(LineCollection(chunks, colors=[color],
+                                     linewidths=linewidth, **kwargs))
+    ax.autoscale_view()
 
 
 def _spectrum_panel(ax, spectrum, peaks, modes):
@@ -801,8 +817,11 @@ def chart_transient(data, ax):
                    bbox=dict(boxstyle="square,pad=0.15", facecolor="white",
                              edgecolor="none", alpha=0.75))
 
-    ax_phase.plot(series["tip_axial_velocity_m_s"], axial, color=AXIAL_COLOR,
-                  linewidth=0.4, zorder=3, rasterized=big)
+    _dense_line(ax_phase, series["tip_axial_velocity_m_s"], axial,
+                color=AXIAL_COLOR, linewidth=0.4, zorder=3, rasterized=big)
+    if np.ptp(series["tip_axial_velocity_m_s"]) == 0.0 and np.ptp(axial) == 0.0:
+        ax_phase.plot(series["tip_axial_velocity_m_s"][:1], axial[:1],
+                      linestyle="none", marker=".", color=AXIAL_COLOR)  # at rest
     ax_phase.set_title("(c) axial phase plane", fontsize=10)
     ax_phase.set_xlabel("Axial velocity [m/s]")
     ax_phase.set_ylabel("Axial deflection [mm]")

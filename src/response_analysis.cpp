@@ -47,13 +47,12 @@ double dominant_frequency(const Spectrum& s, double min_hz) {
 }
 
 double growth_per_revolution(const std::vector<double>& revs, const std::vector<double>& x, int first) {
-  const double mean = std::accumulate(x.begin(), x.end(), 0.0) / x.size();
   std::vector<double> peak;
   for (std::size_t k = 0; k < x.size(); ++k) {
     const int r = static_cast<int>(std::floor(revs[k]));
     if (r < first || revs[k] >= std::floor(revs.back())) continue;  // whole revolutions only
     if (static_cast<int>(peak.size()) <= r - first) peak.resize(r - first + 1, 0.0);
-    peak[r - first] = std::max(peak[r - first], std::abs(x[k] - mean));
+    peak[r - first] = std::max(peak[r - first], std::abs(x[k]));
   }
   if (peak.size() < 2) return 1;
   // Least squares of ln peak against the revolution number.

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "bladestab/crosscheck.hpp"
 #include "bladestab/damping.hpp"
 #include "bladestab/modes.hpp"
 #include "bladestab/response_analysis.hpp"
@@ -125,4 +126,17 @@ TEST_CASE("fixed (paper) and adaptive steps agree on a 5-revolution pulse-train 
   INFO("adaptive " << a.steps.accepted << " steps, fixed " << f.steps.accepted << " steps of " << f.fixed_step_s << " s");
   CHECK(d_lat < 3e-3 * peak_lat);
   CHECK(d_ax < 1.5e-3 * peak_ax);
+}
+
+TEST_CASE("crosscheck: the cosine approximation's instability is real for its load, absent for the true pulse", "[transient][crosscheck]") {
+  const Scene s = paper_scene({"model.terms=8"});  // half-sine, t̄c = 0.01, one pulse per revolution
+  CrosscheckOptions o;
+  o.fmax_over_fcr = {5};
+  o.revolutions = 16;
+  const CrosscheckPoint p = crosscheck(s, o).at(0);
+  CHECK(p.floquet_cosine == Approx(2.1992274).epsilon(1e-6));
+  CHECK(p.transient_cosine_growth == Approx(p.floquet_cosine).epsilon(1e-3));  // measured 5e-5
+  CHECK(std::abs(p.floquet_pulse - 1) < 1e-6);                                  // the real pulse: stable
+  CHECK(p.transient_pulse_growth < 1.01);
+  CHECK(p.pulse_harmonics == 400);
 }

@@ -17,8 +17,10 @@ Spectrum amplitude_spectrum(const std::vector<double>& signal, double sample_rat
 // bins around it (exact for a Gaussian peak; the Hann main lobe is close to one).
 double dominant_frequency(const Spectrum& spectrum, double min_hz = 0);
 
-// Envelope growth per revolution: exp of the least-squares slope of ln(peak |x − mean| per
-// revolution) over the revolutions from `first_revolution` on. 1 for a steady response.
+// Envelope growth per revolution: exp of the least-squares slope of ln(peak |x| per revolution)
+// over the whole revolutions from `first_revolution` on; 1 for a steady response. For a signal
+// about zero (the lateral tip deflection); a multiplier ρ > 0 grows with an offset that a mean
+// subtraction would distort.
 double growth_per_revolution(const std::vector<double>& revolutions, const std::vector<double>& signal,
                              int first_revolution);
 

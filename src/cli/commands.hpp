@@ -14,5 +14,6 @@ Command register_stability(CLI::App& app);
 Command register_boundaries(CLI::App& app);
 Command register_map(CLI::App& app);
 Command register_transient(CLI::App& app);
+Command register_crosscheck(CLI::App& app);
 
 }  // namespace bladestab::cli

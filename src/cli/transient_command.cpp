@@ -45,7 +45,7 @@ Summary summarize(const TransientResult& r, double sample_rate) {
     s.peak_axial_m = std::max(s.peak_axial_m, std::abs(ax[k]));
     s.mean_axial_m += ax[k] / ax.size();
   }
-  s.growth_per_revolution = growth_per_revolution(revs, lat, static_cast<int>(revs.back() / 2));
+  s.growth_per_revolution = growth_per_revolution(revs, lat, static_cast<int>(2 * revs.back() / 3));
   return s;
 }
 
@@ -178,7 +178,7 @@ Command register_transient(CLI::App& app) {
                    "peak {:.6g} mm, dominant {:.5g} Hz\n",
                    1e3 * s.peak_lateral_m, s.lateral_hz, 1e3 * s.mean_axial_m, 1e3 * r.static_tip_axial_m,
                    1e3 * s.peak_axial_m, s.axial_hz);
-        fmt::print("growth     {:.6g} per revolution (lateral envelope, second half of the run)\n",
+        fmt::print("growth     {:.6g} per revolution (lateral envelope, last third of the run)\n",
                    s.growth_per_revolution);
         fmt::print("written    {}\n", fmt::join(files, ", "));
     }
