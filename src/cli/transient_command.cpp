@@ -124,13 +124,15 @@ Command register_transient(CLI::App& app) {
   auto samples = std::make_shared<int>(200);
   auto out = std::make_shared<std::string>(".");
   auto chart = std::make_shared<std::string>("png");
+  auto name = std::make_shared<std::string>("transient");
   add_scene_options(*command, *options);
   command->add_option("--revolutions", *revolutions, "length of the run in revolutions (default 10)");
   command->add_option("--tolerance", *tolerance, "relative tolerance of the adaptive steps (default 1e-8)");
   command->add_option("--step", *step, "adaptive (default) or fixed (the paper's Δt = (1/8)(2π/ω_max), eq. 54)")
       ->check(CLI::IsMember({"adaptive", "fixed"}));
   command->add_option("--samples-per-rev", *samples, "output samples per revolution (default 200)");
-  command->add_option("--out", *out, "directory for transient.csv, transient.json and the chart");
+  command->add_option("--out", *out, "directory for NAME.csv, NAME.json and the chart");
+  command->add_option("--name", *name, "stem of the output files (default transient)");
   command->add_option("--chart", *chart, "png (default), svg or none")->check(CLI::IsMember({"png", "svg", "none"}));
   return [=] {
     if (!(*revolutions > 0 && *revolutions <= 1e5)) {
@@ -155,11 +157,14 @@ Command register_transient(CLI::App& app) {
     const Summary s = summarize(r, sample_rate);
 
     const std::filesystem::path dir(*out);
-    std::vector<std::string> files{(dir / "transient.csv").string(), (dir / "transient.json").string()};
+    if (name->empty() || name->find('/') != std::string::npos) {
+      throw InputError(fmt::format("--name {}: must be a file stem without '/'", *name));
+    }
+    std::vector<std::string> files{(dir / (*name + ".csv")).string(), (dir / (*name + ".json")).string()};
     write_file(files[0], history_csv(r));
     write_file(files[1], summary_json(scene, model, r, s, o.adaptive, true));
     if (*chart != "none") {
-      files.push_back((dir / ("transient." + *chart)).string());
+      files.push_back((dir / (*name + "." + *chart)).string());
       draw_chart("transient", files[1], files.back());
     }
     switch (options->output_format()) {

@@ -1,0 +1,17 @@
+#!/usr/bin/env bash
+# The paper's transient runs (Figs. 10/11, 14, 15) on the example blade, 60 revolutions each:
+# data and charts into stability_maps/sinha2005/transients/. Run from the repository root after
+# building into build/ (about two minutes on one core).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+scene=stability_maps/sinha2005/blade.toml
+out=stability_maps/sinha2005/transients
+run() { ./build/bladestab transient "$scene" --set model.terms=8 --revolutions 60 --tolerance 1e-7 --out "$out" "$@"; }
+# Figs. 10 and 11: one half-sine pulse, F̄ = 5, t̄c = 0.01, no friction.
+run --name fig10_11_single_pulse --set load.pulse_count=1 --set load.fmax_over_fcr=5
+# Fig. 14 (μ = 0) and Fig. 15 (μ = 0.2): a pulse every revolution at F̄ = 1, 2, 5, 10.
+for mu in 0 0.2; do
+  for f in 1 2 5 10; do
+    run --name "fig$([ "$mu" = 0 ] && echo 14 || echo 15)_fbar${f}_mu${mu}" --set load.fmax_over_fcr=$f --set load.friction=$mu
+  done
+done
