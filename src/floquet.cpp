@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "bladestab/magnus.hpp"
+#include "bladestab/rkf45.hpp"
 
 namespace bladestab {
 namespace {
@@ -93,6 +94,7 @@ const char* to_string(FloquetMethod m) {
     case FloquetMethod::hill: return "hill";
     case FloquetMethod::koopman_hill: return "koopman-hill";
     case FloquetMethod::monodromy: return "monodromy";
+    case FloquetMethod::monodromy_rkf45: return "monodromy-rkf45";
     case FloquetMethod::automatic: return "auto";
   }
   return "?";
@@ -139,10 +141,27 @@ Eigen::VectorXcd koopman_hill_multipliers(const PeriodicSystem& sys, int q) {
   return sorted_by_magnitude(Eigen::ComplexEigenSolver<Eigen::MatrixXcd>(Phi, false).eigenvalues());
 }
 
+Eigen::MatrixXd magnus_monodromy(const PeriodicSystem& sys, int steps) {
+  return magnus_propagator([&sys](double t) { return sys.A(t); }, sys.state_size(), 0, sys.period(), steps);
+}
+
 Eigen::VectorXcd monodromy_multipliers(const PeriodicSystem& sys, int steps) {
-  const Eigen::MatrixXd Phi =
-      magnus_propagator([&sys](double t) { return sys.A(t); }, sys.state_size(), 0, sys.period(), steps);
-  return sorted_by_magnitude(Eigen::EigenSolver<Eigen::MatrixXd>(Phi, false).eigenvalues());
+  return sorted_by_magnitude(Eigen::EigenSolver<Eigen::MatrixXd>(magnus_monodromy(sys, steps), false).eigenvalues());
+}
+
+Eigen::MatrixXd rkf45_monodromy(const PeriodicSystem& sys, double rtol) {
+  const int n = sys.state_size();
+  // The n fundamental solutions as one vector: Ẋ = A(t) X, X(0) = I.
+  const OdeFunction rhs = [&sys, n](double t, const Eigen::VectorXd& x, Eigen::VectorXd& dx) {
+    dx.resize(x.size());
+    Eigen::Map<Eigen::MatrixXd>(dx.data(), n, n).noalias() = sys.A(t) * Eigen::Map<const Eigen::MatrixXd>(x.data(), n, n);
+  };
+  Eigen::VectorXd x = Eigen::MatrixXd::Identity(n, n).reshaped();
+  StepControl control;
+  control.rtol = rtol;
+  control.atol = rtol;  // the scaled coordinates make every entry of Φ order one
+  rkf45_integrate(rhs, x, 0, sys.period(), control, {}, {}, [](double, const Eigen::VectorXd&) {});
+  return x.reshaped(n, n);
 }
 
 FloquetResult floquet_multipliers(const PeriodicSystem& sys, const FloquetOptions& options) {
@@ -169,6 +188,14 @@ FloquetResult floquet_multipliers(const PeriodicSystem& sys, const FloquetOption
     case FloquetMethod::monodromy:
       attempt = refine_steps(sys, first_steps, tol);
       break;
+    case FloquetMethod::monodromy_rkf45: {
+      const auto rho = [&sys](double rtol) {
+        return sorted_by_magnitude(Eigen::EigenSolver<Eigen::MatrixXd>(rkf45_monodromy(sys, rtol), false).eigenvalues());
+      };
+      const Eigen::VectorXcd tight = rho(tol * 1e-2), loose = rho(tol);
+      attempt = {tight, std::abs(max_abs(tight) - max_abs(loose)), 0, 0};
+      break;
+    }
     case FloquetMethod::automatic:
       // Koopman–Hill while its matrix is small (a dense eigensolve of n(2q+1)); else monodromy.
       used = FloquetMethod::koopman_hill;

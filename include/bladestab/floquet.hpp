@@ -4,6 +4,8 @@
 //                  keeping the 2n exponents with the smallest |Im λ| (the classical "sorting");
 //  - koopman-hill: Φ(T) ≈ C e^{HT} W (Bayer & Leine 2023), sorting-free;
 //  - monodromy:    Φ(T) by the sixth-order Magnus propagator, step count doubled to tolerance;
+//  - monodromy-rkf45: Φ(T) by the transient's RKF45 stepper (the time domain's own monodromy),
+//                  adaptive to the tolerance and checked against one 100 times tighter;
 //  - auto:         the cheapest that meets the tolerance.
 // Every result states the method, the truncation and an error estimate.
 #include <optional>
@@ -15,7 +17,7 @@
 
 namespace bladestab {
 
-enum class FloquetMethod { hill, koopman_hill, monodromy, automatic };
+enum class FloquetMethod { hill, koopman_hill, monodromy, monodromy_rkf45, automatic };
 const char* to_string(FloquetMethod);
 
 struct FloquetOptions {
@@ -45,5 +47,9 @@ FloquetResult floquet_multipliers(const PeriodicSystem& system, const FloquetOpt
 Eigen::VectorXcd hill_multipliers(const PeriodicSystem& system, int q);
 Eigen::VectorXcd koopman_hill_multipliers(const PeriodicSystem& system, int q);
 Eigen::VectorXcd monodromy_multipliers(const PeriodicSystem& system, int steps);
+// Φ(T) integrated by RKF45 at relative tolerance `rtol` (all 2n fundamental solutions at once).
+Eigen::MatrixXd rkf45_monodromy(const PeriodicSystem& system, double rtol);
+// Φ(T) by the Magnus propagator.
+Eigen::MatrixXd magnus_monodromy(const PeriodicSystem& system, int steps);
 
 }  // namespace bladestab

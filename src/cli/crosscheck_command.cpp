@@ -47,6 +47,8 @@ Command register_crosscheck(CLI::App& app) {
               .value("floquet_max_abs_multiplier", p.floquet_cosine)
               .value("floquet_error_estimate", p.floquet_cosine_error)
               .value("transient_growth_per_revolution", p.transient_cosine_growth)
+              .value("rkf45_monodromy_max_abs_multiplier", p.rkf45_max_abs_multiplier)
+              .value("monodromy_matrix_relative_difference", p.monodromy_difference)
               .end_object()
               .begin_object("true_pulse")
               .value("floquet_max_abs_multiplier", p.floquet_pulse)
@@ -72,12 +74,13 @@ Command register_crosscheck(CLI::App& app) {
         fmt::print("scene  {}\nspeed  {:g} rad/s, {} pulse(s) per revolution of {} shape, t̄c = {:g}; transients of {:g} revolutions\n\n",
                    scene.source, scene.operation.speed_rad_s, scene.load.pulses_per_rev, to_string(scene.load.profile),
                    scene.load.contact_time_rev, *revolutions);
-        fmt::print("{:>7} | {:^32} | {:^40}\n", "", "paper's cosine approximation (42)", "true pulse train");
-        fmt::print("{:>7} | {:>15} {:>16} | {:>15} {:>8} {:>15}\n", "F̄_max", "Floquet max|ρ|", "transient growth",
-                   "Floquet max|ρ|", "harm.", "transient growth");
+        fmt::print("{:>7} | {:^60} | {:^40}\n", "", "paper's cosine approximation (42)", "true pulse train");
+        fmt::print("{:>7} | {:>15} {:>16} {:>15} {:>11} | {:>15} {:>8} {:>15}\n", "F̄_max", "Floquet max|ρ|",
+                   "transient growth", "RKF45 Φ: max|ρ|", "‖ΔΦ‖/‖Φ‖", "Floquet max|ρ|", "harm.", "transient growth");
         for (const CrosscheckPoint& p : result) {
-          fmt::print("{:>7g} | {:>15.7f} {:>16.5f} | {:>15.7f} {:>8} {:>15.5f}\n", p.fmax_over_fcr, p.floquet_cosine,
-                     p.transient_cosine_growth, p.floquet_pulse, p.pulse_harmonics, p.transient_pulse_growth);
+          fmt::print("{:>7g} | {:>15.7f} {:>16.5f} {:>15.7f} {:>11.1e} | {:>15.7f} {:>8} {:>15.5f}\n", p.fmax_over_fcr,
+                     p.floquet_cosine, p.transient_cosine_growth, p.rkf45_max_abs_multiplier, p.monodromy_difference,
+                     p.floquet_pulse, p.pulse_harmonics, p.transient_pulse_growth);
         }
         fmt::print("\nTransient growth: peak |tip lateral| per revolution over the last third of the run (a stable, forced\n"
                    "response shows ≈ 1 or below). Floquet: auto method for the cosine load, monodromy for the pulse series.\n");

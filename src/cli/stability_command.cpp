@@ -18,10 +18,12 @@ FloquetMethod parse_method(const std::string& name) {
   if (name == "hill") return FloquetMethod::hill;
   if (name == "koopman-hill") return FloquetMethod::koopman_hill;
   if (name == "monodromy") return FloquetMethod::monodromy;
+  if (name == "monodromy-rkf45") return FloquetMethod::monodromy_rkf45;
   return FloquetMethod::automatic;
 }
 
 std::string truncation(const FloquetResult& r) {
+  if (r.method == FloquetMethod::monodromy_rkf45) return "RKF45 at the tolerance and at 1/100 of it";
   return r.method == FloquetMethod::monodromy ? fmt::format("{} Magnus steps per period", r.steps)
                                               : fmt::format("q = {} harmonics", r.harmonics);
 }
@@ -105,8 +107,8 @@ Command register_stability(CLI::App& app) {
   auto tolerance = std::make_shared<double>(1e-6);
   auto cutoff = std::make_shared<double>(0);
   add_scene_options(*command, *options);
-  command->add_option("--method", *method, "hill, koopman-hill, monodromy or auto (default)")
-      ->check(CLI::IsMember({"hill", "koopman-hill", "monodromy", "auto"}));
+  command->add_option("--method", *method, "hill, koopman-hill, monodromy (Magnus), monodromy-rkf45 or auto (default)")
+      ->check(CLI::IsMember({"hill", "koopman-hill", "monodromy", "monodromy-rkf45", "auto"}));
   command->add_option("--harmonics", *harmonics, "Hill truncation q (default: raised until --tolerance is met)");
   command->add_option("--tolerance", *tolerance, "wanted accuracy of max|ρ| (default 1e-6)");
   command->add_option("--cutoff-hz", *cutoff, "keep only the modes below this frequency (default: all)");
