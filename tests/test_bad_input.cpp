@@ -336,3 +336,32 @@ TEST_CASE("bad input: stability, boundaries and map options (bad_input)", "[bad_
                     {"--theta -100:100:3", "> 0"});
   }
 }
+
+TEST_CASE("bad input: transient and crosscheck options (bad_input)", "[bad_input]") {
+  const auto with = [](std::vector<std::string> args) {
+    args.insert(args.begin() + 1, valid_scene);
+    return args;
+  };
+  SECTION("transient --revolutions 0") {
+    expect_rejected(with({"transient", "--revolutions", "0", "--chart", "none"}), {"--revolutions 0", "(0, 100000]"});
+  }
+  SECTION("transient --step unknown") {
+    expect_rejected(with({"transient", "--step", "implicit"}), {"--step", "implicit", "adaptive"});
+  }
+  SECTION("transient --samples-per-rev 2") {
+    expect_rejected(with({"transient", "--samples-per-rev", "2", "--chart", "none"}), {"--samples-per-rev 2", "[8, 100000]"});
+  }
+  SECTION("transient --name with a slash") {
+    expect_rejected(with({"transient", "--name", "a/b", "--revolutions", "0.1", "--chart", "none"}), {"--name a/b", "without '/'"});
+  }
+  SECTION("transient in clearance mode") {
+    expect_rejected(with({"transient", "--set", "load.mode=clearance", "--revolutions", "0.1", "--chart", "none"}),
+                    {"load.mode = \"clearance\"", "not implemented", "\"force\""});
+  }
+  SECTION("crosscheck --points negative") {
+    expect_rejected(with({"crosscheck", "--points", "1,-2"}), {"--points", "-2", "[0, 1000]"});
+  }
+  SECTION("crosscheck --revolutions 1") {
+    expect_rejected(with({"crosscheck", "--revolutions", "1"}), {"--revolutions 1", "[3, 1000]"});
+  }
+}

@@ -140,6 +140,9 @@ Command register_transient(CLI::App& app) {
     }
     if (!(*tolerance >= 1e-13 && *tolerance < 1)) throw InputError(fmt::format("--tolerance {}: must be in [1e-13, 1)", *tolerance));
     if (*samples < 8 || *samples > 100000) throw InputError(fmt::format("--samples-per-rev {}: must be in [8, 100000]", *samples));
+    if (name->empty() || name->find('/') != std::string::npos) {
+      throw InputError(fmt::format("--name {}: must be a file stem without '/'", *name));
+    }
     const Scene scene = options->load();
     if (scene.operation.speed_rad_s <= 0) {
       throw InputError("operation.speed_rad_s = 0: the transient is counted in revolutions; give a speed > 0");
@@ -157,9 +160,6 @@ Command register_transient(CLI::App& app) {
     const Summary s = summarize(r, sample_rate);
 
     const std::filesystem::path dir(*out);
-    if (name->empty() || name->find('/') != std::string::npos) {
-      throw InputError(fmt::format("--name {}: must be a file stem without '/'", *name));
-    }
     std::vector<std::string> files{(dir / (*name + ".csv")).string(), (dir / (*name + ".json")).string()};
     write_file(files[0], history_csv(r));
     write_file(files[1], summary_json(scene, model, r, s, o.adaptive, true));
