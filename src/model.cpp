@@ -22,7 +22,7 @@ Eigen::MatrixXd symmetrized(const Eigen::MatrixXd& m) { return 0.5 * (m + m.tran
 }  // namespace
 
 BladeModel assemble_model(const BladeSpec& blade_spec, const ModelSpec& spec) {
-  BladeModel model{BladeProperties(blade_spec), spec, {}, {}, {}, {}, {}, {}, {}, {}, {}};
+  BladeModel model{BladeProperties(blade_spec), spec, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}};
   const BladeProperties& b = model.blade;
   const bool timoshenko = spec.theory == BeamTheory::timoshenko;
   const int N = spec.terms;
@@ -56,6 +56,7 @@ BladeModel assemble_model(const BladeSpec& blade_spec, const ModelSpec& spec) {
   model.P_cf1 = Eigen::VectorXd::Zero(n);
   model.tip_lateral = Eigen::RowVectorXd::Zero(n);
   model.tip_axial = Eigen::RowVectorXd::Zero(n);
+  model.tip_slope = Eigen::RowVectorXd::Zero(n);
 
   const double cos_beta = std::cos(b.beta_rad);
   const double kGA = b.kappa * b.G * b.A;
@@ -66,6 +67,7 @@ BladeModel assemble_model(const BladeSpec& blade_spec, const ModelSpec& spec) {
                                    - gram(w * (b.rho * b.A * cos_beta * cos_beta), V.value, V.value);
   model.G.block(lv, lv, N, N) = gram(w, V.slope, V.slope);
   model.tip_lateral.segment(lv, N) = V_tip.value.row(0);
+  model.tip_slope.segment(lv, N) = V_tip.slope.row(0);
 
   if (timoshenko) {
     const BasisSamples U = sample_basis(spec.basis, FieldRole::rotation, N, b.L, s);

@@ -60,7 +60,14 @@ TransientResult run_transient(const BladeModel& model, const Scene& scene, const
     dx.resize(2 * n);
     dx.head(n) = x.tail(n);
     dx.tail(n) = Mi_cf - MiK * x.head(n) - MiC * x.tail(n);
-    if (F != 0) dx.tail(n) += F * (Mi_axial - MiG * x.head(n)) + friction(F, x) * Mi_lateral;
+    if (F == 0) return;
+    double axial = F, lateral = friction(F, x);
+    if (o.follower) {
+      const double psi = model.tip_slope.dot(x.head(n));
+      axial = F * std::cos(psi);
+      lateral -= F * std::sin(psi);
+    }
+    dx.tail(n) += axial * (Mi_axial - MiG * x.head(n)) + lateral * Mi_lateral;
   };
 
   TransientResult result;

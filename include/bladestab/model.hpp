@@ -34,6 +34,7 @@ struct BladeModel {
   Eigen::VectorXd P_cf1; // steady centrifugal load per Ω²: ρA ∫(r + s) W_i
   Eigen::RowVectorXd tip_lateral;  // v(L) = tip_lateral · f
   Eigen::RowVectorXd tip_axial;    // u(L) = tip_axial · f
+  Eigen::RowVectorXd tip_slope;    // v'(L) = tip_slope · f, the slope of the deflected axis
 
   Eigen::MatrixXd stiffness(double speed_rad_s, double tip_force_n = 0) const {
     return K_S + speed_rad_s * speed_rad_s * K_C1 + tip_force_n * G;

@@ -8,7 +8,8 @@
 // tip, v_rel = ΩR + cos β · v̇(L) the tip's speed past the casing (regularized sign, ε = 1 mm/s:
 // the tip moves at ΩR ≈ 450 m/s, so the friction never sticks in practice). Integrated in first-
 // order form x = [f; ḟ] by RKF45, adaptive or with the paper's fixed step (54), landing on every
-// pulse edge.
+// pulse edge. With the follower correction (SPEC §5) the load turns with the tip slope ψ = v'(L):
+// F cos ψ along the axis (and in the geometric stiffness), −F sin ψ on the lateral tip.
 #include <functional>
 #include <optional>
 #include <vector>
@@ -28,6 +29,7 @@ struct TransientOptions {
   double tolerance = 1e-8;   // rtol of the adaptive steps
   int samples_per_revolution = 200;
   double friction_velocity = 1e-3;              // ε of the regularized sign [m/s]
+  bool follower = false;  // the tip load follows the tip slope ψ = v'(L): F cos ψ axially, −F sin ψ laterally
   std::optional<Eigen::VectorXd> initial_state; // x = [f; ḟ]; default: the steady rotating equilibrium
   std::function<void(int, int)> progress;       // (revolutions done, total)
 };

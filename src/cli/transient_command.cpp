@@ -125,6 +125,7 @@ Command register_transient(CLI::App& app) {
   auto out = std::make_shared<std::string>(".");
   auto chart = std::make_shared<std::string>("png");
   auto name = std::make_shared<std::string>("transient");
+  auto follower = std::make_shared<bool>(false);
   add_scene_options(*command, *options);
   command->add_option("--revolutions", *revolutions, "length of the run in revolutions (default 10)");
   command->add_option("--tolerance", *tolerance, "relative tolerance of the adaptive steps (default 1e-8)");
@@ -133,6 +134,7 @@ Command register_transient(CLI::App& app) {
   command->add_option("--samples-per-rev", *samples, "output samples per revolution (default 200)");
   command->add_option("--out", *out, "directory for NAME.csv, NAME.json and the chart");
   command->add_option("--name", *name, "stem of the output files (default transient)");
+  command->add_flag("--follower", *follower, "the tip load follows the tip slope (F cos ψ axially, −F sin ψ laterally)");
   command->add_option("--chart", *chart, "png (default), svg or none")->check(CLI::IsMember({"png", "svg", "none"}));
   return [=] {
     if (!(*revolutions > 0 && *revolutions <= 1e5)) {
@@ -153,6 +155,7 @@ Command register_transient(CLI::App& app) {
     o.adaptive = *step == "adaptive";
     o.tolerance = *tolerance;
     o.samples_per_revolution = *samples;
+    o.follower = *follower;
     const bool for_people = options->output_format() == OutputFormat::table;
     o.progress = progress_reporter("transient: revolutions", for_people);
     const TransientResult r = run_transient(model, scene, o);
