@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The paper's transient runs (Figs. 10/11, 14, 15) on the example blade, 60 revolutions each:
+# The paper's transient runs (Figs. 10/11, 14, 15, 16/17) on the example blade, 60 revolutions each:
 # data and charts into stability_maps/sinha2005/transients/. Run from the repository root after
 # building into build/ (about two minutes on one core).
 set -euo pipefail
@@ -14,4 +14,8 @@ for mu in 0 0.2; do
   for f in 1 2 5 10; do
     run --name "fig$([ "$mu" = 0 ] && echo 14 || echo 15)_fbar${f}_mu${mu}" --set load.fmax_over_fcr=$f --set load.friction=$mu
   done
+done
+# Figs. 16 and 17: F̄ = 5, μ = 0, contact time t̄c = 0.01, 0.1, 0.3, 0.5 of a revolution.
+for tc in 0.01 0.1 0.3 0.5; do
+  run --name "fig16_17_tc${tc}" --set load.fmax_over_fcr=5 --set load.contact_time_rev=$tc
 done
