@@ -64,10 +64,12 @@ Command register_crosscheck(CLI::App& app) {
         break;
       }
       case OutputFormat::csv:
-        fmt::print("fmax_over_fcr,cosine_floquet,cosine_transient_growth,pulse_floquet,pulse_transient_growth,pulse_harmonics\n");
+        fmt::print("fmax_over_fcr,cosine_floquet,cosine_transient_growth,cosine_rkf45_monodromy,monodromy_relative_difference,"
+                   "pulse_floquet,pulse_transient_growth,pulse_harmonics\n");
         for (const CrosscheckPoint& p : result) {
-          fmt::print("{},{},{},{},{},{}\n", p.fmax_over_fcr, p.floquet_cosine, p.transient_cosine_growth, p.floquet_pulse,
-                     p.transient_pulse_growth, p.pulse_harmonics);
+          fmt::print("{},{},{},{},{},{},{},{}\n", p.fmax_over_fcr, p.floquet_cosine, p.transient_cosine_growth,
+                     p.rkf45_max_abs_multiplier, p.monodromy_difference, p.floquet_pulse, p.transient_pulse_growth,
+                     p.pulse_harmonics);
         }
         break;
       case OutputFormat::table:
