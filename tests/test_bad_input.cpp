@@ -362,6 +362,6 @@ TEST_CASE("bad input: transient and crosscheck options (bad_input)", "[bad_input
     expect_rejected(with({"crosscheck", "--points", "1,-2"}), {"--points", "-2", "[0, 1000]"});
   }
   SECTION("crosscheck --revolutions 1") {
-    expect_rejected(with({"crosscheck", "--revolutions", "1"}), {"--revolutions 1", "[3, 1000]"});
+    expect_rejected(with({"crosscheck", "--revolutions", "1"}), {"--revolutions 1", "[6, 1000]"});
   }
 }

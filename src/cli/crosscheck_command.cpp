@@ -22,8 +22,8 @@ Command register_crosscheck(CLI::App& app) {
     for (double f : *points) {
       if (!(f >= 0 && f <= 1000)) throw InputError(fmt::format("--points: {} is not allowed; F̄_max values are in [0, 1000]", f));
     }
-    if (!(*revolutions >= 3 && *revolutions <= 1000)) {
-      throw InputError(fmt::format("--revolutions {}: must be in [3, 1000]", *revolutions));
+    if (!(*revolutions >= 6 && *revolutions <= 1000)) {  // the growth fit needs two whole revolutions in the last third
+      throw InputError(fmt::format("--revolutions {}: must be in [6, 1000]", *revolutions));
     }
     const Scene scene = options->load();
     if (scene.operation.speed_rad_s <= 0) throw InputError("operation.speed_rad_s = 0: crosscheck needs a speed > 0");
