@@ -1,6 +1,5 @@
 // bladestab campbell SCENE --speeds a:b:n: frequencies versus speed, engine-order crossings,
 // CSV/JSON data and a chart.
-#include <filesystem>
 
 #include <fmt/format.h>
 
@@ -108,9 +107,7 @@ Command register_campbell(CLI::App& app) {
   command->add_option("--engine-orders", *orders, "engine orders k of the lines f = kΩ/2π (default 1,2,3,4)")
       ->delimiter(',');
   command->add_option("--count", *count, "modes to track, lowest first (default 8)");
-  command->add_option("--out", *out, "directory for campbell.csv, campbell_crossings.csv, campbell.json and the chart");
-  command->add_option("--chart", *chart, "chart format: png (default), svg or none")
-      ->check(CLI::IsMember({"png", "svg", "none"}));
+  add_chart_options(*command, *out, *chart, "directory for campbell.csv, campbell_crossings.csv, campbell.json and the chart");
   return [=] {
     const std::vector<double> speed_list = parse_range("--speeds", *speeds);
     if (speed_list.front() < 0) throw InputError(fmt::format("--speeds {}: speeds must be >= 0 rad/s", *speeds));
@@ -126,16 +123,9 @@ Command register_campbell(CLI::App& app) {
         campbell_diagram(model, scene.damping, campbell, progress_reporter("campbell: speeds", for_people));
 
     const std::string json = campbell_json(scene, model, diagram);
-    const std::filesystem::path dir(*out);
-    std::vector<std::string> files{(dir / "campbell.csv").string(), (dir / "campbell_crossings.csv").string(),
-                                   (dir / "campbell.json").string()};
-    write_file(files[0], curves_csv(diagram));
-    write_file(files[1], crossings_csv(diagram));
-    write_file(files[2], json);
-    if (*chart != "none") {
-      files.push_back((dir / ("campbell." + *chart)).string());
-      draw_chart("campbell", files[2], files.back());
-    }
+    const std::vector<std::string> files =
+        write_outputs(*out, "campbell", {{"campbell.csv", curves_csv(diagram)}, {"campbell_crossings.csv", crossings_csv(diagram)}},
+                      json, "campbell", *chart);
     switch (options->output_format()) {
       case OutputFormat::json: fmt::print("{}", json); break;
       case OutputFormat::csv: fmt::print("{}", curves_csv(diagram)); break;

@@ -5,7 +5,10 @@
 
 #include <fmt/format.h>
 
+#include <filesystem>
+
 #include "chart_script.hpp"
+#include "options.hpp"
 
 namespace bladestab::cli {
 
@@ -30,6 +33,32 @@ void draw_chart(const std::string& kind, const std::string& json_path, const std
   if (status != 0) {
     throw std::runtime_error(fmt::format("drawing {} failed ({} with python3-matplotlib is needed)", output_path, python));
   }
+}
+
+void add_chart_options(CLI::App& command, std::string& out, std::string& chart, const std::string& out_help) {
+  command.add_option("--out", out, out_help + " (default .)");
+  command.add_option("--chart", chart, "chart format: png (default), svg or none")
+      ->check(CLI::IsMember({"png", "svg", "none"}));
+}
+
+std::vector<std::string> write_outputs(const std::string& dir, const std::string& stem,
+                                       const std::vector<std::pair<std::string, std::string>>& data,
+                                       const std::string& json, const std::string& chart_kind,
+                                       const std::string& chart_format) {
+  const std::filesystem::path folder(dir);
+  std::vector<std::string> written;
+  for (const auto& [name, text] : data) {
+    written.push_back((folder / name).string());
+    write_file(written.back(), text);
+  }
+  const std::string json_path = (folder / (stem + ".json")).string();
+  write_file(json_path, json);
+  written.push_back(json_path);
+  if (chart_format != "none") {
+    written.push_back((folder / (stem + "." + chart_format)).string());
+    draw_chart(chart_kind, json_path, written.back());
+  }
+  return written;
 }
 
 }  // namespace bladestab::cli

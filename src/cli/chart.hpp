@@ -1,11 +1,25 @@
 #pragma once
 // Charts are drawn by scripts/charts.py (compiled into the program) with Debian's matplotlib.
 #include <string>
+#include <utility>
+#include <vector>
+
+#include <CLI/CLI.hpp>
 
 namespace bladestab::cli {
 
 // Writes `json` next to `output` (same stem, .json) and renders `kind` to `output` (.png or .svg).
 // Throws std::runtime_error with the interpreter's message when drawing fails.
 void draw_chart(const std::string& kind, const std::string& json_path, const std::string& output_path);
+
+// --out DIR and --chart png|svg|none, shared by the commands that draw.
+void add_chart_options(CLI::App& command, std::string& out, std::string& chart, const std::string& out_help);
+
+// Writes each {file name, text} of `data` and `<stem>.json` into `dir`, then draws the chart
+// `<stem>.<format>` from the JSON unless the format is "none". Returns the paths written.
+std::vector<std::string> write_outputs(const std::string& dir, const std::string& stem,
+                                       const std::vector<std::pair<std::string, std::string>>& data,
+                                       const std::string& json, const std::string& chart_kind,
+                                       const std::string& chart_format);
 
 }  // namespace bladestab::cli

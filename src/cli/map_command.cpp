@@ -1,7 +1,6 @@
 // bladestab map SCENE --plane theta-fmax|speed-fmax: stability map, CSV/JSON data and a chart.
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
 
 #include <fmt/format.h>
 
@@ -117,8 +116,7 @@ Command register_map(CLI::App& app) {
   command->add_option("--engine-order", *order, "k in θ = kΩ (default: load.pulses_per_rev)");
   command->add_option("--approximation", *approximation, "harmonics per family in the boundary equations (default 4)");
   command->add_option("--tolerance", *tolerance, "accuracy of max|ρ| in the shading (default 1e-3)");
-  command->add_option("--out", *out, "directory for map_<plane>.json, _curves.csv, _grid.csv and the chart");
-  command->add_option("--chart", *chart, "png (default), svg or none")->check(CLI::IsMember({"png", "svg", "none"}));
+  add_chart_options(*command, *out, *chart, "directory for map_<plane>.json, _curves.csv, _grid.csv and the chart");
   return [=] {
     Scene scene = options->load();
     const bool theta_plane = *plane == "theta-fmax";
@@ -159,17 +157,9 @@ Command register_map(CLI::App& app) {
     const StabilityMap m = stability_map(scene, o, progress_reporter("map: points", for_people));
 
     const std::string json = map_json(scene, model, o, m);
-    const std::filesystem::path dir(*out);
     const std::string base = theta_plane ? "map_theta_fmax" : "map_speed_fmax";
-    std::vector<std::string> files{(dir / (base + "_curves.csv")).string(), (dir / (base + "_grid.csv")).string(),
-                                   (dir / (base + ".json")).string()};
-    write_file(files[0], curves_csv(m));
-    write_file(files[1], grid_csv(m));
-    write_file(files[2], json);
-    if (*chart != "none") {
-      files.push_back((dir / (base + "." + *chart)).string());
-      draw_chart("map", files[2], files.back());
-    }
+    const std::vector<std::string> files = write_outputs(
+        *out, base, {{base + "_curves.csv", curves_csv(m)}, {base + "_grid.csv", grid_csv(m)}}, json, "map", *chart);
     switch (options->output_format()) {
       case OutputFormat::json: fmt::print("{}", json); break;
       case OutputFormat::csv: fmt::print("{}", curves_csv(m)); break;

@@ -1,5 +1,4 @@
 // bladestab transient SCENE: time response to the rub, CSV of the history, JSON summary, chart.
-#include <filesystem>
 
 #include <fmt/format.h>
 
@@ -132,10 +131,9 @@ Command register_transient(CLI::App& app) {
   command->add_option("--step", *step, "adaptive (default) or fixed (the paper's Δt = (1/8)(2π/ω_max), eq. 54)")
       ->check(CLI::IsMember({"adaptive", "fixed"}));
   command->add_option("--samples-per-rev", *samples, "output samples per revolution (default 200)");
-  command->add_option("--out", *out, "directory for NAME.csv, NAME.json and the chart");
+  add_chart_options(*command, *out, *chart, "directory for NAME.csv, NAME.json and the chart");
   command->add_option("--name", *name, "stem of the output files (default transient)");
   command->add_flag("--follower", *follower, "the tip load follows the tip slope (F cos ψ axially, −F sin ψ laterally)");
-  command->add_option("--chart", *chart, "png (default), svg or none")->check(CLI::IsMember({"png", "svg", "none"}));
   return [=] {
     if (!(*revolutions > 0 && *revolutions <= 1e5)) {
       throw InputError(fmt::format("--revolutions {}: must be in (0, 100000]", *revolutions));
@@ -162,14 +160,8 @@ Command register_transient(CLI::App& app) {
     const double sample_rate = *samples * scene.operation.speed_rad_s / 6.28318530717958647692;
     const Summary s = summarize(r, sample_rate);
 
-    const std::filesystem::path dir(*out);
-    std::vector<std::string> files{(dir / (*name + ".csv")).string(), (dir / (*name + ".json")).string()};
-    write_file(files[0], history_csv(r));
-    write_file(files[1], summary_json(scene, model, r, s, o.adaptive, true));
-    if (*chart != "none") {
-      files.push_back((dir / (*name + "." + *chart)).string());
-      draw_chart("transient", files[1], files.back());
-    }
+    const std::vector<std::string> files = write_outputs(
+        *out, *name, {{*name + ".csv", history_csv(r)}}, summary_json(scene, model, r, s, o.adaptive, true), "transient", *chart);
     switch (options->output_format()) {
       case OutputFormat::json: fmt::print("{}", summary_json(scene, model, r, s, o.adaptive, false)); break;
       case OutputFormat::csv: fmt::print("{}", history_csv(r)); break;
