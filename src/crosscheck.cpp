@@ -2,7 +2,6 @@
 
 #include <cmath>
 
-#include "bladestab/damping.hpp"
 #include "bladestab/floquet.hpp"
 #include "bladestab/response_analysis.hpp"
 #include "bladestab/transient.hpp"
@@ -33,8 +32,6 @@ double transient_growth(const BladeModel& model, const Scene& scene, double revo
 
 std::vector<CrosscheckPoint> crosscheck(const Scene& base, const CrosscheckOptions& o) {
   const BladeModel model = assemble_model(base.blade, base.model);
-  const double speed = base.operation.speed_rad_s;
-  const Eigen::MatrixXd damping = damping_matrix(model, base.damping, speed);
   std::vector<CrosscheckPoint> points;
   int done = 0;
   for (double fbar : o.fmax_over_fcr) {
@@ -50,12 +47,11 @@ std::vector<CrosscheckPoint> crosscheck(const Scene& base, const CrosscheckOptio
     cosine.load.approximation = LoadApproximation::cosine;
     cosine.load.profile = PulseProfile::cosine;
     cosine.load.contact_time_rev = 1.0 / cosine.load.pulses_per_rev;
-    const FloquetResult fc =
-        floquet_multipliers(periodic_system(model, speed, damping, load_series(cosine)), {FloquetMethod::automatic, 0, o.tolerance});
+    const PeriodicSystem cosine_system = periodic_system(model, cosine, load_series(cosine));
+    const FloquetResult fc = floquet_multipliers(cosine_system, {FloquetMethod::automatic, 0, o.tolerance});
     p.floquet_cosine = fc.max_abs_multiplier;
     p.floquet_cosine_error = fc.error_estimate;
     p.transient_cosine_growth = transient_growth(model, cosine, o.revolutions);
-    const PeriodicSystem cosine_system = periodic_system(model, speed, damping, load_series(cosine));
     // Entry by entry Φ(T) converges more slowly than max|ρ| (the stiff modes' phases): RKF45 at
     // 1e-8 and 2048 Magnus steps agree to ~1e-5, where max|ρ| agrees to ~1e-10.
     const Eigen::MatrixXd phi_rkf = rkf45_monodromy(cosine_system, 1e-8);
@@ -67,7 +63,7 @@ std::vector<CrosscheckPoint> crosscheck(const Scene& base, const CrosscheckOptio
     Scene pulse = scene;
     pulse.load.approximation = LoadApproximation::fourier;
     const LoadSeries series = load_series(pulse, 1e-3, 400);
-    const FloquetResult fp = floquet_multipliers(periodic_system(model, speed, damping, series),
+    const FloquetResult fp = floquet_multipliers(periodic_system(model, pulse, series),
                                                  {FloquetMethod::monodromy, 0, o.tolerance});
     p.floquet_pulse = fp.max_abs_multiplier;
     p.floquet_pulse_error = fp.error_estimate;

@@ -63,7 +63,7 @@ struct Attempt {
 template <class Method>
 bool refine_harmonics(const PeriodicSystem& sys, Method method, int start, int max_q, int max_size, double tol,
                       Attempt& out) {
-  Eigen::VectorXcd previous = method(sys, std::max(start - 2, 0) > 0 ? start - 2 : 1);
+  Eigen::VectorXcd previous = method(sys, std::max(start - 2, 1));
   for (int q = start; q <= max_q && sys.state_size() * (2 * q + 1) <= max_size; q += 2) {
     const Eigen::VectorXcd current = method(sys, q);
     out = {current, std::abs(max_abs(current) - max_abs(previous)), q, 0};

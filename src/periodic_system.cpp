@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include "bladestab/damping.hpp"
 #include "bladestab/input_error.hpp"
 
 namespace bladestab {
@@ -69,6 +70,12 @@ PeriodicSystem periodic_system(const BladeModel& model, double speed, const Eige
   sys.kept_modes = kept;
   sys.all_modes = static_cast<int>(omega2.size());
   return sys;
+}
+
+PeriodicSystem periodic_system(const BladeModel& model, const Scene& scene, const LoadSeries& load,
+                               double cutoff_hz) {
+  const double speed = scene.operation.speed_rad_s;
+  return periodic_system(model, speed, damping_matrix(model, scene.damping, speed), load, cutoff_hz);
 }
 
 }  // namespace bladestab

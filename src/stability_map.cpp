@@ -11,7 +11,6 @@
 
 #include "bladestab/blas_threads.hpp"
 #include "bladestab/boundaries.hpp"
-#include "bladestab/damping.hpp"
 #include "bladestab/input_error.hpp"
 
 namespace bladestab {
@@ -28,8 +27,7 @@ Scene scene_at(Scene scene, double speed, double theta, double fbar) {
 }
 
 PeriodicSystem system_for(const BladeModel& model, const Scene& scene) {
-  const double speed = scene.operation.speed_rad_s;
-  return periodic_system(model, speed, damping_matrix(model, scene.damping, speed), load_series(scene));
+  return periodic_system(model, scene, load_series(scene));
 }
 
 // Joins boundary points into curves by continuity: at each new parameter value, every curve

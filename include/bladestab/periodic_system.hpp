@@ -41,4 +41,8 @@ struct PeriodicSystem {
 PeriodicSystem periodic_system(const BladeModel& model, double speed_rad_s, const Eigen::MatrixXd& damping,
                                const LoadSeries& load, double cutoff_hz = 0);
 
+// The same at the scene's speed with the scene's damping.
+PeriodicSystem periodic_system(const BladeModel& model, const Scene& scene, const LoadSeries& load,
+                               double cutoff_hz = 0);
+
 }  // namespace bladestab

@@ -3,7 +3,6 @@
 #include <fmt/format.h>
 
 #include "bladestab/boundaries.hpp"
-#include "bladestab/damping.hpp"
 #include "bladestab/input_error.hpp"
 #include "commands.hpp"
 #include "json_writer.hpp"
@@ -79,11 +78,10 @@ Command register_boundaries(CLI::App& app) {
     if (in_load && !(*at_theta > 0)) throw InputError(fmt::format("--at-theta {}: must be > 0 rad/s", *at_theta));
     Scene scene = options->load();
     const BladeModel model = assemble_model(scene.blade, scene.model);
-    const double speed = scene.operation.speed_rad_s;
     if (in_load && scene.load.fmax_over_fcr == 0) scene.load.fmax_over_fcr = 1;  // the load's shape is what matters
     const double peak = scene.load.fmax_over_fcr * model.blade.critical_load();
     const PeriodicSystem sys =
-        periodic_system(model, speed, damping_matrix(model, scene.damping, speed), load_series(scene), *cutoff);
+        periodic_system(model, scene, load_series(scene), *cutoff);
     const std::vector<Boundary> found = in_load ? boundary_loads(sys, peak, *at_theta, *approximation)
                                                 : boundary_frequencies(sys, peak, *approximation);
     print(*options, scene, model, *approximation, found, in_load);

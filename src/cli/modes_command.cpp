@@ -16,11 +16,6 @@ namespace {
 
 constexpr double rpm_per_rad_s = 60 / 6.28318530717958647692;
 
-// Significant digits worth printing for a value with relative error `error`.
-int digits_for(double error) {
-  return std::clamp(static_cast<int>(std::floor(-std::log10(std::max(error, 1e-15)))) + 1, 3, 12);
-}
-
 void print_modes(const SceneOptions& options, const Scene& scene, const ConvergedModes& result) {
   const ModalSolution& sol = result.solution;
   const double speed = scene.operation.speed_rad_s;
@@ -88,7 +83,7 @@ void print_modes(const SceneOptions& options, const Scene& scene, const Converge
                  "rel. error");
       for (std::size_t k = 0; k < sol.modes.size(); ++k) {
         const Mode& m = sol.modes[k];
-        const int digits = digits_for(result.relative_error[k]);
+        const int digits = significant_digits(result.relative_error[k]);
         // ζ below 1e-12 is rounding in an undamped model's eigenvalues, not damping.
         const double zeta = std::abs(m.damping_ratio) < 1e-12 ? 0.0 : m.damping_ratio;
         fmt::print("{:>4}  {:<9} {:>16.{}g} {:>16.{}g} {:>10.3g} {:>10.1e}\n", m.index, to_string(m.family),

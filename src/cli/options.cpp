@@ -1,5 +1,6 @@
 #include "options.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -61,6 +62,10 @@ std::vector<double> parse_range(const std::string& option, const std::string& te
   for (long i = 0; i < count; ++i) values[i] = start + (stop - start) * static_cast<double>(i) / (count - 1);
   values.back() = stop;
   return values;
+}
+
+int significant_digits(double error) {
+  return std::clamp(static_cast<int>(std::floor(-std::log10(std::max(error, 1e-15)))) + 1, 3, 12);
 }
 
 std::string describe_model(const BladeModel& model) {

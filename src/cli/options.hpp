@@ -30,6 +30,9 @@ void add_scene_options(CLI::App& command, SceneOptions& options);
 // "start:stop:count" → count evenly spaced values; InputError naming `option` otherwise.
 std::vector<double> parse_range(const std::string& option, const std::string& text);
 
+// Significant digits worth printing for a value with relative error `error` (3 to 12).
+int significant_digits(double error);
+
 // One line describing the model, e.g. "timoshenko, legendre basis, 16 terms/field (48 dofs), axial on, coriolis on".
 std::string describe_model(const BladeModel& model);
 

@@ -4,7 +4,6 @@
 
 #include <fmt/format.h>
 
-#include "bladestab/damping.hpp"
 #include "bladestab/floquet.hpp"
 #include "bladestab/input_error.hpp"
 #include "commands.hpp"
@@ -80,7 +79,7 @@ void print(const SceneOptions& options, const Scene& scene, const BladeModel& mo
                                    to_string(scene.load.profile), load.relative_tail));
       fmt::print("method     {}, {}; error estimate {:.1e} on max|ρ|\n\n", to_string(r.method), truncation(r),
                  r.error_estimate);
-      const int digits = std::clamp(static_cast<int>(-std::log10(std::max(r.error_estimate, 1e-15))) + 1, 3, 12);
+      const int digits = significant_digits(r.error_estimate);
       fmt::print("max|ρ| = {:.{}g}   max Re λ = {:.4g} 1/s   → {}\n\n", r.max_abs_multiplier, digits,
                  r.max_real_exponent, r.stable ? "stable" : "UNSTABLE");
       // Decimals the error estimate supports.
@@ -118,13 +117,12 @@ Command register_stability(CLI::App& app) {
     if (!(*cutoff >= 0)) throw InputError(fmt::format("--cutoff-hz {}: must be >= 0", *cutoff));
     const Scene scene = options->load();
     const BladeModel model = assemble_model(scene.blade, scene.model);
-    const double speed = scene.operation.speed_rad_s;
     const LoadSeries load = load_series(scene);
     if (!load.frequency_known) {
       throw InputError("operation.speed_rad_s = 0: the pulses have no frequency; give load.pulse_frequency_hz "
                        "(in Hz, > 0) or a speed > 0");
     }
-    const PeriodicSystem sys = periodic_system(model, speed, damping_matrix(model, scene.damping, speed), load, *cutoff);
+    const PeriodicSystem sys = periodic_system(model, scene, load, *cutoff);
     const FloquetResult result = floquet_multipliers(sys, {parse_method(*method), *harmonics, *tolerance});
     print(*options, scene, model, sys, load, result);
   };
