@@ -48,6 +48,18 @@ Eigen::VectorXd hermite(double t0, double h, const Eigen::VectorXd& x0, const Ei
 
 }  // namespace
 
+std::complex<double> rkf45_stability_function(std::complex<double> z) {
+  // Stage values for x' = λx, x(0) = 1: k_i = λ(1 + h Σ_j a_ij k_j), solved in stage order.
+  using C = std::complex<double>;
+  const C g1 = 1.0;
+  const C g2 = 1.0 + z * a21 * g1;
+  const C g3 = 1.0 + z * (a31 * g1 + a32 * g2);
+  const C g4 = 1.0 + z * (a41 * g1 + a42 * g2 + a43 * g3);
+  const C g5 = 1.0 + z * (a51 * g1 + a52 * g2 + a53 * g3 + a54 * g4);
+  const C g6 = 1.0 + z * (a61 * g1 + a62 * g2 + a63 * g3 + a64 * g4 + a65 * g5);
+  return 1.0 + z * (b1 * g1 + b3 * g3 + b4 * g4 + b5 * g5 + b6 * g6);
+}
+
 StepStatistics rkf45_integrate(const OdeFunction& f, Eigen::VectorXd& x, double t0, double t1,
                                const StepControl& control, std::vector<double> breakpoints,
                                const std::vector<double>& outputs, const OdeObserver& observer) {

@@ -1,6 +1,7 @@
 #include "bladestab/transient.hpp"
 
 #include <cmath>
+#include <stdexcept>
 
 #include <fmt/format.h>
 
@@ -19,10 +20,24 @@ Eigen::VectorXd rotating_equilibrium(const BladeModel& model, double speed) {
   return x;
 }
 
-double paper_fixed_step(const BladeModel& model, double speed) {
-  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(model.stiffness(speed), model.M,
-                                                                Eigen::EigenvaluesOnly);
-  return 0.125 * two_pi / std::sqrt(eig.eigenvalues().maxCoeff());  // (54)
+FixedStep choose_fixed_step(const Eigen::MatrixXd& K, const Eigen::MatrixXd& M, double duration, int steps_per_period) {
+  if (steps_per_period != 0 && steps_per_period < 8) {
+    throw std::invalid_argument("steps per period below the paper's bound (54) of 8");
+  }
+  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(K, M, Eigen::EigenvaluesOnly);
+  const double omega_max = std::sqrt(eig.eigenvalues().maxCoeff());
+  const auto growth = [&](int n) {
+    const double y = two_pi / n;  // ω_max Δt
+    return std::pow(std::abs(rkf45_stability_function({0, y})), duration * omega_max / y);
+  };
+  FixedStep fixed;
+  fixed.steps_per_period = steps_per_period != 0 ? steps_per_period : 8;
+  if (steps_per_period == 0) {
+    while (growth(fixed.steps_per_period) > 1.01) ++fixed.steps_per_period;
+  }
+  fixed.step_s = two_pi / (fixed.steps_per_period * omega_max);  // (54)
+  fixed.parasitic_growth = growth(fixed.steps_per_period);
+  return fixed;
 }
 
 TransientResult run_transient(const BladeModel& model, const Scene& scene, const TransientOptions& o) {
@@ -80,7 +95,10 @@ TransientResult run_transient(const BladeModel& model, const Scene& scene, const
   control.rtol = o.tolerance;
   // Absolute floor: a millionth of the tolerance on the scale of the static stretch (≈ mm).
   control.atol = o.tolerance * 1e-6;
-  if (!o.adaptive) result.fixed_step_s = control.fixed_step = paper_fixed_step(model, speed);
+  if (!o.adaptive) {
+    result.fixed = choose_fixed_step(K, model.M, t_end, o.steps_per_period);
+    control.fixed_step = result.fixed.step_s;
+  }
 
   const auto sample = [&](double t, const Eigen::VectorXd& s) {
     const Eigen::VectorXd f = s.head(n), v = s.tail(n);

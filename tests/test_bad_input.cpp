@@ -351,6 +351,13 @@ TEST_CASE("bad input: transient and crosscheck options (bad_input)", "[bad_input
   SECTION("transient --samples-per-rev 2") {
     expect_rejected(with({"transient", "--samples-per-rev", "2", "--chart", "none"}), {"--samples-per-rev 2", "[8, 100000]"});
   }
+  SECTION("transient --steps-per-period below the paper's 8") {
+    expect_rejected(with({"transient", "--step", "fixed", "--steps-per-period", "4", "--chart", "none"}),
+                    {"--steps-per-period 4", "[8, 100000]", "--step fixed"});
+  }
+  SECTION("transient --steps-per-period without --step fixed") {
+    expect_rejected(with({"transient", "--steps-per-period", "16", "--chart", "none"}), {"--steps-per-period 16", "--step fixed"});
+  }
   SECTION("transient --name with a slash") {
     expect_rejected(with({"transient", "--name", "a/b", "--revolutions", "0.1", "--chart", "none"}), {"--name a/b", "without '/'"});
   }

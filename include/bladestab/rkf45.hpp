@@ -7,6 +7,7 @@
 //  - fixed: a constant step (the paper's (54)), shortened only to land on a breakpoint.
 // Steps land exactly on every breakpoint (pulse edges: F and F' jump there). Output between
 // steps is dense: cubic Hermite interpolation from the values and slopes at both ends.
+#include <complex>
 #include <functional>
 #include <vector>
 
@@ -37,5 +38,10 @@ struct StepStatistics {
 StepStatistics rkf45_integrate(const OdeFunction& f, Eigen::VectorXd& x, double t0, double t1,
                                const StepControl& control, std::vector<double> breakpoints,
                                const std::vector<double>& outputs, const OdeObserver& observer);
+
+// The stability function of the propagated (fifth-order) formula: one step of ẋ = λx multiplies x
+// by R(hλ) = 1 + hλ bᵀ(I − hλA)⁻¹1. On the imaginary axis |R(iy)| exceeds 1 for 0 < y < 2.3
+// (1 + 1.7e-4 at y = π/4): an undamped mode stepped with a fixed h grows by |R(iωh)| per step.
+std::complex<double> rkf45_stability_function(std::complex<double> h_lambda);
 
 }  // namespace bladestab

@@ -23,9 +23,16 @@
 
 namespace bladestab {
 
+struct FixedStep {
+  double step_s = 0;
+  int steps_per_period = 8;
+  double parasitic_growth = 1;  // |R(iω_maxΔt)|^steps: the stiffest mode's spurious amplification over the run
+};
+
 struct TransientOptions {
   double revolutions = 10;
   bool adaptive = true;
+  int steps_per_period = 0;  // fixed mode: steps per period of the stiffest mode (≥ 8, (54)); 0 = choose
   double tolerance = 1e-8;   // rtol of the adaptive steps
   int samples_per_revolution = 200;
   double friction_velocity = 1e-3;              // ε of the regularized sign [m/s]
@@ -46,15 +53,20 @@ struct TransientSample {
 struct TransientResult {
   std::vector<TransientSample> samples;
   StepStatistics steps;
-  double fixed_step_s = 0;  // the paper's (54) step, when used
+  FixedStep fixed;          // the fixed step, when used
   double static_tip_axial_m = 0;  // the rotating equilibrium's tip stretch
 };
 
 // The steady rotating equilibrium: K(Ω) f = Ω² P_cf, ḟ = 0.
 Eigen::VectorXd rotating_equilibrium(const BladeModel& model, double speed_rad_s);
 
-// The paper's fixed step (54): Δt = (1/8)(2π/ω_max), ω_max from M f̈ + K(Ω) f = 0.
-double paper_fixed_step(const BladeModel& model, double speed_rad_s);
+// The fixed step (54): Δt = (1/n)(2π/ω_max), ω_max the stiffest mode of M f̈ + K f = 0, n ≥ 8 steps
+// per its period (the paper's rule is Δt ≤ (1/8)(2π/ω_max)). RKF45 is weakly unstable on the
+// imaginary axis (rkf45_stability_function), so a fixed step amplifies that undamped mode by
+// |R(iω_maxΔt)| per step: ×1e4 over 5 revolutions of the paper's blade at n = 8. n = 0 picks the
+// smallest n ≥ 8 that keeps this parasitic growth over `duration_s` below 1 %.
+FixedStep choose_fixed_step(const Eigen::MatrixXd& K, const Eigen::MatrixXd& M, double duration_s,
+                            int steps_per_period = 0);
 
 TransientResult run_transient(const BladeModel& model, const Scene& scene, const TransientOptions& options);
 
