@@ -45,21 +45,44 @@ cplx integral_t_exp(cplx s, double c) { return c * c * psi(s * c); }
 
 double PulseTrain::angular_frequency() const { return 2 * pi / period_s; }
 
-double PulseTrain::force(double t) const {
-  if (t < 0) return 0;
+// The time since the current pulse started, if one is on at t.
+std::optional<double> PulseTrain::time_in_pulse(double t) const {
+  if (t < 0) return std::nullopt;
   const double p = std::floor(t / period_s);
-  if (count > 0 && p >= count) return 0;
-  const double tau = t - p * period_s, c = contact_time_s, F = peak_n;
+  if (count > 0 && p >= count) return std::nullopt;
+  const double tau = t - p * period_s;
   // Half-open window [0, t_c): at a pulse's end the force is already off, so an integrator step
   // that lands there starts the next step with the right-hand limit.
-  if (tau >= c && c < period_s) return 0;
+  if (tau >= contact_time_s && contact_time_s < period_s) return std::nullopt;
+  return tau;
+}
+
+double PulseTrain::force(double t) const {
+  const std::optional<double> tau = time_in_pulse(t);
+  if (!tau) return 0;
+  const double c = contact_time_s, F = peak_n, x = *tau;
   switch (profile) {  // Appendix A, SPEC §3 table
-    case PulseProfile::half_sine: return -F * std::sin(pi * tau / c);                      // (38)
-    case PulseProfile::cosine: return -F / 2 + F / 2 * std::cos(2 * pi * tau / c);        // (A.2)
-    case PulseProfile::triangular: return -F * 2 * std::min(tau, c - tau) / c;            // (A.3)
-    case PulseProfile::sawtooth: return -F * tau / c;                                     // (A.4)
-    case PulseProfile::rectangular: return -F;                                            // (A.6)
+    case PulseProfile::half_sine: return -F * std::sin(pi * x / c);                    // (38)
+    case PulseProfile::cosine: return -F / 2 + F / 2 * std::cos(2 * pi * x / c);      // (A.2)
+    case PulseProfile::triangular: return -F * 2 * std::min(x, c - x) / c;            // (A.3)
+    case PulseProfile::sawtooth: return -F * x / c;                                   // (A.4)
+    case PulseProfile::rectangular: return -F;                                        // (A.6)
     case PulseProfile::impulse: return -F;  // a short rectangle; the impulse is F_max t_c
+  }
+  return 0;
+}
+
+double PulseTrain::force_rate(double t) const {
+  const std::optional<double> tau = time_in_pulse(t);
+  if (!tau) return 0;
+  const double c = contact_time_s, F = peak_n, x = *tau;
+  switch (profile) {  // the derivatives of force(t)
+    case PulseProfile::half_sine: return -F * pi / c * std::cos(pi * x / c);
+    case PulseProfile::cosine: return -F * pi / c * std::sin(2 * pi * x / c);
+    case PulseProfile::triangular: return (x < c / 2 ? -2 : 2) * F / c;
+    case PulseProfile::sawtooth: return -F / c;
+    case PulseProfile::rectangular:
+    case PulseProfile::impulse: return 0;
   }
   return 0;
 }

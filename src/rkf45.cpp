@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include <boost/math/tools/roots.hpp>
 #include <fmt/format.h>
 
 namespace bladestab {
@@ -46,6 +47,34 @@ Eigen::VectorXd hermite(double t0, double h, const Eigen::VectorXd& x0, const Ei
   return (2 * s3 - 3 * s2 + 1) * x0 + (s3 - 2 * s2 + s) * h * f0 + (-2 * s3 + 3 * s2) * x1 + (s3 - s2) * h * f1;
 }
 
+// The earliest zero of an event function inside (t0, t0 + h] on the dense output: {index, time,
+// direction}, index −1 if none. `start` and `end` are the values at both ends of the step (at the end
+// the left-hand limit: the piece of the system the step integrated). Zeros within a hair of t0 are
+// the one just landed on.
+struct EventZero {
+  int index = -1;
+  double t = 0;
+  int direction = 0;
+};
+
+EventZero first_event(const std::vector<OdeEvent>& events, int landed, const std::vector<double>& start,
+                      const std::vector<double>& end, double t0, double h, const Eigen::VectorXd& x0,
+                      const Eigen::VectorXd& f0, const Eigen::VectorXd& x1, const Eigen::VectorXd& f1) {
+  EventZero first{-1, t0 + h, 0};
+  for (std::size_t i = 0; i < events.size(); ++i) {
+    const double a = start[i], b = end[i];
+    if (!(a * b < 0)) continue;
+    const auto g = [&](double t) { return events[i].value(t, hermite(t0, h, x0, f0, x1, f1, t)); };
+    std::uintmax_t iterations = 100;
+    const auto bracket = boost::math::tools::toms748_solve(
+        g, t0, t0 + h, a, b, [h](double lo, double hi) { return hi - lo <= 1e-13 * h; }, iterations);
+    const double t = bracket.second;  // the side past the crossing
+    const double skip = static_cast<int>(i) == landed ? 1e-6 * h : 0;
+    if (t - t0 > skip && t < first.t) first = {static_cast<int>(i), t, b > 0 ? 1 : -1};
+  }
+  return first;
+}
+
 }  // namespace
 
 std::complex<double> rkf45_stability_function(std::complex<double> z) {
@@ -62,7 +91,8 @@ std::complex<double> rkf45_stability_function(std::complex<double> z) {
 
 StepStatistics rkf45_integrate(const OdeFunction& f, Eigen::VectorXd& x, double t0, double t1,
                                const StepControl& control, std::vector<double> breakpoints,
-                               const std::vector<double>& outputs, const OdeObserver& observer) {
+                               const std::vector<double>& outputs, const OdeObserver& observer,
+                               const std::vector<OdeEvent>& events) {
   StepStatistics stats;
   breakpoints.push_back(t1);
   std::sort(breakpoints.begin(), breakpoints.end());
@@ -75,6 +105,12 @@ StepStatistics rkf45_integrate(const OdeFunction& f, Eigen::VectorXd& x, double 
   Eigen::VectorXd k1;
   f(t0, x, k1);
   stats.evaluations = 1;
+  std::vector<double> event_start(events.size()), event_end(events.size());
+  const auto evaluate_events = [&](double t, const Eigen::VectorXd& y, std::vector<double>& values) {
+    for (std::size_t i = 0; i < events.size(); ++i) values[i] = events[i].value(t, y);
+  };
+  evaluate_events(t0, x, event_start);
+  int landed_event = -1;
   while (next_output != outputs.end() && *next_output <= t0) observer(*next_output++, x);
 
   const double span = t1 - t0;
@@ -109,10 +145,21 @@ StepStatistics rkf45_integrate(const OdeFunction& f, Eigen::VectorXd& x, double 
       }
       h = step * factor;
     }
-    const double t_new = lands ? *next_break : t + step;
+    double t_new = lands ? *next_break : t + step;
     Eigen::VectorXd k_new;
     f(t_new, s.x, k_new);
     ++stats.evaluations;
+    evaluate_events(std::nextafter(t_new, t), s.x, event_end);
+    const EventZero event = first_event(events, landed_event, event_start, event_end, t, t_new - t, x, k1, s.x, k_new);
+    if (event.index >= 0) {  // redo the step to end on the event (shorter, so within tolerance too)
+      step = event.t - t;
+      s = fehlberg_step(f, t, x, k1, step, stats);
+      t_new = event.t;
+      lands = false;
+      f(t_new, s.x, k_new);
+      ++stats.evaluations;
+      ++stats.event_landings;
+    }
     while (next_output != outputs.end() && *next_output <= t_new) {
       observer(*next_output, hermite(t, t_new - t, x, k1, s.x, k_new, *next_output));
       ++next_output;
@@ -123,6 +170,12 @@ StepStatistics rkf45_integrate(const OdeFunction& f, Eigen::VectorXd& x, double 
     t = t_new;
     x = std::move(s.x);
     k1 = std::move(k_new);
+    evaluate_events(t, x, event_start);
+    landed_event = event.index;
+    if (event.index >= 0 && events[event.index].on_zero) events[event.index].on_zero(t, x, event.direction);
+    for (std::size_t i = 0; event.index < 0 && i < events.size(); ++i) {  // a jump at a breakpoint
+      if (event_end[i] * event_start[i] < 0 && events[i].on_zero) events[i].on_zero(t, x, event_start[i] > 0 ? 1 : -1);
+    }
     if (lands) {
       ++next_break;
       // After a landing the adaptive step resumes from its own estimate; the fixed one as set.

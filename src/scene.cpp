@@ -286,11 +286,22 @@ Scene read_scene(const toml::table& root, const std::string& source) {
                            "must be in [0, 2] (Coulomb friction coefficient μ)");
   l.clearance = load.number("clearance", non_negative, "must be >= 0 (running clearance in m)");
   l.pulse_frequency_hz = load.optional_number("pulse_frequency_hz", positive, "must be > 0 (pulse frequency in Hz)");
+  load.known({"intrusion", "contact_stiffness"});
+  if (l.mode == LoadMode::clearance) {
+    l.intrusion = load.number("intrusion", non_negative,
+                              "must be >= 0 (depth of the casing distortion in m; contact needs more than load.clearance)");
+    l.contact_stiffness = load.optional_number("contact_stiffness", positive, "must be > 0 (penalty stiffness of the casing in N/m)");
+    if (l.profile == PulseProfile::impulse) {
+      throw InputError(fmt::format("{}: load.profile = \"impulse\": has no shape for the casing distortion in "
+                                   "load.mode = \"clearance\"; use half-sine, cosine, triangular, saw-tooth or rectangular",
+                                   source));
+    }
+  }
   if (l.contact_time_rev * (l.pulses_per_rev) > 1 + 1e-12) {
     throw InputError(fmt::format("{}: load.contact_time_rev = {}: pulses overlap; must be <= 1/pulses_per_rev = {}",
                                  source, l.contact_time_rev, 1.0 / l.pulses_per_rev));
   }
-  load.reject_unknown();
+  load.reject_unknown("load.mode = \"force\"");
   return scene;
 }
 

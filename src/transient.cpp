@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "bladestab/casing_contact.hpp"
 #include "bladestab/damping.hpp"
 #include "bladestab/input_error.hpp"
 
@@ -41,10 +42,6 @@ FixedStep choose_fixed_step(const Eigen::MatrixXd& K, const Eigen::MatrixXd& M, 
 }
 
 TransientResult run_transient(const BladeModel& model, const Scene& scene, const TransientOptions& o) {
-  if (scene.load.mode == LoadMode::clearance) {
-    throw InputError("load.mode = \"clearance\": the displacement-controlled rub is not implemented yet; "
-                     "use \"force\"");
-  }
   const double speed = scene.operation.speed_rad_s;
   const int n = model.layout.size();
   const PulseTrain pulses = pulse_train(scene);
@@ -53,6 +50,8 @@ TransientResult run_transient(const BladeModel& model, const Scene& scene, const
   }
   const double revolution = speed > 0 ? two_pi / speed : pulses.period_s * scene.load.pulses_per_rev;
   const double t_end = o.revolutions * revolution;
+  std::optional<CasingContact> casing;
+  if (scene.load.mode == LoadMode::clearance) casing = casing_contact(model, scene);
 
   // ḟ' = M⁻¹(…): every matrix premultiplied once.
   const Eigen::LLT<Eigen::MatrixXd> mass(model.M);
@@ -65,13 +64,16 @@ TransientResult run_transient(const BladeModel& model, const Scene& scene, const
   const double mu = scene.load.friction, cos_beta = std::cos(model.blade.beta_rad);
   const double rim_speed = speed * model.blade.tip_radius();
 
+  const auto tip_load = [&](double t, const Eigen::VectorXd& x) {
+    return casing ? casing->force(t, x.head(n)) : pulses.force(t);
+  };
   const auto friction = [&](double F, const Eigen::VectorXd& x) {
     if (mu == 0 || F == 0) return 0.0;
     const double v_rel = rim_speed + cos_beta * model.tip_lateral.dot(x.tail(n));
     return -mu * std::abs(F) * cos_beta * std::tanh(v_rel / o.friction_velocity);
   };
   const OdeFunction rhs = [&](double t, const Eigen::VectorXd& x, Eigen::VectorXd& dx) {
-    const double F = pulses.force(t);
+    const double F = tip_load(t, x);
     dx.resize(2 * n);
     dx.head(n) = x.tail(n);
     dx.tail(n) = Mi_cf - MiK * x.head(n) - MiC * x.tail(n);
@@ -90,23 +92,53 @@ TransientResult run_transient(const BladeModel& model, const Scene& scene, const
   if (x.size() != 2 * n) throw std::invalid_argument("initial state has the wrong size");
   result.static_tip_axial_m = model.tip_axial.dot(rotating_equilibrium(model, speed).head(n));
 
+  // Clearance mode: land on every closing and opening (g = 0) and on every deepest overlap (ġ = 0).
+  std::vector<OdeEvent> events;
+  double contact_start = 0;
+  if (casing) {
+    result.contact = ContactSummary{casing->stiffness_n_m};
+    ContactSummary& c = *result.contact;
+    if (casing->overlap(0, x.head(n)) > 0) c.closures = 1;  // starts in contact
+    const auto rate = [&](double t, const Eigen::VectorXd& y) { return casing->overlap_rate(t, y.head(n), y.tail(n)); };
+    events.push_back({[&](double t, const Eigen::VectorXd& y) { return casing->overlap(t, y.head(n)); },
+                      [&](double t, const Eigen::VectorXd&, int direction) {
+                        if (direction > 0) {
+                          ++c.closures, contact_start = t;
+                        } else {
+                          c.contact_time_s += t - contact_start;
+                        }
+                      }});
+    events.push_back({rate, [&](double t, const Eigen::VectorXd& y, int direction) {
+                        if (direction > 0) return;  // the shallowest point
+                        const double g = casing->overlap(t, y.head(n));
+                        c.max_overlap_m = std::max(c.max_overlap_m, g);
+                        c.peak_force_n = std::max(c.peak_force_n, casing->stiffness_n_m * g);
+                      }});
+  }
+
   StepControl control;
   control.adaptive = o.adaptive;
   control.rtol = o.tolerance;
   // Absolute floor: a millionth of the tolerance on the scale of the static stretch (≈ mm).
   control.atol = o.tolerance * 1e-6;
   if (!o.adaptive) {
-    result.fixed = choose_fixed_step(K, model.M, t_end, o.steps_per_period);
+    // In clearance mode the stiffest mode is the one with the casing in contact.
+    Eigen::MatrixXd K_stiffest = K;
+    if (casing) K_stiffest += casing->stiffness_n_m * model.tip_axial.transpose() * model.tip_axial;
+    result.fixed = choose_fixed_step(K_stiffest, model.M, t_end, o.steps_per_period);
     control.fixed_step = result.fixed.step_s;
   }
 
   const auto sample = [&](double t, const Eigen::VectorXd& s) {
     const Eigen::VectorXd f = s.head(n), v = s.tail(n);
-    const double F = pulses.force(t);
+    const double F = tip_load(t, s);
+    const double casing_energy = casing ? casing->energy(t, f) : 0;
     result.samples.push_back({t, speed > 0 ? t * speed / two_pi : t / revolution, model.tip_lateral.dot(f),
                               model.tip_axial.dot(f), model.tip_lateral.dot(v), model.tip_axial.dot(v), F,
-                              friction(F, s), 0.5 * f.dot(model.K_S * f), 0.5 * v.dot(model.M * v),
-                              0.5 * v.dot(model.M * v) + 0.5 * f.dot(K * f) - speed * speed * model.P_cf1.dot(f)});
+                              friction(F, s), casing ? casing->overlap(t, f) : 0, 0.5 * f.dot(model.K_S * f),
+                              0.5 * v.dot(model.M * v),
+                              0.5 * v.dot(model.M * v) + 0.5 * f.dot(K * f) - speed * speed * model.P_cf1.dot(f) +
+                                  casing_energy});
   };
   const int per_rev = o.samples_per_revolution;
   const int total_revs = static_cast<int>(std::ceil(o.revolutions));
@@ -118,14 +150,17 @@ TransientResult run_transient(const BladeModel& model, const Scene& scene, const
       const double t = a + (b - a) * k / per_rev;
       outputs.push_back(k == per_rev ? b : t);
     }
-    const StepStatistics s = rkf45_integrate(rhs, x, a, b, control, pulses.edges(a, b), outputs, sample);
+    const StepStatistics s =
+        rkf45_integrate(rhs, x, a, b, control, pulses.edges(a, b), outputs, sample, events);
     result.steps.accepted += s.accepted;
     result.steps.rejected += s.rejected;
     result.steps.evaluations += s.evaluations;
+    result.steps.event_landings += s.event_landings;
     result.steps.smallest_step = r == 0 ? s.smallest_step : std::min(result.steps.smallest_step, s.smallest_step);
     result.steps.largest_step = std::max(result.steps.largest_step, s.largest_step);
     if (o.progress) o.progress(r + 1, total_revs);
   }
+  if (casing && casing->overlap(t_end, x.head(n)) > 0) result.contact->contact_time_s += t_end - contact_start;
   return result;
 }
 

@@ -361,9 +361,27 @@ TEST_CASE("bad input: transient and crosscheck options (bad_input)", "[bad_input
   SECTION("transient --name with a slash") {
     expect_rejected(with({"transient", "--name", "a/b", "--revolutions", "0.1", "--chart", "none"}), {"--name a/b", "without '/'"});
   }
-  SECTION("transient in clearance mode") {
+  SECTION("clearance mode without the casing's intrusion") {
     expect_rejected(with({"transient", "--set", "load.mode=clearance", "--revolutions", "0.1", "--chart", "none"}),
-                    {"load.mode = \"clearance\"", "not implemented", "\"force\""});
+                    {"load.intrusion", "missing", "required"});
+  }
+  SECTION("clearance mode with a negative intrusion") {
+    expect_rejected(with({"transient", "--set", "load.mode=clearance", "--set", "load.intrusion=-1e-3", "--chart", "none"}),
+                    {"load.intrusion = -0.001", ">= 0"});
+  }
+  SECTION("clearance mode with an impulse for the casing's shape") {
+    expect_rejected(with({"transient", "--set", "load.mode=clearance", "--set", "load.intrusion=1e-3", "--set",
+                          "load.profile=impulse", "--chart", "none"}),
+                    {"load.profile = \"impulse\"", "clearance", "half-sine"});
+  }
+  SECTION("an intrusion in force mode") {
+    expect_rejected(with({"transient", "--set", "load.intrusion=1e-3", "--chart", "none"}),
+                    {"load.intrusion = 0.001", "not used with load.mode = \"force\""});
+  }
+  SECTION("a zero contact stiffness") {
+    expect_rejected(with({"transient", "--set", "load.mode=clearance", "--set", "load.intrusion=1e-3", "--set",
+                          "load.contact_stiffness=0", "--chart", "none"}),
+                    {"load.contact_stiffness = 0", "> 0"});
   }
   SECTION("crosscheck --points negative") {
     expect_rejected(with({"crosscheck", "--points", "1,-2"}), {"--points", "-2", "[0, 1000]"});

@@ -3,6 +3,7 @@
 // pulses F(t) ≤ 0, its exact complex Fourier coefficients, and the series the frequency domain
 // uses — the paper's cosine approximation (42) or the true pulse's series, truncated.
 #include <complex>
+#include <optional>
 #include <vector>
 
 #include "bladestab/blade_properties.hpp"
@@ -23,8 +24,12 @@ struct PulseTrain {
   // F(t) of the true pulse train [N]; 0 outside the contact windows [start, start + t_c) and
   // after the last pulse.
   double force(double t) const;
+  // dF/dt [N/s], with the same half-open windows (the right-hand limit at an edge).
+  double force_rate(double t) const;
   // Pulse starts and ends in [t0, t1]: where F or F' jumps, so integrator steps land there.
   std::vector<double> edges(double t0, double t1) const;
+  // The time since the current pulse started, if one is on at t.
+  std::optional<double> time_in_pulse(double t) const;
   // F_m = (1/T_p) ∫₀^{T_p} F(t) e^{−i m θ t} dt, exact closed form for every profile.
   std::complex<double> fourier_coefficient(int m) const;
   // (1/T_p) ∫ F² dt, for Parseval's tail bound.

@@ -19,6 +19,13 @@ using OdeFunction = std::function<void(double t, const Eigen::VectorXd& x, Eigen
 // Called at each output time with the interpolated state.
 using OdeObserver = std::function<void(double t, const Eigen::VectorXd& x)>;
 
+// A function of the state whose zeros the steps land on, and what to do there (direction +1 where
+// it rises through zero, −1 where it falls). A jump through zero at a breakpoint counts as a zero.
+struct OdeEvent {
+  std::function<double(double t, const Eigen::VectorXd& x)> value;
+  std::function<void(double t, const Eigen::VectorXd& x, int direction)> on_zero;  // may be empty
+};
+
 struct StepControl {
   bool adaptive = true;
   double rtol = 1e-8, atol = 1e-14;
@@ -29,15 +36,17 @@ struct StepControl {
 
 struct StepStatistics {
   long accepted = 0, rejected = 0, evaluations = 0;
+  long event_landings = 0;
   double smallest_step = 0, largest_step = 0;
 };
 
 // Integrates x from t0 to t1. `breakpoints` (any order, outside (t0, t1) ignored) are landed on;
-// `outputs` (increasing) are reported to `observer` by dense output. Returns the statistics; x
-// holds x(t1). Throws std::runtime_error if the step size underflows.
+// `outputs` (increasing) are reported to `observer` by dense output; `events` are landed on. Returns
+// the statistics; x holds x(t1). Throws std::runtime_error if the step size underflows.
 StepStatistics rkf45_integrate(const OdeFunction& f, Eigen::VectorXd& x, double t0, double t1,
                                const StepControl& control, std::vector<double> breakpoints,
-                               const std::vector<double>& outputs, const OdeObserver& observer);
+                               const std::vector<double>& outputs, const OdeObserver& observer,
+                               const std::vector<OdeEvent>& events = {});
 
 // The stability function of the propagated (fifth-order) formula: one step of ẋ = λx multiplies x
 // by R(hλ) = 1 + hλ bᵀ(I − hλA)⁻¹1. On the imaginary axis |R(iy)| exceeds 1 for 0 < y < 2.3

@@ -56,7 +56,12 @@ struct LoadSpec {
   LoadApproximation approximation = LoadApproximation::cosine;
   LoadMode mode = LoadMode::force;
   double friction = 0;         // μ
-  double clearance = 0;        // δ [m]
+  double clearance = 0;        // δ [m]: casing to tip at the steady rotating equilibrium
+  // clearance mode: depth of the casing's local distortion [m], shaped like the pulse profile over
+  // contact_time_rev, met pulses_per_rev times a revolution; and the penalty stiffness of the wall
+  // [N/m] (default: 100 times the blade's static axial stiffness at the tip)
+  double intrusion = 0;
+  std::optional<double> contact_stiffness;
   std::optional<double> pulse_frequency_hz;  // default: pulses_per_rev · Ω / 2π
 };
 

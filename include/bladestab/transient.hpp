@@ -3,8 +3,9 @@
 //
 //   M f̈ + C ḟ + (K(Ω) + F(t) G) f = Ω² P_cf + F(t) p_u + R(t) p_v
 //
-// with the true pulse train F(t) ≤ 0 on the tip (axially, p_u = W_i(L), and through the
-// geometric stiffness G), and Coulomb friction R = −μ|F| cos β · tanh(v_rel/ε) on the lateral
+// with the tip load F ≤ 0 on the tip (axially, p_u = W_i(L), and through the geometric stiffness
+// G): in load.mode = "force" the true pulse train F(t), in "clearance" the casing's penalty force
+// F(t, f) (casing_contact.hpp), landing on every contact closing and opening. Coulomb friction R = −μ|F| cos β · tanh(v_rel/ε) on the lateral
 // tip, v_rel = ΩR + cos β · v̇(L) the tip's speed past the casing (regularized sign, ε = 1 mm/s:
 // the tip moves at ΩR ≈ 450 m/s, so the friction never sticks in practice). Integrated in first-
 // order form x = [f; ḟ] by RKF45, adaptive or with the paper's fixed step (54), landing on every
@@ -44,10 +45,21 @@ struct TransientOptions {
 struct TransientSample {
   double time_s, revolutions;
   double tip_lateral_m, tip_axial_m, tip_lateral_velocity_m_s, tip_axial_velocity_m_s;
-  double axial_force_n, friction_force_n;
+  double axial_force_n, friction_force_n;  // the tip load F (an output in clearance mode) and μ|F| cos β
+  double casing_overlap_m;  // clearance mode: g, how far the tip has passed the casing (> 0 in contact); else 0
   double strain_energy_j;   // ½ fᵀ K_S f: bending, shear and axial strain (55), (56)
   double kinetic_energy_j;  // ½ ḟᵀ M ḟ (57), (58)
-  double total_energy_j;    // ½ ḟᵀ M ḟ + ½ fᵀ K(Ω) f − Ω² P_cfᵀ f, conserved without load and damping
+  double total_energy_j;    // ½ ḟᵀ M ḟ + ½ fᵀ K(Ω) f − Ω² P_cfᵀ f (+ ½k g₊² in clearance mode), conserved
+                            // without pulses, damping and casing motion
+};
+
+// Clearance mode: what the casing did, from the exact contact events.
+struct ContactSummary {
+  double stiffness_n_m = 0;     // the penalty k
+  int closures = 0;             // contacts made
+  double contact_time_s = 0;    // total time in contact
+  double peak_force_n = 0;      // max k g (at the deepest overlap, ġ = 0)
+  double max_overlap_m = 0;     // the wall's largest give, max g
 };
 
 struct TransientResult {
@@ -55,6 +67,7 @@ struct TransientResult {
   StepStatistics steps;
   FixedStep fixed;          // the fixed step, when used
   double static_tip_axial_m = 0;  // the rotating equilibrium's tip stretch
+  std::optional<ContactSummary> contact;  // clearance mode
 };
 
 // The steady rotating equilibrium: K(Ω) f = Ω² P_cf, ḟ = 0.

@@ -51,11 +51,11 @@ Summary summarize(const TransientResult& r, double sample_rate) {
 std::string history_csv(const TransientResult& r) {
   std::string csv =
       "time_s,revolutions,tip_lateral_m,tip_axial_m,tip_lateral_velocity_m_s,tip_axial_velocity_m_s,"
-      "axial_force_n,friction_force_n,strain_energy_j,kinetic_energy_j,total_energy_j\n";
+      "axial_force_n,friction_force_n,casing_overlap_m,strain_energy_j,kinetic_energy_j,total_energy_j\n";
   for (const TransientSample& s : r.samples) {
-    csv += fmt::format("{},{},{},{},{},{},{},{},{},{},{}\n", s.time_s, s.revolutions, s.tip_lateral_m, s.tip_axial_m,
+    csv += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{}\n", s.time_s, s.revolutions, s.tip_lateral_m, s.tip_axial_m,
                        s.tip_lateral_velocity_m_s, s.tip_axial_velocity_m_s, s.axial_force_n, s.friction_force_n,
-                       s.strain_energy_j, s.kinetic_energy_j, s.total_energy_j);
+                       s.casing_overlap_m, s.strain_energy_j, s.kinetic_energy_j, s.total_energy_j);
   }
   return csv;
 }
@@ -76,22 +76,42 @@ void summary_fields(JsonWriter& json, const TransientResult& r, const Summary& s
       .value("rejected", static_cast<double>(r.steps.rejected))
       .value("rhs_evaluations", static_cast<double>(r.steps.evaluations))
       .value("smallest_s", r.steps.smallest_step)
-      .value("largest_s", r.steps.largest_step);
+      .value("largest_s", r.steps.largest_step)
+      .value("event_landings", static_cast<double>(r.steps.event_landings));
   if (!adaptive) {
     json.value("fixed_step_s", r.fixed.step_s)
         .value("steps_per_stiffest_period", r.fixed.steps_per_period)
         .value("parasitic_growth_of_stiffest_mode", r.fixed.parasitic_growth);
   }
   json.end_object();
+  if (r.contact) {
+    json.begin_object("casing_contact")
+        .value("penalty_stiffness_n_m", r.contact->stiffness_n_m)
+        .value("closures", r.contact->closures)
+        .value("contact_time_s", r.contact->contact_time_s)
+        .value("peak_force_n", r.contact->peak_force_n)
+        .value("max_overlap_m", r.contact->max_overlap_m)
+        .end_object();
+  }
+}
+
+// What loads the tip, in one phrase.
+std::string load_description(const Scene& scene) {
+  const LoadSpec& l = scene.load;
+  const std::string pulses = l.pulse_count == 1 ? "" : fmt::format(" ({} in all)", l.pulse_count == 0 ? std::string("endless") : std::to_string(l.pulse_count));
+  if (l.mode == LoadMode::clearance) {
+    return fmt::format("casing at clearance {:g} mm with {} distortions {:g} mm deep{}, t̄c = {:g}, μ = {:g}", 1e3 * l.clearance,
+                       to_string(l.profile), 1e3 * l.intrusion, pulses, l.contact_time_rev, l.friction);
+  }
+  return fmt::format("{} pulses{}, F̄ = {:g}, t̄c = {:g}, μ = {:g}", to_string(l.profile), pulses, l.fmax_over_fcr,
+                     l.contact_time_rev, l.friction);
 }
 
 std::string summary_json(const Scene& scene, const BladeModel& model, const TransientResult& r, const Summary& s,
                          bool adaptive, bool with_series) {
   JsonWriter json;
   json.begin_object()
-      .value("title", fmt::format("{} — {} pulse{}, F̄ = {:g}, μ = {:g}", scene_title(scene), to_string(scene.load.profile),
-                                  scene.load.pulse_count == 1 ? "" : " train", scene.load.fmax_over_fcr,
-                                  scene.load.friction))
+      .value("title", fmt::format("{} — {}", scene_title(scene), load_description(scene)))
       .value("scene", scene.source)
       .value("model", describe_model(model))
       .value("speed_rad_s", scene.operation.speed_rad_s)
@@ -181,9 +201,7 @@ Command register_transient(CLI::App& app) {
       case OutputFormat::csv: fmt::print("{}", history_csv(r)); break;
       case OutputFormat::table:
         fmt::print("scene      {}\nmodel      {}\n", scene.source, describe_model(model));
-        fmt::print("load       {} pulse{}, F̄ = {:g}, t̄c = {:g}, μ = {:g}\n", to_string(scene.load.profile),
-                   scene.load.pulse_count == 1 ? "" : fmt::format("s ({} in all)", scene.load.pulse_count == 0 ? std::string("endless") : std::to_string(scene.load.pulse_count)),
-                   scene.load.fmax_over_fcr, scene.load.contact_time_rev, scene.load.friction);
+        fmt::print("load       {}\n", load_description(scene));
         fmt::print("steps      {}: {} accepted, {} rejected, {} RHS evaluations, step {:.3g} … {:.3g} s\n",
                    o.adaptive ? fmt::format("adaptive RKF45, rtol {:g}", *tolerance)
                               : fmt::format("fixed RKF45, Δt = {:.6g} s = 1/{} of the stiffest period (54), "
@@ -194,6 +212,13 @@ Command register_transient(CLI::App& app) {
                    "peak {:.6g} mm, dominant {:.5g} Hz\n",
                    1e3 * s.peak_lateral_m, s.lateral_hz, 1e3 * s.mean_axial_m, 1e3 * r.static_tip_axial_m,
                    1e3 * s.peak_axial_m, s.axial_hz);
+        if (r.contact) {
+          fmt::print("casing     {} contacts, {:.6g} ms in all; peak force {:.6g} kN (F̄ = {:.4g}) at the deepest overlap "
+                     "{:.4g} µm of the penalty wall (k = {:.4g} N/m)\n",
+                     r.contact->closures, 1e3 * r.contact->contact_time_s, 1e-3 * r.contact->peak_force_n,
+                     r.contact->peak_force_n / BladeProperties(scene.blade).critical_load(), 1e6 * r.contact->max_overlap_m,
+                     r.contact->stiffness_n_m);
+        }
         fmt::print("growth     {:.6g} per revolution (lateral envelope, last third of the run)\n",
                    s.growth_per_revolution);
         fmt::print("written    {}\n", fmt::join(files, ", "));
