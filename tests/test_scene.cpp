@@ -67,8 +67,12 @@ approximation = "fourier"
 mode = "clearance"
 friction = 0.2
 clearance = 0.001
+intrusion = 0.0012
+contact_stiffness = 5e9
 )";
   const Scene s = parse_scene(text, "inline.toml");
+  CHECK(s.load.intrusion == 0.0012);
+  CHECK(s.load.contact_stiffness == 5e9);
   CHECK(s.blade.inertia == 4e-8);
   CHECK(s.damping.frequencies_hz == std::vector<double>{10, 100});
   CHECK(s.load.pulses_per_rev == 2);
