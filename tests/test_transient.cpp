@@ -37,6 +37,18 @@ Eigen::VectorXd perturbed_equilibrium(const BladeModel& m, double speed, double 
   return x;
 }
 
+// The largest change of the total energy over the run, and the largest kinetic energy (the scale
+// of the vibration).
+std::pair<double, double> energy_drift(const TransientResult& r) {
+  const double e0 = r.samples.front().total_energy_j;
+  double drift = 0, swing = 0;
+  for (const TransientSample& p : r.samples) {
+    drift = std::max(drift, std::abs(p.total_energy_j - e0));
+    swing = std::max(swing, p.kinetic_energy_j);
+  }
+  return {drift, swing};
+}
+
 }  // namespace
 
 TEST_CASE("undamped free vibration at 300 rad/s conserves the rotating-frame energy", "[transient]") {
@@ -47,13 +59,8 @@ TEST_CASE("undamped free vibration at 300 rad/s conserves the rotating-frame ene
   o.tolerance = 1e-10;
   o.initial_state = perturbed_equilibrium(m, 300, 1e-3, 1e-4);
   const TransientResult r = run_transient(m, s, o);
-  const double e0 = r.samples.front().total_energy_j;
-  double drift = 0, swing = 0;
-  for (const TransientSample& p : r.samples) {
-    drift = std::max(drift, std::abs(p.total_energy_j - e0));
-    swing = std::max(swing, p.kinetic_energy_j);
-  }
-  INFO("energy " << e0 << " J, kinetic energy up to " << swing << " J, steps " << r.steps.accepted);
+  const auto [drift, swing] = energy_drift(r);
+  INFO("energy " << r.samples.front().total_energy_j << " J, kinetic energy up to " << swing << " J, steps " << r.steps.accepted);
   CHECK(swing > 0.1);                   // it really vibrates
   CHECK(drift < 1e-8 * std::abs(swing)); // relative to the vibration energy
   CHECK(r.static_tip_axial_m == Approx(2.0e-3).epsilon(0.02));
@@ -235,12 +242,7 @@ TEST_CASE("clearance mode: bouncing on a still casing conserves the energy with 
   o.tolerance = 1e-10;
   o.initial_state = perturbed_equilibrium(m, 300, 0, -1e-4);
   const TransientResult r = run_transient(m, s, o);
-  const double e0 = r.samples.front().total_energy_j;
-  double drift = 0, swing = 0;
-  for (const TransientSample& p : r.samples) {
-    drift = std::max(drift, std::abs(p.total_energy_j - e0));
-    swing = std::max(swing, p.kinetic_energy_j);
-  }
+  const auto [drift, swing] = energy_drift(r);
   INFO("contacts " << r.contact->closures << ", kinetic energy up to " << swing << " J, drift " << drift << " J");
   CHECK(r.contact->closures >= 20);  // about once per 0.78 ms axial period over 21 ms
   CHECK(r.samples.front().casing_overlap_m < 0);
