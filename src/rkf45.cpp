@@ -49,8 +49,8 @@ Eigen::VectorXd hermite(double t0, double h, const Eigen::VectorXd& x0, const Ei
 
 // The earliest zero of an event function inside (t0, t0 + h] on the dense output: {index, time,
 // direction}, index −1 if none. `start` and `end` are the values at both ends of the step (at the end
-// the left-hand limit: the piece of the system the step integrated). Zeros within a hair of t0 are
-// the one just landed on.
+// the left-hand limit: the piece of the system the step integrated). A zero of event `landed` within
+// 1e-6 of the step from t0 is the one the previous step landed on, seen again through rounding.
 struct EventZero {
   int index = -1;
   double t = 0;
@@ -173,7 +173,7 @@ StepStatistics rkf45_integrate(const OdeFunction& f, Eigen::VectorXd& x, double 
     evaluate_events(t, x, event_start);
     landed_event = event.index;
     if (event.index >= 0 && events[event.index].on_zero) events[event.index].on_zero(t, x, event.direction);
-    for (std::size_t i = 0; event.index < 0 && i < events.size(); ++i) {  // a jump at a breakpoint
+    for (std::size_t i = 0; lands && event.index < 0 && i < events.size(); ++i) {  // a jump at a breakpoint
       if (event_end[i] * event_start[i] < 0 && events[i].on_zero) events[i].on_zero(t, x, event_start[i] > 0 ? 1 : -1);
     }
     if (lands) {
