@@ -1,0 +1,16 @@
+#pragma once
+// How an ErrorBudget appears in the outputs: JSON keys `error_estimate` (the total) and
+// `error_budget` {basis, reduction, load, method, unbounded}, and one table line.
+#include <string>
+
+#include "bladestab/error_budget.hpp"
+#include "json_writer.hpp"
+
+namespace bladestab::cli {
+
+void write_error_budget(JsonWriter& json, const ErrorBudget& budget);
+
+// "3.1e-07 (basis 2.0e-07, reduction 1.0e-07, load 0, method 1.0e-08)", plus "; not bounded: …".
+std::string describe_error_budget(const ErrorBudget& budget);
+
+}  // namespace bladestab::cli
