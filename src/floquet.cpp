@@ -2,11 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <stdexcept>
+#include <limits>
 
 #include <fmt/format.h>
 
 #include "bladestab/magnus.hpp"
+#include "bladestab/numerical_error.hpp"
 #include "bladestab/rkf45.hpp"
 
 namespace bladestab {
@@ -56,35 +57,136 @@ struct Attempt {
   Eigen::VectorXcd multipliers;
   double error = 0;
   int harmonics = 0, steps = 0;
+  Eigen::MatrixXd monodromy;  // Φ(T), where the method has one
 };
 
-// Raises q by 2 from `start` until two successive truncations agree within tol, the Hill
-// matrix would exceed `max_size`, or q passes `max_q`. Returns whether the tolerance was met.
+bool all_finite(const Eigen::MatrixXd& m) { return m.allFinite(); }
+
+Eigen::VectorXcd eigenvalues_of(const Eigen::MatrixXd& phi) {
+  Eigen::EigenSolver<Eigen::MatrixXd> eig(phi, false);
+  if (eig.info() != Eigen::Success) throw NumericalError("the eigenvalues of the monodromy matrix did not converge");
+  return sorted_by_magnitude(eig.eigenvalues());
+}
+
+// Raises q by 2 from `start` until the whole multiplier sets of two successive truncations agree
+// within tol, the Hill matrix would exceed `max_size` rows, or q passes `max_q`. Returns whether
+// the tolerance was met; `out` holds the last truncation either way.
 template <class Method>
 bool refine_harmonics(const PeriodicSystem& sys, Method method, int start, int max_q, int max_size, double tol,
                       Attempt& out) {
   Eigen::VectorXcd previous = method(sys, std::max(start - 2, 1));
   for (int q = start; q <= max_q && sys.state_size() * (2 * q + 1) <= max_size; q += 2) {
     const Eigen::VectorXcd current = method(sys, q);
-    out = {current, std::abs(max_abs(current) - max_abs(previous)), q, 0};
+    out = {current, multiplier_set_distance(current, previous), q, 0, {}};
     if (out.error <= tol * std::max(1.0, max_abs(current))) return true;
     previous = current;
   }
   return false;
 }
 
-// Doubles the Magnus steps until two successive counts agree within tol. Too few steps for the
-// stiff modes overflow (the Magnus series diverges); such results never count as agreement.
-Attempt refine_steps(const PeriodicSystem& sys, int start, double tol) {
-  constexpr int max_steps = 1 << 16;
-  Eigen::VectorXcd previous = monodromy_multipliers(sys, start);
-  for (int steps = 2 * start; steps <= max_steps; steps *= 2) {
-    const Eigen::VectorXcd current = monodromy_multipliers(sys, steps);
-    const double error = std::abs(max_abs(current) - max_abs(previous));
-    if (std::isfinite(error) && error <= tol * std::max(1.0, max_abs(current))) return {current, error, 0, steps};
+// Doubles the Magnus steps, from the fewest the stiffest mode allows, until the whole multiplier
+// sets of two successive counts agree within tol (relative above |ρ| = 1).
+Attempt refine_steps(const PeriodicSystem& sys, double tol) {
+  constexpr int max_steps = 1 << 17;
+  const int first = minimum_magnus_steps(sys);
+  if (first > max_steps) {
+    throw NumericalError(fmt::format(
+        "the monodromy needs more than {} Magnus steps per period for this {}-state system (its stiffest rate "
+        "is {:.3g} rad/s); use the automatic reduction (model.reduction = \"auto\")",
+        max_steps, sys.state_size(), sys.modal_frequencies.maxCoeff()));
+  }
+  Eigen::MatrixXd phi = magnus_monodromy(sys, first);
+  Eigen::VectorXcd previous = all_finite(phi) ? eigenvalues_of(phi) : Eigen::VectorXcd();
+  for (int steps = 2 * first; steps <= max_steps; steps *= 2) {
+    phi = magnus_monodromy(sys, steps);
+    if (!all_finite(phi)) continue;
+    const Eigen::VectorXcd current = eigenvalues_of(phi);
+    if (previous.size() == current.size()) {
+      const double error = multiplier_set_distance(current, previous);
+      if (error <= tol * std::max(1.0, max_abs(current))) return {current, error, 0, steps, phi};
+    }
     previous = current;
   }
-  throw std::runtime_error(fmt::format("the monodromy matrix did not converge to {:g} within {} steps", tol, max_steps));
+  throw NumericalError(fmt::format("the monodromy matrix did not converge to {:g} within {} Magnus steps per period",
+                                   tol, max_steps));
+}
+
+// ∫₀ᵀ tr A dt = T tr A₀: the load enters only through B, whose trace is 0.
+double liouville_determinant(const PeriodicSystem& sys) { return std::exp(sys.A0.trace() * sys.period()); }
+
+// The system is Hamiltonian (undamped, gyroscopic at most) when Ĉ is skew-symmetric.
+bool is_hamiltonian(const PeriodicSystem& sys) {
+  const Eigen::MatrixXd& C = sys.modal_C;
+  return (C + C.transpose()).norm() <= 1e-12 * std::max(1.0, C.norm());
+}
+
+double determinant_error(const Eigen::MatrixXd& phi, const PeriodicSystem& sys) {
+  const Eigen::PartialPivLU<Eigen::MatrixXd> lu(phi);
+  if (lu.rcond() < 1e-10) return std::numeric_limits<double>::quiet_NaN();
+  return std::abs(lu.determinant() / liouville_determinant(sys) - 1);
+}
+
+double reciprocal_error(const Eigen::VectorXcd& rho) {
+  double worst = 0;
+  for (Eigen::Index i = 0; i < rho.size() && std::abs(rho(i)) >= 1; ++i) {
+    double nearest = std::numeric_limits<double>::infinity();
+    for (Eigen::Index j = 0; j < rho.size(); ++j) nearest = std::min(nearest, std::abs(rho(i) * rho(j) - 1.0));
+    worst = std::max(worst, nearest);
+  }
+  return worst;
+}
+
+// Integrates the dominant eigenvector v of Φ over one period with RKF45 and compares x(T) with ρv.
+double dominant_residual(const Eigen::MatrixXd& phi, const PeriodicSystem& sys, double rtol) {
+  Eigen::EigenSolver<Eigen::MatrixXd> eig(phi, true);
+  if (eig.info() != Eigen::Success) throw NumericalError("the eigenvectors of the monodromy matrix did not converge");
+  Eigen::Index k = 0;
+  eig.eigenvalues().cwiseAbs().maxCoeff(&k);
+  const cplx rho = eig.eigenvalues()(k);
+  const Eigen::VectorXcd v = eig.eigenvectors().col(k).normalized();
+  const int n = sys.state_size();
+  Eigen::MatrixXd X(n, 2);
+  X << v.real(), v.imag();
+  Eigen::VectorXd x = X.reshaped();
+  const OdeFunction rhs = [&sys, n](double t, const Eigen::VectorXd& y, Eigen::VectorXd& dy) {
+    dy.resize(y.size());
+    Eigen::Map<Eigen::MatrixXd>(dy.data(), n, 2).noalias() = sys.A(t) * Eigen::Map<const Eigen::MatrixXd>(y.data(), n, 2);
+  };
+  StepControl control;
+  control.rtol = rtol;
+  control.atol = rtol * 1e-3;
+  rkf45_integrate(rhs, x, 0, sys.period(), control, {}, {}, [](double, const Eigen::VectorXd&) {});
+  const Eigen::MatrixXd XT = x.reshaped(n, 2);
+  const Eigen::VectorXcd end = XT.col(0).cast<cplx>() + cplx(0, 1) * XT.col(1).cast<cplx>();
+  return (end - rho * v).norm() / std::abs(rho);
+}
+
+// Checks of a monodromy matrix that do not share the Magnus propagator's failure modes; throws
+// NumericalError naming the check that failed.
+FloquetChecks check_monodromy(const Eigen::MatrixXd& phi, const Eigen::VectorXcd& rho, const PeriodicSystem& sys,
+                              double tol, bool integrate) {
+  FloquetChecks c;
+  c.determinant_error = determinant_error(phi, sys);
+  c.reciprocal_error = is_hamiltonian(sys) ? reciprocal_error(rho) : std::numeric_limits<double>::quiet_NaN();
+  const double rtol = std::clamp(tol * 1e-2, 1e-9, 1e-6);
+  c.residual = integrate ? dominant_residual(phi, sys, rtol) : std::numeric_limits<double>::quiet_NaN();
+  c.monodromy_max_abs_multiplier = max_abs(rho);
+  // Rounding in Φ grows with its spread of magnitudes: 1e-13 per unit of max|ρ|·(max|ρ| ≥ 1).
+  const double rounding = 1e-13 * std::max(1.0, max_abs(rho)) * std::max(1.0, 1 / rho.cwiseAbs().minCoeff());
+  const double allowed = std::max(10 * tol, 1e-8);
+  if (c.determinant_error > allowed + rounding) {
+    throw NumericalError(fmt::format("monodromy check failed: det Φ(T) is off Liouville's exp(∫tr A) by {:.2g}; "
+                                     "lower --tolerance", c.determinant_error));
+  }
+  if (c.reciprocal_error > allowed + 1e-13 * max_abs(rho) * max_abs(rho)) {
+    throw NumericalError(fmt::format("monodromy check failed: the undamped multipliers are not reciprocal pairs "
+                                     "(|ρ ρ' − 1| = {:.2g}); lower --tolerance", c.reciprocal_error));
+  }
+  if (c.residual > allowed + 100 * rtol) {
+    throw NumericalError(fmt::format("monodromy check failed: an independent RKF45 integration of the dominant "
+                                     "Floquet vector disagrees by {:.2g}; lower --tolerance", c.residual));
+  }
+  return c;
 }
 
 }  // namespace
@@ -98,6 +200,31 @@ const char* to_string(FloquetMethod m) {
     case FloquetMethod::automatic: return "auto";
   }
   return "?";
+}
+
+int minimum_magnus_steps(const PeriodicSystem& sys) {
+  // max_t ‖A(t)‖₂ ≤ ‖A₀‖₂ + ‖B‖₂ Σ_{m≥1} 2|F_m|
+  double load = 0;
+  for (std::size_t m = 1; m < sys.load.size(); ++m) load += 2 * std::abs(sys.load[m]);
+  const auto norm2 = [](const Eigen::MatrixXd& a) { return Eigen::JacobiSVD<Eigen::MatrixXd>(a).singularValues()(0); };
+  const double bound = norm2(sys.A0) + load * norm2(sys.B);
+  const double steps = std::max({32.0, 8.0 * sys.load.size(), bound * sys.period() / 2});
+  return steps > (1 << 30) ? (1 << 30) + 1 : 1 << static_cast<int>(std::ceil(std::log2(steps)));
+}
+
+double multiplier_set_distance(const Eigen::VectorXcd& a, const Eigen::VectorXcd& b) {
+  std::vector<bool> used(b.size(), false);
+  double worst = 0;
+  for (Eigen::Index i = 0; i < a.size(); ++i) {
+    Eigen::Index best = -1;
+    for (Eigen::Index j = 0; j < b.size(); ++j) {
+      if (!used[j] && (best < 0 || std::abs(a(i) - b(j)) < std::abs(a(i) - b(best)))) best = j;
+    }
+    if (best < 0) return std::numeric_limits<double>::infinity();
+    used[best] = true;
+    worst = std::max(worst, std::abs(a(i) - b(best)));
+  }
+  return worst;
 }
 
 Eigen::MatrixXcd hill_matrix(const PeriodicSystem& sys, int q) {
@@ -142,11 +269,13 @@ Eigen::VectorXcd koopman_hill_multipliers(const PeriodicSystem& sys, int q) {
 }
 
 Eigen::MatrixXd magnus_monodromy(const PeriodicSystem& sys, int steps) {
-  return magnus_propagator([&sys](double t) { return sys.A(t); }, sys.state_size(), 0, sys.period(), steps);
+  return magnus_propagator(sys.A0, sys.B, [&sys](double t) { return sys.load_variation(t); }, 0, sys.period(), steps);
 }
 
 Eigen::VectorXcd monodromy_multipliers(const PeriodicSystem& sys, int steps) {
-  return sorted_by_magnitude(Eigen::EigenSolver<Eigen::MatrixXd>(magnus_monodromy(sys, steps), false).eigenvalues());
+  const Eigen::MatrixXd phi = magnus_monodromy(sys, steps);
+  if (!all_finite(phi)) throw NumericalError(fmt::format("the monodromy overflowed with {} Magnus steps", steps));
+  return eigenvalues_of(phi);
 }
 
 Eigen::MatrixXd rkf45_monodromy(const PeriodicSystem& sys, double rtol) {
@@ -167,50 +296,56 @@ Eigen::MatrixXd rkf45_monodromy(const PeriodicSystem& sys, double rtol) {
 FloquetResult floquet_multipliers(const PeriodicSystem& sys, const FloquetOptions& options) {
   const double tol = options.tolerance;
   const int q = options.harmonics;
-  constexpr int max_q = 40, unlimited = 1 << 30;
-  // Few Magnus steps suffice for the slowly varying load even when stiff modes are present; the
-  // load's highest harmonic sets the minimum.
-  const int first_steps = std::max(64, 8 * static_cast<int>(sys.load.size()));
+  constexpr int max_q = 40, max_hill_rows = 1200;
   Attempt attempt;
-  FloquetMethod used = options.method;
+  FloquetChecks checks;
   switch (options.method) {
     case FloquetMethod::hill:
     case FloquetMethod::koopman_hill: {
       const auto method = options.method == FloquetMethod::hill ? hill_multipliers : koopman_hill_multipliers;
       if (q > 0) {
         const Eigen::VectorXcd current = method(sys, q), coarser = method(sys, std::max(1, q - 2));
-        attempt = {current, q > 1 ? std::abs(max_abs(current) - max_abs(coarser)) : max_abs(current), q, 0};
-      } else {
-        refine_harmonics(sys, method, 2, max_q, unlimited, tol, attempt);
+        attempt = {current, multiplier_set_distance(current, coarser), q, 0, {}};
+      } else if (!refine_harmonics(sys, method, 2, max_q, max_hill_rows, tol, attempt)) {
+        throw NumericalError(fmt::format("{}: the multipliers did not settle to {:g} up to q = {} ({} rows); use "
+                                         "--method monodromy", to_string(options.method), tol, attempt.harmonics,
+                                         sys.state_size() * (2 * attempt.harmonics + 1)));
+      }
+      // The kept exponents must agree with the monodromy's (sorting can pick wrong ones).
+      const Attempt reference = refine_steps(sys, tol);
+      checks = check_monodromy(reference.monodromy, reference.multipliers, sys, tol, false);
+      const double disagreement = std::abs(max_abs(attempt.multipliers) - max_abs(reference.multipliers));
+      if (disagreement > attempt.error + reference.error + tol * std::max(1.0, max_abs(reference.multipliers))) {
+        throw NumericalError(fmt::format("{} (q = {}): max|ρ| = {:.8g} disagrees with the monodromy's {:.8g}{}; use "
+                                         "--method monodromy", to_string(options.method), attempt.harmonics,
+                                         max_abs(attempt.multipliers), max_abs(reference.multipliers),
+                                         options.method == FloquetMethod::hill
+                                             ? " (the classical sorting kept the wrong exponents)"
+                                             : ""));
       }
       break;
     }
     case FloquetMethod::monodromy:
-      attempt = refine_steps(sys, first_steps, tol);
+    case FloquetMethod::automatic:
+      attempt = refine_steps(sys, tol);
+      checks = check_monodromy(attempt.monodromy, attempt.multipliers, sys, tol, options.independent_check);
       break;
     case FloquetMethod::monodromy_rkf45: {
-      const auto rho = [&sys](double rtol) {
-        return sorted_by_magnitude(Eigen::EigenSolver<Eigen::MatrixXd>(rkf45_monodromy(sys, rtol), false).eigenvalues());
-      };
-      const Eigen::VectorXcd tight = rho(tol * 1e-2), loose = rho(tol);
-      attempt = {tight, std::abs(max_abs(tight) - max_abs(loose)), 0, 0};
+      const Eigen::MatrixXd tight = rkf45_monodromy(sys, tol * 1e-2), loose = rkf45_monodromy(sys, tol);
+      if (!all_finite(tight) || !all_finite(loose)) throw NumericalError("the RKF45 monodromy overflowed");
+      const Eigen::VectorXcd rho = eigenvalues_of(tight);
+      attempt = {rho, multiplier_set_distance(rho, eigenvalues_of(loose)), 0, 0, tight};
+      checks = check_monodromy(tight, rho, sys, tol, options.independent_check);
       break;
     }
-    case FloquetMethod::automatic:
-      // Koopman–Hill while its matrix is small (a dense eigensolve of n(2q+1)); else monodromy.
-      used = FloquetMethod::koopman_hill;
-      if (!refine_harmonics(sys, koopman_hill_multipliers, 2, max_q, 480, tol, attempt)) {
-        used = FloquetMethod::monodromy;
-        attempt = refine_steps(sys, first_steps, tol);
-      }
-      break;
   }
   FloquetResult result;
-  result.method = used;
+  result.method = options.method == FloquetMethod::automatic ? FloquetMethod::monodromy : options.method;
   result.harmonics = attempt.harmonics;
   result.steps = attempt.steps;
   result.multipliers = attempt.multipliers;
   result.error_estimate = attempt.error;
+  result.checks = checks;
   result.max_abs_multiplier = max_abs(attempt.multipliers);
   result.max_real_exponent = std::log(result.max_abs_multiplier) / sys.period();
   result.stable = result.max_abs_multiplier <= 1 + std::max(attempt.error, 1e-9);

@@ -194,6 +194,24 @@ LoadSeries fourier_series(const PulseTrain& train, double relative_tail, int max
   return series;
 }
 
+double fourier_sum(const std::vector<std::complex<double>>& coefficients, double angular_frequency, double t) {
+  double f = coefficients.at(0).real();
+  for (std::size_t m = 1; m < coefficients.size(); ++m) {
+    f += 2 * std::real(coefficients[m] * std::exp(std::complex<double>(0, m * angular_frequency * t)));
+  }
+  return f;
+}
+
+double LoadSeries::value(double t) const { return fourier_sum(coefficients, angular_frequency, t); }
+
+double LoadSeries::minimum() const {
+  const int samples = 64 * std::max(1, harmonics());
+  const double period = 2 * pi / angular_frequency;
+  double least = 0;
+  for (int k = 0; k < samples; ++k) least = std::min(least, value(period * k / samples));
+  return least;
+}
+
 LoadSeries load_series(const Scene& scene, double relative_tail, int max_harmonics) {
   const PulseTrain train = pulse_train(scene);
   return scene.load.approximation == LoadApproximation::cosine ? cosine_approximation(train)

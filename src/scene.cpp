@@ -236,6 +236,17 @@ Scene read_scene(const toml::table& root, const std::string& source) {
       "theory", {{"timoshenko", BeamTheory::timoshenko}, {"euler-bernoulli", BeamTheory::euler_bernoulli}});
   m.axial = model.boolean("axial");
   m.coriolis = model.boolean("coriolis");
+  model.known({"reduction", "reduction_vectors", "cutoff_hz"});
+  if (model.has("reduction")) {
+    m.reduction.kind = model.choice<ReductionKind>(
+        "reduction", {{"auto", ReductionKind::automatic}, {"modal", ReductionKind::modal}, {"none", ReductionKind::none}});
+  }
+  if (model.has("reduction_vectors")) m.reduction.vectors = model.integer("reduction_vectors", 1, 200);
+  m.reduction.cutoff_hz = model.optional_number("cutoff_hz", positive, "must be > 0 (modal cut-off in Hz)").value_or(0);
+  if (m.reduction.kind != ReductionKind::modal && m.reduction.cutoff_hz > 0) {
+    throw InputError(fmt::format("{}: model.cutoff_hz = {}: not used with model.reduction = \"{}\" (it needs \"modal\")",
+                                 source, m.reduction.cutoff_hz, to_string(m.reduction.kind)));
+  }
   model.reject_unknown();
 
   SectionReader operation(root, "operation", source);
@@ -348,6 +359,15 @@ const char* to_string(PulseProfile p) {
     case PulseProfile::sawtooth: return "saw-tooth";
     case PulseProfile::rectangular: return "rectangular";
     case PulseProfile::impulse: return "impulse";
+  }
+  return "?";
+}
+
+const char* to_string(ReductionKind k) {
+  switch (k) {
+    case ReductionKind::automatic: return "auto";
+    case ReductionKind::modal: return "modal";
+    case ReductionKind::none: return "none";
   }
   return "?";
 }

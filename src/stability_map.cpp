@@ -26,8 +26,10 @@ Scene scene_at(Scene scene, double speed, double theta, double fbar) {
   return scene;
 }
 
-PeriodicSystem system_for(const BladeModel& model, const Scene& scene) {
-  return periodic_system(model, scene, load_series(scene));
+// The boundary equations are eigenproblems, not time integrations: the whole Ritz model, in a
+// basis that does not depend on the load they solve for. The shading integrates the reduced one.
+PeriodicSystem system_for(const BladeModel& model, const Scene& scene, ReductionKind reduction) {
+  return periodic_system(model, scene, load_series(scene), {reduction, 0, 0});
 }
 
 // Joins boundary points into curves by continuity: at each new parameter value, every curve
@@ -116,7 +118,7 @@ StabilityMap stability_map(const Scene& scene, const MapOptions& o, const std::f
       const double fbar = o.trace[i];
       if (fbar > 0) {
         const Scene at = scene_at(scene, speed, two_pi, fbar);  // θ is the unknown; any value will do
-        for (const Boundary& b : boundary_frequencies(system_for(model, at), fbar * fcr, o.approximation)) {
+        for (const Boundary& b : boundary_frequencies(system_for(model, at, ReductionKind::none), fbar * fcr, o.approximation)) {
           if (b.theta_rad_s >= x_lo && b.theta_rad_s <= x_hi) found.push_back(b), value.push_back(b.theta_rad_s);
         }
       }
@@ -124,7 +126,7 @@ StabilityMap stability_map(const Scene& scene, const MapOptions& o, const std::f
     } else {
       const double W = o.trace[i], theta = o.engine_order * W;
       const Scene at = scene_at(scene, W, theta, 1.0);
-      for (const Boundary& b : boundary_loads(system_for(model, at), fcr, theta, o.approximation)) {
+      for (const Boundary& b : boundary_loads(system_for(model, at, ReductionKind::none), fcr, theta, o.approximation)) {
         if (b.peak_force_n / fcr <= y_hi) found.push_back(b), value.push_back(b.peak_force_n / fcr);
       }
       tracer.add(static_cast<int>(i), found, value, W, false);
@@ -146,7 +148,8 @@ StabilityMap stability_map(const Scene& scene, const MapOptions& o, const std::f
         const double x = o.grid_x[i], fbar = o.grid_fbar[j];
         const Scene at = theta_plane ? scene_at(scene, speed, x, fbar) : scene_at(scene, x, o.engine_order * x, fbar);
         if (x > 0) {
-          const FloquetResult r = floquet_multipliers(system_for(model, at), {FloquetMethod::automatic, 0, o.tolerance});
+          const FloquetResult r = floquet_multipliers(system_for(model, at, ReductionKind::automatic),
+                                                      {FloquetMethod::automatic, 0, o.tolerance, false});
           map.max_abs_multiplier(j, i) = r.max_abs_multiplier;
           std::lock_guard<std::mutex> lock(error_lock);
           max_error = std::max(max_error, r.error_estimate / std::max(1.0, r.max_abs_multiplier));

@@ -6,8 +6,10 @@
 //  - monodromy:    Φ(T) by the sixth-order Magnus propagator, step count doubled to tolerance;
 //  - monodromy-rkf45: Φ(T) by the transient's RKF45 stepper (the time domain's own monodromy),
 //                  adaptive to the tolerance and checked against one 100 times tighter;
-//  - auto:         the cheapest that meets the tolerance.
-// Every result states the method, the truncation and an error estimate.
+//  - auto:         the monodromy (on a reduced system it is the cheapest and needs no sorting).
+// Every result states the method, the truncation and an error estimate, and is reported only after
+// checks that do not share its failure mode (FloquetChecks); a failed check raises the fidelity or
+// throws NumericalError — never a number.
 #include <optional>
 #include <vector>
 
@@ -24,6 +26,23 @@ struct FloquetOptions {
   FloquetMethod method = FloquetMethod::automatic;
   int harmonics = 0;        // q; 0 = raise until the tolerance is met
   double tolerance = 1e-6;  // on max|ρ|, relative once max|ρ| > 1
+  // Check the dominant Floquet vector by an independent RKF45 integration (FloquetChecks::residual).
+  // Maps leave it to a sample of their points.
+  bool independent_check = true;
+};
+
+// What the result was checked against.
+struct FloquetChecks {
+  // |det Φ(T) / exp(∫₀ᵀ tr A dt) − 1| (Liouville); NaN where Φ is too ill-conditioned to tell.
+  double determinant_error = 0;
+  // Undamped (Hamiltonian) systems: multipliers come in pairs ρ, 1/ρ; the largest |ρ ρ_j − 1| over
+  // the |ρ| ≥ 1 and their nearest partners. NaN with damping.
+  double reciprocal_error = 0;
+  // The dominant eigenpair (ρ, v) of Φ(T) checked by integrating v over one period with RKF45:
+  // ‖x(T) − ρ v‖ / (|ρ| ‖v‖). NaN for methods that give no Φ(T) (classical Hill).
+  double residual = 0;
+  // Hill methods: max|ρ| of the monodromy on the same system, which they must agree with.
+  double monodromy_max_abs_multiplier = 0;
 };
 
 struct FloquetResult {
@@ -34,8 +53,9 @@ struct FloquetResult {
   std::vector<std::optional<double>> log_decrements;  // (46) per multiplier; none for real positive ρ
   double max_abs_multiplier = 0;
   double max_real_exponent = 0;                     // ln(max|ρ|)/T
-  double error_estimate = 0;                        // on max|ρ|
+  double error_estimate = 0;                        // of the method on max|ρ| (steps, harmonics)
   bool stable = true;                               // max|ρ| ≤ 1 within the error estimate
+  FloquetChecks checks;
 };
 
 // Hill matrix H (SPEC §4): blocks H_jk = A_{j−k} − i k θ δ_jk I, j, k = −q..q.
@@ -47,6 +67,12 @@ FloquetResult floquet_multipliers(const PeriodicSystem& system, const FloquetOpt
 Eigen::VectorXcd hill_multipliers(const PeriodicSystem& system, int q);
 Eigen::VectorXcd koopman_hill_multipliers(const PeriodicSystem& system, int q);
 Eigen::VectorXcd monodromy_multipliers(const PeriodicSystem& system, int steps);
+// Magnus steps per period below which the step's h‖A‖ exceeds 2 (the series would diverge).
+int minimum_magnus_steps(const PeriodicSystem& system);
+// Largest distance |ρ_a − ρ_b| between two multiplier sets of equal size, each ρ matched to its
+// nearest unused partner. Tolerances compare it with tol·max(1, max|ρ|): the small multipliers of
+// a strongly unstable Φ carry rounding of order ε‖Φ‖.
+double multiplier_set_distance(const Eigen::VectorXcd& a, const Eigen::VectorXcd& b);
 // Φ(T) integrated by RKF45 at relative tolerance `rtol` (all 2n fundamental solutions at once).
 Eigen::MatrixXd rkf45_monodromy(const PeriodicSystem& system, double rtol);
 // Φ(T) by the Magnus propagator.

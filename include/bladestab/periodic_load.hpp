@@ -40,6 +40,9 @@ struct PulseTrain {
 // pulses_per_rev · Ω/2π, t_c = contact_time_rev · 2π/Ω (a fraction of a revolution).
 PulseTrain pulse_train(const Scene& scene);
 
+// Σ_{|m| ≤ M} F_m e^{i m θ t} for coefficients stored for m = 0..M (F_{−m} = conj F_m).
+double fourier_sum(const std::vector<std::complex<double>>& coefficients, double angular_frequency, double t);
+
 // F(t) ≈ Σ_{|m| ≤ M} F_m e^{i m θ t}, stored for m = 0..M (F_{−m} = conj F_m).
 struct LoadSeries {
   double angular_frequency = 0;              // θ
@@ -48,6 +51,10 @@ struct LoadSeries {
   bool cosine_approximation = false;
   bool frequency_known = true;
   int harmonics() const { return static_cast<int>(coefficients.size()) - 1; }
+  double value(double t) const;  // the series at time t [N]
+  // The most compressive force of the series over a period (≤ 0 for a pulse train) [N], from
+  // 64 samples per highest harmonic.
+  double minimum() const;
 };
 
 // The cosine approximation (42): −F_max/2 + (F_max/2) cos θt, i.e. F_0 = −F_max/2, F_1 = F_max/4.

@@ -1,14 +1,15 @@
 #pragma once
 // The blade under a periodic tip load as a linear time-periodic (LTP) system ẏ = A(t) y
-// (SPEC §4), written in scaled modal coordinates of the unloaded blade at speed Ω:
+// (SPEC §4), written in scaled modal coordinates of the unloaded (reduced) blade at speed Ω:
 //
 //   q = Φ η,  Φᵀ M Φ = I,  Φᵀ K(Ω) Φ = Λ = diag(ω_k²),  y = [D η; η̇],  D = diag(ω_k)
 //
 //   A(t) = A₀ + (F(t) − F₀) B,   A₀ = [[0, D], [−(Λ + F₀ Ĝ) D⁻¹, −Ĉ]],   B = [[0, 0], [−Ĝ D⁻¹, 0]]
 //
 // with Ĝ = Φᵀ G Φ and Ĉ = Φᵀ C Φ. Displacements and velocities then carry the same units, so the
-// monodromy matrix is well conditioned even with the 46 kHz rotation modes present; keeping only
-// the modes below a cut-off is a modal truncation (SPEC §6).
+// monodromy matrix is well conditioned. The system is built on a reduced model (reduction.hpp):
+// by default the span of the loaded modes, which keeps the 46 kHz rotation modes and the Ritz
+// basis's spurious top modes out of the time integration (SPEC §6).
 #include <complex>
 #include <vector>
 
@@ -16,6 +17,7 @@
 
 #include "bladestab/model.hpp"
 #include "bladestab/periodic_load.hpp"
+#include "bladestab/reduction.hpp"
 
 namespace bladestab {
 
@@ -26,7 +28,7 @@ struct PeriodicSystem {
   double angular_frequency = 0;            // θ
   Eigen::VectorXd modal_frequencies;       // ω_k of the kept modes [rad/s]
   Eigen::MatrixXd modal_G, modal_C;        // Ĝ = Φᵀ G Φ, Ĉ = Φᵀ C Φ (second-order modal form)
-  int kept_modes = 0, all_modes = 0;
+  int kept_modes = 0, all_modes = 0;      // size of the reduced model, dofs of the Ritz model
 
   double period() const;
   int state_size() const { return static_cast<int>(A0.rows()); }
@@ -37,12 +39,14 @@ struct PeriodicSystem {
   Eigen::MatrixXcd harmonic(int m) const;
 };
 
-// `cutoff_hz` ≤ 0 keeps every mode.
+PeriodicSystem periodic_system(const ReducedSystem& reduced, const LoadSeries& load);
+
+// The blade reduced by `reduction` for this load.
 PeriodicSystem periodic_system(const BladeModel& model, double speed_rad_s, const Eigen::MatrixXd& damping,
-                               const LoadSeries& load, double cutoff_hz = 0);
+                               const LoadSeries& load, const ReductionSpec& reduction = {});
 
 // The same at the scene's speed with the scene's damping.
 PeriodicSystem periodic_system(const BladeModel& model, const Scene& scene, const LoadSeries& load,
-                               double cutoff_hz = 0);
+                               const ReductionSpec& reduction = {});
 
 }  // namespace bladestab

@@ -23,12 +23,22 @@ struct BladeSpec {
 enum class BasisKind { sine, legendre };
 enum class BeamTheory { timoshenko, euler_bernoulli };
 
+// How the periodic system is reduced before time integration (reduction.hpp, SPEC §6).
+enum class ReductionKind { automatic, modal, none };
+
+struct ReductionSpec {
+  ReductionKind kind = ReductionKind::automatic;
+  int vectors = 0;       // automatic: modes per load level; 0 = chosen to meet the tolerance
+  double cutoff_hz = 0;  // modal: keep the unloaded modes below this frequency (0: all)
+};
+
 struct ModelSpec {
   BasisKind basis = BasisKind::legendre;
   int terms = 0;  // shape functions per field
   BeamTheory theory = BeamTheory::timoshenko;
   bool axial = true;
   bool coriolis = true;
+  ReductionSpec reduction;  // optional keys reduction, reduction_vectors, cutoff_hz
 };
 
 struct OperationSpec {
@@ -86,5 +96,6 @@ const char* to_string(BasisKind);
 const char* to_string(BeamTheory);
 const char* to_string(DampingModel);
 const char* to_string(PulseProfile);
+const char* to_string(ReductionKind);
 
 }  // namespace bladestab

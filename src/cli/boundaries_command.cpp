@@ -81,7 +81,7 @@ Command register_boundaries(CLI::App& app) {
     if (in_load && scene.load.fmax_over_fcr == 0) scene.load.fmax_over_fcr = 1;  // the load's shape is what matters
     const double peak = scene.load.fmax_over_fcr * model.blade.critical_load();
     const PeriodicSystem sys =
-        periodic_system(model, scene, load_series(scene), *cutoff);
+        periodic_system(model, scene, load_series(scene), {ReductionKind::modal, 0, *cutoff});
     const std::vector<Boundary> found = in_load ? boundary_loads(sys, peak, *at_theta, *approximation)
                                                 : boundary_frequencies(sys, peak, *approximation);
     print(*options, scene, model, *approximation, found, in_load);

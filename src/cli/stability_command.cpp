@@ -4,9 +4,10 @@
 
 #include <fmt/format.h>
 
-#include "bladestab/floquet.hpp"
+#include "bladestab/stability_analysis.hpp"
 #include "bladestab/input_error.hpp"
 #include "commands.hpp"
+#include "error_output.hpp"
 #include "json_writer.hpp"
 #include "options.hpp"
 
@@ -27,9 +28,35 @@ std::string truncation(const FloquetResult& r) {
                                               : fmt::format("q = {} harmonics", r.harmonics);
 }
 
-void print(const SceneOptions& options, const Scene& scene, const BladeModel& model, const PeriodicSystem& sys,
-           const LoadSeries& load, const FloquetResult& r) {
+std::string describe_reduction(const StabilityAnswer& a) {
+  switch (a.reduction.kind) {
+    case ReductionKind::automatic:
+      return fmt::format("automatic: {} modes at F = 0 and at the peak load + gyroscopic corrections → {} of {} dofs",
+                         a.reduction.vectors, a.reduced_size, a.full_size);
+    case ReductionKind::modal:
+      return fmt::format("modal: {} modes below {:g} Hz of {} dofs", a.reduced_size, a.reduction.cutoff_hz, a.full_size);
+    case ReductionKind::none: return fmt::format("none: all {} dofs", a.full_size);
+  }
+  return "";
+}
+
+// "2.1e-13", or "not informative" for NaN.
+std::string check_value(double v) { return std::isnan(v) ? "n/a" : fmt::format("{:.1e}", v); }
+
+void write_checks(JsonWriter& json, const FloquetChecks& c) {
+  json.begin_object("checks");
+  const auto item = [&json](const char* key, double v) { std::isnan(v) ? json.null_value(key) : json.value(key, v); };
+  item("determinant_error", c.determinant_error);
+  item("reciprocal_error", c.reciprocal_error);
+  item("rkf45_residual", c.residual);
+  json.value("monodromy_max_abs_multiplier", c.monodromy_max_abs_multiplier).end_object();
+}
+
+void print(const SceneOptions& options, const Scene& scene, const StabilityAnswer& a) {
+  const FloquetResult& r = a.floquet;
   const double fbar = scene.load.fmax_over_fcr;
+  const double error = a.budget.total();
+  const LoadSeries& load = a.load;
   switch (options.output_format()) {
     case OutputFormat::json: {
       JsonWriter json;
@@ -37,20 +64,26 @@ void print(const SceneOptions& options, const Scene& scene, const BladeModel& mo
           .value("scene", scene.source)
           .value("speed_rad_s", scene.operation.speed_rad_s)
           .value("fmax_over_fcr", fbar)
-          .value("theta_rad_s", sys.angular_frequency)
+          .value("theta_rad_s", a.theta_rad_s)
           .value("load_approximation", load.cosine_approximation ? "cosine" : "fourier")
           .value("load_harmonics", load.harmonics())
           .value("load_relative_tail", load.relative_tail)
-          .value("model", describe_model(model))
-          .value("kept_modes", sys.kept_modes)
+          .value("terms", a.model.terms)
+          .value("reference_terms", a.reference_terms)
+          .value("reduction", to_string(a.reduction.kind))
+          .value("reduction_vectors", a.reduction.vectors)
+          .value("reduced_dofs", a.reduced_size)
+          .value("full_dofs", a.full_size)
           .value("method", to_string(r.method))
           .value("harmonics", r.harmonics)
           .value("steps", r.steps)
           .value("max_abs_multiplier", r.max_abs_multiplier)
           .value("max_real_exponent", r.max_real_exponent)
-          .value("stable", r.stable)
-          .value("error_estimate", r.error_estimate)
-          .begin_array("multipliers");
+          .value("stable", a.stable)
+          .value("tolerance_met", a.tolerance_met);
+      write_error_budget(json, a.budget);
+      write_checks(json, r.checks);
+      json.begin_array("multipliers");
       for (Eigen::Index k = 0; k < r.multipliers.size(); ++k) {
         json.begin_object().value("re", r.multipliers(k).real()).value("im", r.multipliers(k).imag()).end_object();
       }
@@ -69,21 +102,27 @@ void print(const SceneOptions& options, const Scene& scene, const BladeModel& mo
       }
       break;
     case OutputFormat::table: {
-      fmt::print("scene      {}\nmodel      {} ({} of {} modes kept)\n", scene.source, describe_model(model),
-                 sys.kept_modes, sys.all_modes);
+      fmt::print("scene      {}\nmodel      {}, {} basis, {} terms/field (budget against {}), axial {}, coriolis {}\n",
+                 scene.source, to_string(a.model.theory), to_string(a.model.basis), a.model.terms, a.reference_terms,
+                 a.model.axial ? "on" : "off", a.model.coriolis ? "on" : "off");
+      fmt::print("reduction  {}\n", describe_reduction(a));
       fmt::print("operation  Ω = {:.6g} rad/s, F̄_max = {:.6g}, θ = {:.6g} rad/s; load: {}\n",
-                 scene.operation.speed_rad_s, fbar, sys.angular_frequency,
+                 scene.operation.speed_rad_s, fbar, a.theta_rad_s,
                  load.cosine_approximation
                      ? std::string("cosine approximation (42)")
                      : fmt::format("{} harmonics of the {} pulse (relative L2 tail {:.1e})", load.harmonics(),
                                    to_string(scene.load.profile), load.relative_tail));
-      fmt::print("method     {}, {}; error estimate {:.1e} on max|ρ|\n\n", to_string(r.method), truncation(r),
-                 r.error_estimate);
-      const int digits = significant_digits(r.error_estimate);
-      fmt::print("max|ρ| = {:.{}g}   max Re λ = {:.4g} 1/s   → {}\n\n", r.max_abs_multiplier, digits,
-                 r.max_real_exponent, r.stable ? "stable" : "UNSTABLE");
+      fmt::print("method     {}, {}\n", to_string(r.method), truncation(r));
+      fmt::print("error      {} on max|ρ|{}\n", describe_error_budget(a.budget),
+                 a.tolerance_met ? "" : "  — above the tolerance: a fidelity fixed by the scene limits it");
+      fmt::print("checks     det Φ vs Liouville {}, reciprocal pairs {}, RKF45 residual of the dominant vector {}\n\n",
+                 check_value(r.checks.determinant_error), check_value(r.checks.reciprocal_error),
+                 check_value(r.checks.residual));
+      const double relative = error / std::max(1.0, r.max_abs_multiplier);
+      fmt::print("max|ρ| = {:.{}g}   max Re λ = {:.4g} 1/s   → {}\n\n", r.max_abs_multiplier,
+                 significant_digits(relative), r.max_real_exponent, a.stable ? "stable" : "UNSTABLE");
       // Decimals the error estimate supports.
-      const int decimals = std::clamp(static_cast<int>(-std::log10(std::max(r.error_estimate, 1e-12))), 3, 10);
+      const int decimals = std::clamp(static_cast<int>(-std::log10(std::max(error, 1e-12))), 1, 10);
       fmt::print("{:>4} {:>16} {:>16} {:>16} {:>10}\n", "#", "Re ρ", "Im ρ", "|ρ|", "log decr.");
       for (Eigen::Index k = 0; k < r.multipliers.size(); ++k) {
         const auto& d = r.log_decrements[k];
@@ -110,21 +149,16 @@ Command register_stability(CLI::App& app) {
       ->check(CLI::IsMember({"hill", "koopman-hill", "monodromy", "monodromy-rkf45", "auto"}));
   command->add_option("--harmonics", *harmonics, "Hill truncation q (default: raised until --tolerance is met)");
   command->add_option("--tolerance", *tolerance, "wanted accuracy of max|ρ| (default 1e-6)");
-  command->add_option("--cutoff-hz", *cutoff, "keep only the modes below this frequency (default: all)");
+  command->add_option("--cutoff-hz", *cutoff,
+                      "modal truncation: keep only the unloaded modes below this frequency (model.reduction = "
+                      "\"modal\"; default: the automatic reduction)");
   return [=] {
     if (*harmonics < 0 || *harmonics > 60) throw InputError(fmt::format("--harmonics {}: must be in [1, 60]", *harmonics));
     if (!(*tolerance > 0 && *tolerance < 1)) throw InputError(fmt::format("--tolerance {}: must be in (0, 1)", *tolerance));
     if (!(*cutoff >= 0)) throw InputError(fmt::format("--cutoff-hz {}: must be >= 0", *cutoff));
-    const Scene scene = options->load();
-    const BladeModel model = assemble_model(scene.blade, scene.model);
-    const LoadSeries load = load_series(scene);
-    if (!load.frequency_known) {
-      throw InputError("operation.speed_rad_s = 0: the pulses have no frequency; give load.pulse_frequency_hz "
-                       "(in Hz, > 0) or a speed > 0");
-    }
-    const PeriodicSystem sys = periodic_system(model, scene, load, *cutoff);
-    const FloquetResult result = floquet_multipliers(sys, {parse_method(*method), *harmonics, *tolerance});
-    print(*options, scene, model, sys, load, result);
+    Scene scene = options->load();
+    if (*cutoff > 0) scene.model.reduction = {ReductionKind::modal, 0, *cutoff};
+    print(*options, scene, analyse_stability(scene, {parse_method(*method), *harmonics, *tolerance}));
   };
 }
 

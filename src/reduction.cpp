@@ -1,0 +1,79 @@
+#include "bladestab/reduction.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "bladestab/input_error.hpp"
+
+namespace bladestab {
+namespace {
+
+constexpr double two_pi = 6.28318530717958647692;
+
+// Modes of K(Ω) + F G with respect to M, M-orthonormal, by ascending ω².
+Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> loaded_modes(const BladeModel& model, double speed,
+                                                                      double force) {
+  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> modes(model.stiffness(speed, force), model.M);
+  if (modes.info() != Eigen::Success) throw std::runtime_error("modal decomposition failed");
+  return modes;
+}
+
+// An M-orthonormal basis of span(W): unit M-norm columns, then the eigenvectors of the Gram
+// matrix WᵀMW; directions whose Gram eigenvalue is below 1e-10 are (nearly) dependent and dropped.
+Eigen::MatrixXd m_orthonormal(Eigen::MatrixXd W, const Eigen::MatrixXd& M) {
+  int kept = 0;
+  for (Eigen::Index c = 0; c < W.cols(); ++c) {
+    const double norm = std::sqrt(W.col(c).dot(M * W.col(c)));
+    if (norm > 0 && std::isfinite(norm)) W.col(kept++) = W.col(c) / norm;
+  }
+  W.conservativeResize(Eigen::NoChange, kept);
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> gram(W.transpose() * M * W);
+  const Eigen::VectorXd g = gram.eigenvalues();
+  Eigen::Index first = 0;
+  while (first < g.size() && g(first) < 1e-10) ++first;
+  const Eigen::Index n = g.size() - first;
+  return W * gram.eigenvectors().rightCols(n) * g.tail(n).cwiseSqrt().cwiseInverse().asDiagonal();
+}
+
+}  // namespace
+
+ReducedSystem reduce(const BladeModel& model, double speed, const Eigen::MatrixXd& damping, double min_force_n,
+                     const ReductionSpec& spec) {
+  const auto unloaded = loaded_modes(model, speed, 0);
+  if (unloaded.eigenvalues().minCoeff() <= 0) {
+    throw InputError(fmt::format("operation.speed_rad_s = {}: the unloaded blade is statically unstable at this speed",
+                                 speed));
+  }
+  const Eigen::MatrixXd C = damping + model.gyroscopic(speed);
+  const int dofs = model.layout.size();
+  Eigen::MatrixXd V;
+  const int m = spec.vectors > 0 ? spec.vectors : default_reduction_vectors;
+  // A model no larger than the reduced one would be is kept whole.
+  if (spec.kind == ReductionKind::automatic && 3 * m < dofs) {
+    const auto loaded = loaded_modes(model, speed, min_force_n);
+    const Eigen::MatrixXd phi0 = unloaded.eigenvectors().leftCols(m);
+    const Eigen::MatrixXd corrections = model.stiffness(speed).ldlt().solve(C * phi0);
+    Eigen::MatrixXd W(dofs, 3 * m);
+    W << phi0, loaded.eigenvectors().leftCols(m), corrections;
+    V = m_orthonormal(std::move(W), model.M);
+  } else {
+    int kept = dofs;
+    if (spec.kind == ReductionKind::modal && spec.cutoff_hz > 0) {  // else every mode
+      const Eigen::VectorXd f = unloaded.eigenvalues().cwiseSqrt() / two_pi;
+      kept = 1;
+      while (kept < dofs && f(kept) < spec.cutoff_hz) ++kept;
+    }
+    V = unloaded.eigenvectors().leftCols(kept);
+  }
+  ReducedSystem r;
+  r.K = V.transpose() * model.stiffness(speed) * V;
+  r.C = V.transpose() * C * V;
+  r.G = V.transpose() * model.G * V;
+  r.basis = std::move(V);
+  r.full_size = dofs;
+  return r;
+}
+
+}  // namespace bladestab

@@ -1,0 +1,114 @@
+#include "bladestab/stability_analysis.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "bladestab/damping.hpp"
+#include "bladestab/input_error.hpp"
+#include "bladestab/mode_convergence.hpp"
+#include "bladestab/periodic_system.hpp"
+#include "bladestab/reduction.hpp"
+
+namespace bladestab {
+namespace {
+
+constexpr int max_terms = 200;
+
+// One fidelity of the scene's LTP system: its basis, its reduction, its load series.
+struct Fidelity {
+  ModelSpec model;
+  ReductionSpec reduction;
+  LoadSeries load;
+};
+
+PeriodicSystem system_at(const Scene& scene, const Fidelity& f) {
+  return periodic_system(assemble_model(scene.blade, f.model), scene, f.load, f.reduction);
+}
+
+// max|ρ| of a variant, by the monodromy to a tolerance well below the part it measures.
+double variant_max_rho(const Scene& scene, const Fidelity& f, double tol) {
+  return floquet_multipliers(system_at(scene, f), {FloquetMethod::monodromy, 0, tol, false}).max_abs_multiplier;
+}
+
+// Each part of the budget from a variant that differs from `f` in that part only.
+ErrorBudget budget_of(const Scene& scene, const Fidelity& f, const FloquetResult& r, double tol) {
+  ErrorBudget b;
+  const double rho = r.max_abs_multiplier, variant_tol = tol / 8;
+  b.method = r.error_estimate;
+
+  Fidelity richer_basis = f;
+  richer_basis.model.terms = reference_terms(f.model.basis, f.model.terms);
+  // Algebraic convergence (sine basis): the difference to 2N understates the error up to 2×.
+  const double basis_factor = f.model.basis == BasisKind::sine ? 2 : 1;
+  b.basis = basis_factor * std::abs(rho - variant_max_rho(scene, richer_basis, variant_tol));
+
+  if (f.reduction.kind == ReductionKind::automatic) {
+    Fidelity richer = f;
+    richer.reduction.vectors = 2 * f.reduction.vectors;
+    // Galerkin projections do not converge monotonically in max|ρ|: a factor 2 of safety.
+    b.reduction = 2 * std::abs(rho - variant_max_rho(scene, richer, variant_tol));
+  } else if (f.reduction.kind == ReductionKind::modal && f.reduction.cutoff_hz > 0) {
+    Fidelity reduced = f;
+    reduced.reduction = {ReductionKind::automatic, 2 * default_reduction_vectors, 0};
+    b.reduction = std::abs(rho - variant_max_rho(scene, reduced, variant_tol));
+  }
+
+  if (!f.load.cosine_approximation) {
+    // The series against a much longer one of the same pulse.
+    Fidelity longer = f;
+    longer.load = fourier_series(pulse_train(scene), f.load.relative_tail * 1e-2, 4 * std::max(50, f.load.harmonics()));
+    b.load = std::abs(rho - variant_max_rho(scene, longer, variant_tol));
+    if (longer.load.relative_tail > 0.1) {
+      b.unbounded.push_back(fmt::format("load: even {} harmonics miss {:.0f} % of the pulse (L2 tail); use "
+                                        "load.approximation = \"exact\"",
+                                        longer.load.harmonics(), 100 * longer.load.relative_tail));
+    }
+  }
+  return b;
+}
+
+}  // namespace
+
+StabilityAnswer analyse_stability(const Scene& scene, const StabilityRequest& request) {
+  Fidelity f{scene.model, scene.model.reduction, load_series(scene)};
+  if (!f.load.frequency_known) {
+    throw InputError("operation.speed_rad_s = 0: the pulses have no frequency; give load.pulse_frequency_hz "
+                     "(in Hz, > 0) or a speed > 0");
+  }
+  const bool vectors_free = f.reduction.kind == ReductionKind::automatic && f.reduction.vectors == 0;
+  if (f.reduction.kind == ReductionKind::automatic && f.reduction.vectors == 0) {
+    f.reduction.vectors = default_reduction_vectors;
+  }
+  const double tol = request.tolerance;
+  StabilityAnswer a;
+  while (true) {
+    const PeriodicSystem sys = system_at(scene, f);
+    a.floquet = floquet_multipliers(sys, {request.method, request.harmonics, tol / 4, true});
+    a.budget = budget_of(scene, f, a.floquet, tol);
+    a.reduced_size = sys.kept_modes;
+    a.full_size = sys.all_modes;
+    a.theta_rad_s = sys.angular_frequency;
+    const double allowed = tol * std::max(1.0, a.floquet.max_abs_multiplier);
+    if (a.budget.total() <= allowed) break;
+    // Raise the largest part that the scene leaves free; stop where none is.
+    const ErrorBudget& b = a.budget;
+    if (b.basis >= std::max(b.reduction, b.load) && f.model.terms < max_terms) {
+      f.model.terms = std::min(max_terms, reference_terms(f.model.basis, f.model.terms));
+    } else if (b.reduction >= b.load && vectors_free && 2 * f.reduction.vectors <= sys.all_modes) {
+      f.reduction.vectors *= 2;
+    } else {
+      a.tolerance_met = false;
+      break;
+    }
+  }
+  a.model = f.model;
+  a.reference_terms = reference_terms(f.model.basis, f.model.terms);
+  a.reduction = f.reduction;
+  a.load = f.load;
+  a.stable = a.floquet.max_abs_multiplier <= 1 + std::max(a.budget.total(), 1e-9);
+  return a;
+}
+
+}  // namespace bladestab
