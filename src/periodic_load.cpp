@@ -194,10 +194,23 @@ LoadSeries fourier_series(const PulseTrain& train, double relative_tail, int max
   return series;
 }
 
+LoadSeries exact_pulse_mean(const PulseTrain& train) {
+  LoadSeries series;
+  series.angular_frequency = train.angular_frequency();
+  series.frequency_known = train.frequency_known;
+  series.coefficients = {train.fourier_coefficient(0)};
+  series.exact_pulse = true;
+  return series;
+}
+
 LoadSeries load_series(const Scene& scene, double relative_tail, int max_harmonics) {
   const PulseTrain train = pulse_train(scene);
-  return scene.load.approximation == LoadApproximation::cosine ? cosine_approximation(train)
-                                                               : fourier_series(train, relative_tail, max_harmonics);
+  switch (scene.load.approximation) {
+    case LoadApproximation::cosine: return cosine_approximation(train);
+    case LoadApproximation::fourier: return fourier_series(train, relative_tail, max_harmonics);
+    case LoadApproximation::exact: return exact_pulse_mean(train);
+  }
+  return {};
 }
 
 }  // namespace bladestab

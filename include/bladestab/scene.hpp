@@ -44,7 +44,7 @@ struct DampingSpec {
 };
 
 enum class PulseProfile { half_sine, cosine, triangular, sawtooth, rectangular, impulse };
-enum class LoadApproximation { cosine, fourier };
+enum class LoadApproximation { cosine, fourier, exact };
 enum class LoadMode { force, clearance };
 
 struct LoadSpec {
