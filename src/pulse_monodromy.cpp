@@ -48,6 +48,7 @@ Eigen::MatrixXd pulse_monodromy(const PeriodicSystem& sys, const PulseTrain& tra
 }
 
 PulseMonodromy exact_pulse_monodromy(const PeriodicSystem& sys, const PulseTrain& train, double tolerance) {
+  if (!(tolerance > 0)) throw std::invalid_argument(fmt::format("exact_pulse_monodromy: tolerance {} must be > 0", tolerance));
   PulseMonodromy result;
   if (train.profile == PulseProfile::impulse) {
     result.monodromy = pulse_monodromy(sys, train, 0);

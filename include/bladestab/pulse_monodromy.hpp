@@ -35,7 +35,7 @@ struct PulseMonodromy {
 Eigen::MatrixXd pulse_monodromy(const PeriodicSystem& system, const PulseTrain& train, int steps);
 
 // Φ(T_p) with the contact's steps doubled until two successive counts give multipliers within
-// `tolerance` (multiplier_distance). Throws std::runtime_error if 2^16 steps do not reach it.
+// `tolerance` > 0 (multiplier_distance). Throws std::runtime_error if 2^16 steps do not reach it.
 PulseMonodromy exact_pulse_monodromy(const PeriodicSystem& system, const PulseTrain& train, double tolerance);
 
 // The distance between two sets of multipliers of the same size: pairs are matched closest first
