@@ -52,6 +52,7 @@ PulseMonodromy exact_pulse_monodromy(const PeriodicSystem& sys, const PulseTrain
   PulseMonodromy result;
   if (train.profile == PulseProfile::impulse) {
     result.monodromy = pulse_monodromy(sys, train, 0);
+    result.multipliers = sorted_multipliers(result.monodromy);
   } else {
     constexpr int first_steps = 2, max_steps = 1 << 16;
     Eigen::VectorXcd previous = sorted_multipliers(pulse_monodromy(sys, train, first_steps));
@@ -61,14 +62,13 @@ PulseMonodromy exact_pulse_monodromy(const PeriodicSystem& sys, const PulseTrain
                                              tolerance, max_steps));
       }
       result.monodromy = pulse_monodromy(sys, train, steps);
-      const Eigen::VectorXcd current = sorted_multipliers(result.monodromy);
+      result.multipliers = sorted_multipliers(result.monodromy);
       result.steps = steps;
-      result.error_estimate = multiplier_distance(current, previous);
+      result.error_estimate = multiplier_distance(result.multipliers, previous);
       if (std::isfinite(result.error_estimate) && result.error_estimate <= tolerance) break;
-      previous = current;
+      previous = result.multipliers;
     }
   }
-  result.multipliers = sorted_multipliers(result.monodromy);
   // Liouville: det Φ(T) = exp(∫₀^T tr A dt), and tr A(t) = tr A₀ = −tr Ĉ (B has a zero diagonal).
   // In logarithms from the LU factors: damped stiff modes put det Φ far below the smallest double.
   const Eigen::PartialPivLU<Eigen::MatrixXd> lu(result.monodromy);
