@@ -3,11 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <tuple>
 
 #include <fmt/format.h>
 
 #include "bladestab/magnus.hpp"
 #include "bladestab/numerical_error.hpp"
+#include "bladestab/pulse_monodromy.hpp"
 #include "bladestab/rkf45.hpp"
 
 namespace bladestab {
@@ -111,19 +113,10 @@ Attempt refine_steps(const PeriodicSystem& sys, double tol) {
                                    tol, max_steps));
 }
 
-// ∫₀ᵀ tr A dt = T tr A₀: the load enters only through B, whose trace is 0.
-double liouville_determinant(const PeriodicSystem& sys) { return std::exp(sys.A0.trace() * sys.period()); }
-
 // The system is Hamiltonian (undamped, gyroscopic at most) when Ĉ is skew-symmetric.
 bool is_hamiltonian(const PeriodicSystem& sys) {
   const Eigen::MatrixXd& C = sys.modal_C;
   return (C + C.transpose()).norm() <= 1e-12 * std::max(1.0, C.norm());
-}
-
-double determinant_error(const Eigen::MatrixXd& phi, const PeriodicSystem& sys) {
-  const Eigen::PartialPivLU<Eigen::MatrixXd> lu(phi);
-  if (lu.rcond() < 1e-10) return std::numeric_limits<double>::quiet_NaN();
-  return std::abs(lu.determinant() / liouville_determinant(sys) - 1);
 }
 
 double reciprocal_error(const Eigen::VectorXcd& rho) {
@@ -136,8 +129,19 @@ double reciprocal_error(const Eigen::VectorXcd& rho) {
   return worst;
 }
 
+// ẏ = (A₀ + φ(t) B) y over one period: the load variation φ and the times where it jumps.
+struct LoadVariation {
+  std::function<double(double)> phi;
+  std::vector<double> breakpoints;
+};
+
+LoadVariation series_variation(const PeriodicSystem& sys) {
+  return {[&sys](double t) { return sys.load_variation(t); }, {}};
+}
+
 // Integrates the dominant eigenvector v of Φ over one period with RKF45 and compares x(T) with ρv.
-double dominant_residual(const Eigen::MatrixXd& phi, const PeriodicSystem& sys, double rtol) {
+double dominant_residual(const Eigen::MatrixXd& phi, const PeriodicSystem& sys, const LoadVariation& load,
+                         double rtol) {
   Eigen::EigenSolver<Eigen::MatrixXd> eig(phi, true);
   if (eig.info() != Eigen::Success) throw NumericalError("the eigenvectors of the monodromy matrix did not converge");
   Eigen::Index k = 0;
@@ -148,14 +152,17 @@ double dominant_residual(const Eigen::MatrixXd& phi, const PeriodicSystem& sys, 
   Eigen::MatrixXd X(n, 2);
   X << v.real(), v.imag();
   Eigen::VectorXd x = X.reshaped();
-  const OdeFunction rhs = [&sys, n](double t, const Eigen::VectorXd& y, Eigen::VectorXd& dy) {
+  const OdeFunction rhs = [&sys, &load, n](double t, const Eigen::VectorXd& y, Eigen::VectorXd& dy) {
     dy.resize(y.size());
-    Eigen::Map<Eigen::MatrixXd>(dy.data(), n, 2).noalias() = sys.A(t) * Eigen::Map<const Eigen::MatrixXd>(y.data(), n, 2);
+    const auto Y = Eigen::Map<const Eigen::MatrixXd>(y.data(), n, 2);
+    auto D = Eigen::Map<Eigen::MatrixXd>(dy.data(), n, 2);
+    D.noalias() = sys.A0 * Y;
+    D.noalias() += load.phi(t) * (sys.B * Y);
   };
   StepControl control;
   control.rtol = rtol;
   control.atol = rtol * 1e-3;
-  rkf45_integrate(rhs, x, 0, sys.period(), control, {}, {}, [](double, const Eigen::VectorXd&) {});
+  rkf45_integrate(rhs, x, 0, sys.period(), control, load.breakpoints, {}, [](double, const Eigen::VectorXd&) {});
   const Eigen::MatrixXd XT = x.reshaped(n, 2);
   const Eigen::VectorXcd end = XT.col(0).cast<cplx>() + cplx(0, 1) * XT.col(1).cast<cplx>();
   return (end - rho * v).norm() / std::abs(rho);
@@ -164,12 +171,14 @@ double dominant_residual(const Eigen::MatrixXd& phi, const PeriodicSystem& sys, 
 // Checks of a monodromy matrix that do not share the Magnus propagator's failure modes; throws
 // NumericalError naming the check that failed.
 FloquetChecks check_monodromy(const Eigen::MatrixXd& phi, const Eigen::VectorXcd& rho, const PeriodicSystem& sys,
-                              double tol, bool integrate) {
+                              double tol, bool integrate, const LoadVariation& load) {
   FloquetChecks c;
-  c.determinant_error = determinant_error(phi, sys);
+  // Rounding of the LU grows with Φ's condition: not informative beyond 1e10.
+  c.determinant_error = Eigen::PartialPivLU<Eigen::MatrixXd>(phi).rcond() < 1e-10 ? std::numeric_limits<double>::quiet_NaN()
+                                                                                : liouville_error(phi, sys);
   c.reciprocal_error = is_hamiltonian(sys) ? reciprocal_error(rho) : std::numeric_limits<double>::quiet_NaN();
   const double rtol = std::clamp(tol * 1e-2, 1e-9, 1e-6);
-  c.residual = integrate ? dominant_residual(phi, sys, rtol) : std::numeric_limits<double>::quiet_NaN();
+  c.residual = integrate ? dominant_residual(phi, sys, load, rtol) : std::numeric_limits<double>::quiet_NaN();
   c.monodromy_max_abs_multiplier = max_abs(rho);
   // Rounding in Φ grows with its spread of magnitudes: 1e-13 per unit of max|ρ|·(max|ρ| ≥ 1).
   const double rounding = 1e-13 * std::max(1.0, max_abs(rho)) * std::max(1.0, 1 / rho.cwiseAbs().minCoeff());
@@ -187,6 +196,23 @@ FloquetChecks check_monodromy(const Eigen::MatrixXd& phi, const Eigen::VectorXcd
                                      "Floquet vector disagrees by {:.2g}; lower --tolerance", c.residual));
   }
   return c;
+}
+
+FloquetResult result_of(FloquetMethod method, const Attempt& attempt, const FloquetChecks& checks, double period) {
+  FloquetResult result;
+  result.method = method;
+  result.harmonics = attempt.harmonics;
+  result.steps = attempt.steps;
+  result.multipliers = attempt.multipliers;
+  result.error_estimate = attempt.error;
+  result.checks = checks;
+  result.max_abs_multiplier = max_abs(attempt.multipliers);
+  result.max_real_exponent = std::log(result.max_abs_multiplier) / period;
+  result.stable = result.max_abs_multiplier <= 1 + std::max(attempt.error, 1e-9);
+  for (Eigen::Index k = 0; k < attempt.multipliers.size(); ++k) {
+    result.log_decrements.push_back(log_decrement(attempt.multipliers(k), period));
+  }
+  return result;
 }
 
 }  // namespace
@@ -213,18 +239,36 @@ int minimum_magnus_steps(const PeriodicSystem& sys) {
 }
 
 double multiplier_set_distance(const Eigen::VectorXcd& a, const Eigen::VectorXcd& b) {
-  std::vector<bool> used(b.size(), false);
-  double worst = 0;
+  if (a.size() != b.size()) return std::numeric_limits<double>::infinity();
+  // Pairs matched closest first over all pairs (a double root meets each partner once).
+  std::vector<std::tuple<double, Eigen::Index, Eigen::Index>> pairs;
   for (Eigen::Index i = 0; i < a.size(); ++i) {
-    Eigen::Index best = -1;
-    for (Eigen::Index j = 0; j < b.size(); ++j) {
-      if (!used[j] && (best < 0 || std::abs(a(i) - b(j)) < std::abs(a(i) - b(best)))) best = j;
-    }
-    if (best < 0) return std::numeric_limits<double>::infinity();
-    used[best] = true;
-    worst = std::max(worst, std::abs(a(i) - b(best)));
+    for (Eigen::Index j = 0; j < b.size(); ++j) pairs.emplace_back(std::abs(a(i) - b(j)), i, j);
   }
-  return worst;
+  if (std::any_of(pairs.begin(), pairs.end(), [](const auto& p) { return std::isnan(std::get<0>(p)); })) {
+    return std::numeric_limits<double>::quiet_NaN();
+  }
+  std::sort(pairs.begin(), pairs.end());
+  std::vector<bool> used_a(a.size(), false), used_b(b.size(), false);
+  double largest = 0;
+  for (const auto& [d, i, j] : pairs) {
+    if (used_a[i] || used_b[j]) continue;
+    used_a[i] = used_b[j] = true;
+    largest = std::max(largest, d);
+  }
+  return largest;
+}
+
+double liouville_error(const Eigen::MatrixXd& phi, const PeriodicSystem& sys) {
+  // det Φ(T) = exp(∫₀ᵀ tr A dt) = exp(T tr A₀): the load enters only through B, whose trace is 0.
+  // In logarithms from the LU factors: damped stiff modes put det Φ far below the smallest double.
+  const Eigen::PartialPivLU<Eigen::MatrixXd> lu(phi);
+  double log_det = 0, sign = lu.permutationP().determinant();
+  for (Eigen::Index i = 0; i < lu.matrixLU().rows(); ++i) {
+    log_det += std::log(std::abs(lu.matrixLU()(i, i)));
+    sign *= lu.matrixLU()(i, i) < 0 ? -1 : 1;
+  }
+  return std::abs(sign * std::exp(log_det - sys.A0.trace() * sys.period()) - 1);
 }
 
 Eigen::MatrixXcd hill_matrix(const PeriodicSystem& sys, int q) {
@@ -313,7 +357,7 @@ FloquetResult floquet_multipliers(const PeriodicSystem& sys, const FloquetOption
       }
       // The kept exponents must agree with the monodromy's (sorting can pick wrong ones).
       const Attempt reference = refine_steps(sys, tol);
-      checks = check_monodromy(reference.monodromy, reference.multipliers, sys, tol, false);
+      checks = check_monodromy(reference.monodromy, reference.multipliers, sys, tol, false, series_variation(sys));
       const double disagreement = std::abs(max_abs(attempt.multipliers) - max_abs(reference.multipliers));
       if (disagreement > attempt.error + reference.error + tol * std::max(1.0, max_abs(reference.multipliers))) {
         throw NumericalError(fmt::format("{} (q = {}): max|ρ| = {:.8g} disagrees with the monodromy's {:.8g}{}; use "
@@ -328,31 +372,29 @@ FloquetResult floquet_multipliers(const PeriodicSystem& sys, const FloquetOption
     case FloquetMethod::monodromy:
     case FloquetMethod::automatic:
       attempt = refine_steps(sys, tol);
-      checks = check_monodromy(attempt.monodromy, attempt.multipliers, sys, tol, options.independent_check);
+      checks = check_monodromy(attempt.monodromy, attempt.multipliers, sys, tol, options.independent_check,
+                               series_variation(sys));
       break;
     case FloquetMethod::monodromy_rkf45: {
       const Eigen::MatrixXd tight = rkf45_monodromy(sys, tol * 1e-2), loose = rkf45_monodromy(sys, tol);
       if (!all_finite(tight) || !all_finite(loose)) throw NumericalError("the RKF45 monodromy overflowed");
       const Eigen::VectorXcd rho = eigenvalues_of(tight);
       attempt = {rho, multiplier_set_distance(rho, eigenvalues_of(loose)), 0, 0, tight};
-      checks = check_monodromy(tight, rho, sys, tol, options.independent_check);
+      checks = check_monodromy(tight, rho, sys, tol, options.independent_check, series_variation(sys));
       break;
     }
   }
-  FloquetResult result;
-  result.method = options.method == FloquetMethod::automatic ? FloquetMethod::monodromy : options.method;
-  result.harmonics = attempt.harmonics;
-  result.steps = attempt.steps;
-  result.multipliers = attempt.multipliers;
-  result.error_estimate = attempt.error;
-  result.checks = checks;
-  result.max_abs_multiplier = max_abs(attempt.multipliers);
-  result.max_real_exponent = std::log(result.max_abs_multiplier) / sys.period();
-  result.stable = result.max_abs_multiplier <= 1 + std::max(attempt.error, 1e-9);
-  for (Eigen::Index k = 0; k < attempt.multipliers.size(); ++k) {
-    result.log_decrements.push_back(log_decrement(attempt.multipliers(k), sys.period()));
-  }
-  return result;
+  return result_of(options.method == FloquetMethod::automatic ? FloquetMethod::monodromy : options.method, attempt,
+                   checks, sys.period());
+}
+
+FloquetResult pulse_train_multipliers(const PeriodicSystem& sys, const PulseTrain& train, const FloquetOptions& options) {
+  const PulseMonodromy p = exact_pulse_monodromy(sys, train, options.tolerance);
+  const Attempt attempt{p.multipliers, p.error_estimate, 0, p.steps, p.monodromy};
+  const LoadVariation load{pulse_load_variation(sys, train), train.edges(0, sys.period())};
+  return result_of(FloquetMethod::monodromy, attempt,
+                   check_monodromy(p.monodromy, p.multipliers, sys, options.tolerance, options.independent_check, load),
+                   sys.period());
 }
 
 }  // namespace bladestab

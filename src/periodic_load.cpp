@@ -205,6 +205,7 @@ double fourier_sum(const std::vector<std::complex<double>>& coefficients, double
 double LoadSeries::value(double t) const { return fourier_sum(coefficients, angular_frequency, t); }
 
 double LoadSeries::minimum() const {
+  if (exact_pulse) return -exact_peak_n;
   const int samples = 64 * std::max(1, harmonics());
   const double period = 2 * pi / angular_frequency;
   double least = 0;
@@ -212,10 +213,24 @@ double LoadSeries::minimum() const {
   return least;
 }
 
+LoadSeries exact_pulse_mean(const PulseTrain& train) {
+  LoadSeries series;
+  series.angular_frequency = train.angular_frequency();
+  series.frequency_known = train.frequency_known;
+  series.coefficients = {train.fourier_coefficient(0)};
+  series.exact_pulse = true;
+  series.exact_peak_n = train.peak_n;
+  return series;
+}
+
 LoadSeries load_series(const Scene& scene, double relative_tail, int max_harmonics) {
   const PulseTrain train = pulse_train(scene);
-  return scene.load.approximation == LoadApproximation::cosine ? cosine_approximation(train)
-                                                               : fourier_series(train, relative_tail, max_harmonics);
+  switch (scene.load.approximation) {
+    case LoadApproximation::cosine: return cosine_approximation(train);
+    case LoadApproximation::fourier: return fourier_series(train, relative_tail, max_harmonics);
+    case LoadApproximation::exact: return exact_pulse_mean(train);
+  }
+  return {};
 }
 
 }  // namespace bladestab

@@ -291,7 +291,9 @@ Scene read_scene(const toml::table& root, const std::string& source) {
   l.pulses_per_rev = load.integer("pulses_per_rev", 1, 1000);
   l.pulse_count = load.integer("pulse_count", 0, 1000000000);
   l.approximation = load.choice<LoadApproximation>(
-      "approximation", {{"cosine", LoadApproximation::cosine}, {"fourier", LoadApproximation::fourier}});
+      "approximation", {{"cosine", LoadApproximation::cosine},
+                        {"fourier", LoadApproximation::fourier},
+                        {"exact", LoadApproximation::exact}});
   l.mode = load.choice<LoadMode>("mode", {{"force", LoadMode::force}, {"clearance", LoadMode::clearance}});
   l.friction = load.number("friction", [](double x) { return x >= 0 && x <= 2; },
                            "must be in [0, 2] (Coulomb friction coefficient μ)");
@@ -368,6 +370,15 @@ const char* to_string(ReductionKind k) {
     case ReductionKind::automatic: return "auto";
     case ReductionKind::modal: return "modal";
     case ReductionKind::none: return "none";
+  }
+  return "?";
+}
+
+const char* to_string(LoadApproximation a) {
+  switch (a) {
+    case LoadApproximation::cosine: return "cosine";
+    case LoadApproximation::fourier: return "fourier";
+    case LoadApproximation::exact: return "exact";
   }
   return "?";
 }

@@ -27,9 +27,20 @@ PeriodicSystem system_at(const Scene& scene, const Fidelity& f) {
   return periodic_system(assemble_model(scene.blade, f.model), scene, f.load, f.reduction);
 }
 
+// The multipliers of one fidelity: the true pulse train by its piecewise monodromy, a series by the
+// requested method.
+FloquetResult floquet_of(const Scene& scene, const Fidelity& f, const PeriodicSystem& sys, const FloquetOptions& o) {
+  if (!f.load.exact_pulse) return floquet_multipliers(sys, o);
+  if (o.method == FloquetMethod::hill || o.method == FloquetMethod::koopman_hill) {
+    throw InputError(fmt::format("--method {}: Hill methods need a Fourier load; load.approximation = \"exact\" is "
+                                 "integrated through each pulse (use monodromy or auto)", to_string(o.method)));
+  }
+  return pulse_train_multipliers(sys, pulse_train(scene), o);
+}
+
 // max|ρ| of a variant, by the monodromy to a tolerance well below the part it measures.
 double variant_max_rho(const Scene& scene, const Fidelity& f, double tol) {
-  return floquet_multipliers(system_at(scene, f), {FloquetMethod::monodromy, 0, tol, false}).max_abs_multiplier;
+  return floquet_of(scene, f, system_at(scene, f), {FloquetMethod::monodromy, 0, tol, false}).max_abs_multiplier;
 }
 
 // Each part of the budget from a variant that differs from `f` in that part only.
@@ -55,16 +66,11 @@ ErrorBudget budget_of(const Scene& scene, const Fidelity& f, const FloquetResult
     b.reduction = std::abs(rho - variant_max_rho(scene, reduced, variant_tol));
   }
 
-  if (!f.load.cosine_approximation) {
-    // The series against a much longer one of the same pulse.
-    Fidelity longer = f;
-    longer.load = fourier_series(pulse_train(scene), f.load.relative_tail * 1e-2, 4 * std::max(50, f.load.harmonics()));
-    b.load = std::abs(rho - variant_max_rho(scene, longer, variant_tol));
-    if (longer.load.relative_tail > 0.1) {
-      b.unbounded.push_back(fmt::format("load: even {} harmonics miss {:.0f} % of the pulse (L2 tail); use "
-                                        "load.approximation = \"exact\"",
-                                        longer.load.harmonics(), 100 * longer.load.relative_tail));
-    }
+  if (!f.load.cosine_approximation && !f.load.exact_pulse) {
+    // The truncated series against the true pulse train it stands for.
+    Fidelity exact = f;
+    exact.load = exact_pulse_mean(pulse_train(scene));
+    b.load = std::abs(rho - variant_max_rho(scene, exact, variant_tol));
   }
   return b;
 }
@@ -85,7 +91,7 @@ StabilityAnswer analyse_stability(const Scene& scene, const StabilityRequest& re
   StabilityAnswer a;
   while (true) {
     const PeriodicSystem sys = system_at(scene, f);
-    a.floquet = floquet_multipliers(sys, {request.method, request.harmonics, tol / 4, true});
+    a.floquet = floquet_of(scene, f, sys, {request.method, request.harmonics, tol / 4, true});
     a.budget = budget_of(scene, f, a.floquet, tol);
     a.reduced_size = sys.kept_modes;
     a.full_size = sys.all_modes;

@@ -15,6 +15,7 @@
 
 #include <Eigen/Dense>
 
+#include "bladestab/periodic_load.hpp"
 #include "bladestab/periodic_system.hpp"
 
 namespace bladestab {
@@ -58,6 +59,11 @@ struct FloquetResult {
   FloquetChecks checks;
 };
 
+// The true pulse train (load.approximation = "exact"): Φ(T) by pulse_monodromy.hpp, with the same
+// checks (the RKF45 residual integrates the true pulse, landing on its edges).
+FloquetResult pulse_train_multipliers(const PeriodicSystem& system, const PulseTrain& train,
+                                      const FloquetOptions& options);
+
 // Hill matrix H (SPEC §4): blocks H_jk = A_{j−k} − i k θ δ_jk I, j, k = −q..q.
 Eigen::MatrixXcd hill_matrix(const PeriodicSystem& system, int q);
 
@@ -73,6 +79,8 @@ int minimum_magnus_steps(const PeriodicSystem& system);
 // nearest unused partner. Tolerances compare it with tol·max(1, max|ρ|): the small multipliers of
 // a strongly unstable Φ carry rounding of order ε‖Φ‖.
 double multiplier_set_distance(const Eigen::VectorXcd& a, const Eigen::VectorXcd& b);
+// Liouville: |det Φ(T) / exp(∫₀ᵀ tr A dt) − 1|, computed in logarithms.
+double liouville_error(const Eigen::MatrixXd& monodromy, const PeriodicSystem& system);
 // Φ(T) integrated by RKF45 at relative tolerance `rtol` (all 2n fundamental solutions at once).
 Eigen::MatrixXd rkf45_monodromy(const PeriodicSystem& system, double rtol);
 // Φ(T) by the Magnus propagator.

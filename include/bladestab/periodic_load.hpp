@@ -49,11 +49,16 @@ struct LoadSeries {
   std::vector<std::complex<double>> coefficients;
   double relative_tail = 0;                  // ‖F − series‖₂ / ‖F‖₂ (Parseval); 0 for the cosine approximation
   bool cosine_approximation = false;
+  // load.approximation = "exact": only the mean F_0 is kept (the periodic system's A₀ and B need
+  // no more); the time variation is the PulseTrain's own F(t), in exact_pulse_monodromy
+  // (pulse_monodromy.hpp). The Fourier methods must not be run on such a series.
+  bool exact_pulse = false;
+  double exact_peak_n = 0;  // exact_pulse: F_max, the most compressive load of the period
   bool frequency_known = true;
   int harmonics() const { return static_cast<int>(coefficients.size()) - 1; }
   double value(double t) const;  // the series at time t [N]
   // The most compressive force of the series over a period (≤ 0 for a pulse train) [N], from
-  // 64 samples per highest harmonic.
+  // 64 samples per highest harmonic; −F_max for the exact pulse.
   double minimum() const;
 };
 
@@ -63,6 +68,9 @@ LoadSeries cosine_approximation(const PulseTrain& train);
 // The true pulse's series with the fewest harmonics M ≤ max_harmonics whose relative L2 tail is
 // at most `relative_tail` (the impulse has no convergent series: InputError).
 LoadSeries fourier_series(const PulseTrain& train, double relative_tail, int max_harmonics);
+
+// The mean F_0 of the true pulse only, for load.approximation = "exact" (any profile, the impulse too).
+LoadSeries exact_pulse_mean(const PulseTrain& train);
 
 // What the scene's load.approximation asks for.
 LoadSeries load_series(const Scene& scene, double relative_tail = 1e-2, int max_harmonics = 200);

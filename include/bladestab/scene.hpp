@@ -54,7 +54,7 @@ struct DampingSpec {
 };
 
 enum class PulseProfile { half_sine, cosine, triangular, sawtooth, rectangular, impulse };
-enum class LoadApproximation { cosine, fourier };
+enum class LoadApproximation { cosine, fourier, exact };
 enum class LoadMode { force, clearance };
 
 struct LoadSpec {
@@ -97,5 +97,6 @@ const char* to_string(BeamTheory);
 const char* to_string(DampingModel);
 const char* to_string(PulseProfile);
 const char* to_string(ReductionKind);
+const char* to_string(LoadApproximation);
 
 }  // namespace bladestab

@@ -10,7 +10,7 @@
 //       reduction  the reduced model against one with twice the vectors (×2: projections do not
 //                  converge monotonically), or, for a modal cut-off, against the automatic reduction;
 //       load       the series against the true pulse train ("fourier"); 0 where the scene's load is
-//                  the series itself (the cosine approximation (42));
+//                  the series itself (the cosine approximation (42)) or the true train ("exact");
 //       method     step or harmonic convergence of the whole multiplier set;
 //  4. fidelity raised where the budget exceeds the tolerance (terms, vectors, steps), as far as the
 //     scene leaves it free; what was chosen is reported.

@@ -22,8 +22,9 @@ FloquetMethod parse_method(const std::string& name) {
   return FloquetMethod::automatic;
 }
 
-std::string truncation(const FloquetResult& r) {
+std::string truncation(const FloquetResult& r, bool exact_pulse) {
   if (r.method == FloquetMethod::monodromy_rkf45) return "RKF45 at the tolerance and at 1/100 of it";
+  if (exact_pulse) return fmt::format("{} Magnus steps through the contact, exact between pulses", r.steps);
   return r.method == FloquetMethod::monodromy ? fmt::format("{} Magnus steps per period", r.steps)
                                               : fmt::format("q = {} harmonics", r.harmonics);
 }
@@ -65,7 +66,7 @@ void print(const SceneOptions& options, const Scene& scene, const StabilityAnswe
           .value("speed_rad_s", scene.operation.speed_rad_s)
           .value("fmax_over_fcr", fbar)
           .value("theta_rad_s", a.theta_rad_s)
-          .value("load_approximation", load.cosine_approximation ? "cosine" : "fourier")
+          .value("load_approximation", to_string(scene.load.approximation))
           .value("load_harmonics", load.harmonics())
           .value("load_relative_tail", load.relative_tail)
           .value("terms", a.model.terms)
@@ -108,11 +109,12 @@ void print(const SceneOptions& options, const Scene& scene, const StabilityAnswe
       fmt::print("reduction  {}\n", describe_reduction(a));
       fmt::print("operation  Ω = {:.6g} rad/s, F̄_max = {:.6g}, θ = {:.6g} rad/s; load: {}\n",
                  scene.operation.speed_rad_s, fbar, a.theta_rad_s,
-                 load.cosine_approximation
-                     ? std::string("cosine approximation (42)")
-                     : fmt::format("{} harmonics of the {} pulse (relative L2 tail {:.1e})", load.harmonics(),
-                                   to_string(scene.load.profile), load.relative_tail));
-      fmt::print("method     {}, {}\n", to_string(r.method), truncation(r));
+                 load.cosine_approximation ? std::string("cosine approximation (42)")
+                : load.exact_pulse
+                    ? fmt::format("the true {} pulse train, integrated through each contact", to_string(scene.load.profile))
+                    : fmt::format("{} harmonics of the {} pulse (relative L2 tail {:.1e})", load.harmonics(),
+                                  to_string(scene.load.profile), load.relative_tail));
+      fmt::print("method     {}, {}\n", to_string(r.method), truncation(r, load.exact_pulse));
       fmt::print("error      {} on max|ρ|{}\n", describe_error_budget(a.budget),
                  a.tolerance_met ? "" : "  — above the tolerance: a fidelity fixed by the scene limits it");
       fmt::print("checks     det Φ vs Liouville {}, reciprocal pairs {}, RKF45 residual of the dominant vector {}\n\n",

@@ -1,0 +1,82 @@
+#include "bladestab/pulse_monodromy.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <vector>
+
+#include <fmt/format.h>
+#include <unsupported/Eigen/MatrixFunctions>
+
+#include "bladestab/floquet.hpp"
+#include "bladestab/magnus.hpp"
+#include "bladestab/numerical_error.hpp"
+
+namespace bladestab {
+namespace {
+
+using cplx = std::complex<double>;
+
+// Eigenvalues sorted by |ρ|, largest first; NaN if the Magnus series diverged (too few steps).
+Eigen::VectorXcd sorted_multipliers(const Eigen::MatrixXd& Phi) {
+  if (!Phi.allFinite()) return Eigen::VectorXcd::Constant(Phi.rows(), std::numeric_limits<double>::quiet_NaN());
+  Eigen::VectorXcd rho = Eigen::EigenSolver<Eigen::MatrixXd>(Phi, false).eigenvalues();
+  std::sort(rho.data(), rho.data() + rho.size(), [](cplx a, cplx b) { return std::abs(a) > std::abs(b); });
+  return rho;
+}
+
+}  // namespace
+
+Eigen::MatrixXd pulse_monodromy(const PeriodicSystem& sys, const PulseTrain& train, int steps) {
+  const double T = train.period_s, tc = train.contact_time_s;
+  if (std::abs(sys.period() - T) > 1e-12 * T) {
+    throw std::invalid_argument(fmt::format("pulse_monodromy: the system's period {:.12g} s is not the pulse period "
+                                            "{:.12g} s", sys.period(), T));
+  }
+  const int n = sys.state_size();
+  // SPEC §4: A(t) = A₀ + (F(t) − F₀) B, so the unloaded blade is A₀ − F₀ B.
+  const Eigen::MatrixXd A_free = sys.A0 - sys.load.at(0).real() * sys.B;
+  if (train.profile == PulseProfile::impulse) {
+    // (A.5) as the jump limit: ẏ = F(t) B y over a vanishing window of impulse J = ∫F dt gives
+    // y⁺ = e^{J B} y⁻ = (I + J B) y⁻, since B² = 0. The scene's impulse is F_max t_c, compressive.
+    const double J = -train.peak_n * tc;
+    return (A_free * T).exp() * (Eigen::MatrixXd::Identity(n, n) + J * sys.B);
+  }
+  const Eigen::MatrixXd contact =
+      magnus_propagator(A_free, sys.B, [&train](double t) { return train.force(t); }, 0, tc, steps);
+  return (A_free * (T - tc)).exp() * contact;
+}
+
+PulseMonodromy exact_pulse_monodromy(const PeriodicSystem& sys, const PulseTrain& train, double tolerance) {
+  if (!(tolerance > 0)) throw std::invalid_argument(fmt::format("exact_pulse_monodromy: tolerance {} must be > 0", tolerance));
+  PulseMonodromy result;
+  if (train.profile == PulseProfile::impulse) {
+    result.monodromy = pulse_monodromy(sys, train, 0);
+    result.multipliers = sorted_multipliers(result.monodromy);
+  } else {
+    constexpr int first_steps = 2, max_steps = 1 << 16;
+    Eigen::VectorXcd previous = sorted_multipliers(pulse_monodromy(sys, train, first_steps));
+    for (int steps = 2 * first_steps;; steps *= 2) {
+      if (steps > max_steps) {
+        throw NumericalError(fmt::format("the exact pulse monodromy did not converge to {:g} within {} steps",
+                                             tolerance, max_steps));
+      }
+      result.monodromy = pulse_monodromy(sys, train, steps);
+      result.multipliers = sorted_multipliers(result.monodromy);
+      result.steps = steps;
+      result.error_estimate = multiplier_set_distance(result.multipliers, previous);
+      const double scale = std::max(1.0, result.multipliers.cwiseAbs().maxCoeff());
+      if (std::isfinite(result.error_estimate) && result.error_estimate <= tolerance * scale) break;
+      previous = result.multipliers;
+    }
+  }
+  return result;
+}
+
+std::function<double(double)> pulse_load_variation(const PeriodicSystem& sys, const PulseTrain& train) {
+  const double F0 = sys.load.at(0).real();
+  return [&train, F0](double t) { return train.force(t) - F0; };
+}
+
+}  // namespace bladestab
