@@ -65,7 +65,7 @@ struct ContactSummary {
 struct TransientResult {
   std::vector<TransientSample> samples;
   StepStatistics steps;
-  FixedStep fixed;          // the fixed step, when used
+  FixedStep fixed;          // the fixed step, or in adaptive mode the cap on the step (same rule, n chosen)
   double static_tip_axial_m = 0;  // the rotating equilibrium's tip stretch
   std::optional<ContactSummary> contact;  // clearance mode
 };
