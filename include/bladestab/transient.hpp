@@ -51,6 +51,10 @@ struct TransientSample {
   double kinetic_energy_j;  // ½ ḟᵀ M ḟ (57), (58)
   double total_energy_j;    // ½ ḟᵀ M ḟ + ½ fᵀ K(Ω) f − Ω² P_cfᵀ f (+ ½k g₊² in clearance mode), conserved
                             // without pulses, damping and casing motion
+  double work_j;            // W: the work of the tip load (the casing's too), the friction and the damping since
+                            // the start, ∫ ḟᵀ(F_ax (p_u − G f) + F_lat p_v − D ḟ) dt, integrated with the state
+  double energy_balance_error_j;  // E(t) − E(0) − W(t), E the total energy without the casing's ½k g₊²:
+                                  // zero for the exact solution
 };
 
 // Clearance mode: what the casing did, from the exact contact events.
@@ -67,6 +71,7 @@ struct TransientResult {
   StepStatistics steps;
   FixedStep fixed;          // the fixed step, or in adaptive mode the cap on the step (same rule, n chosen)
   double static_tip_axial_m = 0;  // the rotating equilibrium's tip stretch
+  double initial_vibration_energy_j = 0;  // E(0) − E at the rotating equilibrium
   std::optional<ContactSummary> contact;  // clearance mode
 };
 
