@@ -8,6 +8,7 @@
 #include "bladestab/casing_contact.hpp"
 #include "bladestab/damping.hpp"
 #include "bladestab/input_error.hpp"
+#include "bladestab/response_analysis.hpp"
 
 namespace bladestab {
 namespace {
@@ -160,13 +161,21 @@ TransientResult run_transient(const BladeModel& model, const Scene& scene, const
   };
   const int per_rev = o.samples_per_revolution;
   const int total_revs = static_cast<int>(std::ceil(o.revolutions));
-  // One revolution at a time, so long runs can report progress.
+  // The change of the state over each whole revolution, in the energy norm (K(Ω) is positive
+  // definite below the blade's spin divergence): for a load periodic in a revolution the map over a
+  // revolution is affine, x_{k+1} = Φ x_k + c, so x_{k+1} − x_k = Φ^k (x_1 − x_0) grows like max|ρ|^k
+  // whatever the forced periodic response (SPEC §5's cross-check with the Floquet multipliers).
+  const auto energy_norm = [&](const Eigen::VectorXd& d) {
+    return std::sqrt(0.5 * d.head(n).dot(K * d.head(n)) + 0.5 * d.segment(n, n).dot(model.M * d.segment(n, n)));
+  };
+  Eigen::VectorXd last_whole = x;
+  // One revolution at a time, so long runs can report progress. The samples are evenly spaced, also
+  // in a last, partial revolution (the spectra assume it).
   for (int r = 0; r < total_revs; ++r) {
     const double a = r * revolution, b = std::min(t_end, (r + 1) * revolution);
     std::vector<double> outputs;
-    for (int k = (r == 0 ? 0 : 1); k <= per_rev; ++k) {
-      const double t = a + (b - a) * k / per_rev;
-      outputs.push_back(k == per_rev ? b : t);
+    for (int k = (r == 0 ? 0 : 1); k <= per_rev && a + k * revolution / per_rev <= b * (1 + 1e-12); ++k) {
+      outputs.push_back(k == per_rev ? b : a + k * revolution / per_rev);
     }
     const StepStatistics s =
         rkf45_integrate(rhs, x, a, b, control, pulses.edges(a, b), outputs, sample, events);
@@ -176,8 +185,13 @@ TransientResult run_transient(const BladeModel& model, const Scene& scene, const
     result.steps.event_landings += s.event_landings;
     result.steps.smallest_step = r == 0 ? s.smallest_step : std::min(result.steps.smallest_step, s.smallest_step);
     result.steps.largest_step = std::max(result.steps.largest_step, s.largest_step);
+    if (b == (r + 1) * revolution) {
+      result.revolution_change.push_back(energy_norm(x - last_whole));
+      last_whole = x;
+    }
     if (o.progress) o.progress(r + 1, total_revs);
   }
+  result.growth = fit_growth(result.revolution_change);
   if (casing && casing->overlap(t_end, x.head(n)) > 0) result.contact->contact_time_s += t_end - contact_start;
   return result;
 }

@@ -19,6 +19,7 @@
 
 #include "bladestab/model.hpp"
 #include "bladestab/periodic_load.hpp"
+#include "bladestab/response_analysis.hpp"
 #include "bladestab/rkf45.hpp"
 #include "bladestab/scene.hpp"
 
@@ -73,6 +74,10 @@ struct TransientResult {
   double static_tip_axial_m = 0;  // the rotating equilibrium's tip stretch
   double initial_vibration_energy_j = 0;  // E(0) − E at the rotating equilibrium
   std::optional<ContactSummary> contact;  // clearance mode
+  // ‖x((k+1)T) − x(kT)‖ for each whole revolution k, in the energy norm √(½Δfᵀ K(Ω) Δf + ½Δḟᵀ M Δḟ):
+  // states at the ends of the integration, not interpolated, so independent of the output sampling.
+  std::vector<double> revolution_change;
+  GrowthFit growth;  // of revolution_change: the growth per revolution, when meaningful
 };
 
 // The steady rotating equilibrium: K(Ω) f = Ω² P_cf, ḟ = 0.

@@ -19,7 +19,6 @@ struct Summary {
   Spectrum lateral, axial;
   double lateral_hz = 0, axial_hz = 0;
   double peak_lateral_m = 0, peak_axial_m = 0, mean_axial_m = 0;
-  double growth_per_revolution = 1;
   TransientChecks checks;
 };
 
@@ -35,8 +34,7 @@ std::vector<double> column(const TransientResult& r, Field field) {
 Summary summarize(const TransientResult& r, double sample_rate) {
   Summary s;
   const std::vector<double> lat = column(r, &TransientSample::tip_lateral_m),
-                            ax = column(r, &TransientSample::tip_axial_m),
-                            revs = column(r, &TransientSample::revolutions);
+                            ax = column(r, &TransientSample::tip_axial_m);
   s.lateral = amplitude_spectrum(lat, sample_rate);
   s.axial = amplitude_spectrum(ax, sample_rate);
   s.lateral_hz = dominant_frequency(s.lateral);
@@ -46,7 +44,6 @@ Summary summarize(const TransientResult& r, double sample_rate) {
     s.peak_axial_m = std::max(s.peak_axial_m, std::abs(ax[k]));
     s.mean_axial_m += ax[k] / ax.size();
   }
-  s.growth_per_revolution = growth_per_revolution(revs, lat, static_cast<int>(2 * revs.back() / 3));
   s.checks = check_transient(r);
   return s;
 }
@@ -73,9 +70,13 @@ void summary_fields(JsonWriter& json, const TransientResult& r, const Summary& s
       .value("peak_tip_lateral_m", s.peak_lateral_m)
       .value("peak_tip_axial_m", s.peak_axial_m)
       .value("mean_tip_axial_m", s.mean_axial_m)
-      .value("static_tip_axial_m", r.static_tip_axial_m)
-      .value("growth_per_revolution", s.growth_per_revolution)
-      .begin_object("energy_balance")
+      .value("static_tip_axial_m", r.static_tip_axial_m);
+  if (r.growth.omitted.empty()) {
+    json.value("growth_per_revolution", r.growth.growth).value("growth_per_revolution_ln_standard_error", r.growth.standard_error);
+  } else {
+    json.null_value("growth_per_revolution").value("growth_per_revolution_omitted", r.growth.omitted);
+  }
+  json.begin_object("energy_balance")
       .value("max_error_j", s.checks.energy_error_j)
       .value("vibration_energy_j", s.checks.vibration_energy_j)
       .value("allowed_fraction", TransientChecks::max_energy_error)
@@ -208,7 +209,9 @@ Command register_transient(CLI::App& app) {
       throw std::runtime_error(fmt::format(
           "transient ({}, {:g} revolutions): {}; {}", what, *revolutions, failure->what,
           failure->integration ? (o.adaptive ? "use a smaller --tolerance" : "leave out --steps-per-period (the default keeps the step stable)")
-                               : "the response outgrows the model: run fewer --revolutions or a smaller load"));
+          : r.growth.omitted.empty()
+              ? fmt::format("the response grows ×{:.6g} per revolution: run fewer --revolutions or a smaller load", r.growth.growth)
+              : "the response outgrows the model: run fewer --revolutions or a smaller load"));
     }
 
     const std::vector<std::string> files = write_outputs(
@@ -240,8 +243,13 @@ Command register_transient(CLI::App& app) {
         }
         fmt::print("energy     balance E(t) − E(0) − W(t) within {:.3g} J, {:.3g} of the vibration energy {:.4g} J\n",
                    s.checks.energy_error_j, s.checks.energy_error_j / s.checks.vibration_energy_j, s.checks.vibration_energy_j);
-        fmt::print("growth     {:.6g} per revolution (lateral envelope, last third of the run)\n",
-                   s.growth_per_revolution);
+        if (r.growth.omitted.empty()) {
+          fmt::print("growth     {:.6g} per revolution (± {:.2g} in ln; the state's change over each revolution, second half "
+                     "of the run)\n",
+                     r.growth.growth, r.growth.standard_error);
+        } else {
+          fmt::print("growth     not reported: {}\n", r.growth.omitted);
+        }
         fmt::print("written    {}\n", fmt::join(files, ", "));
     }
   };
