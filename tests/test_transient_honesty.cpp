@@ -3,7 +3,14 @@
 // per revolution is reported only where a fit means something, whatever the output sampling.
 #include <catch2/catch.hpp>
 
+#include <sys/wait.h>
+
+#include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 
 #include "bladestab/transient.hpp"
 #include "bladestab/transient_checks.hpp"
@@ -179,4 +186,30 @@ TEST_CASE("fit_growth: an exact exponential, a beat that is no exponential, too 
   CHECK(b.standard_error > 1e-2);
   clean.resize(5);
   CHECK(fit_growth(clean).omitted == "5 whole revolutions; the fit needs 6");
+}
+
+TEST_CASE("the CLI: a run that broke its energy balance is a one-line error with exit 1, and writes nothing", "[transient][honesty]") {
+  // The paper's literal step over 7 revolutions (the broken run above).
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "bladestab_transient_honesty";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const std::string command = std::string("exec '") + BLADESTAB_EXE + "' transient '" + testing_support::paper_scene_path() +
+                              "' --set model.terms=8 --revolutions 7 --step fixed --steps-per-period 8 --chart none --out '" +
+                              dir.string() + "' </dev/null >'" + (dir / "stdout").string() + "' 2>'" + (dir / "stderr").string() + "'";
+  const int status = std::system(command.c_str());
+  const auto read = [](const std::filesystem::path& p) {
+    std::ostringstream text;
+    text << std::ifstream(p).rdbuf();
+    return text.str();
+  };
+  const std::string err = read(dir / "stderr");
+  INFO(command << "\nstderr: " << err);
+  REQUIRE(WIFEXITED(status));
+  CHECK(WEXITSTATUS(status) == 1);
+  CHECK(read(dir / "stdout").empty());
+  CHECK(std::count(err.begin(), err.end(), '\n') == 1);
+  CHECK(err.find("8 steps per stiffest period, 7 revolutions): the energy balance broke") != std::string::npos);
+  CHECK(err.find("leave out --steps-per-period") != std::string::npos);
+  CHECK(!std::filesystem::exists(dir / "transient.csv"));
+  std::filesystem::remove_all(dir);
 }
