@@ -87,7 +87,8 @@ Eigen::VectorXd rotating_equilibrium(const BladeModel& model, double speed_rad_s
 // per its period (the paper's rule is Δt ≤ (1/8)(2π/ω_max)). RKF45 is weakly unstable on the
 // imaginary axis (rkf45_stability_function), so a fixed step amplifies that undamped mode by
 // |R(iω_maxΔt)| per step: ×1e4 over 5 revolutions of the paper's blade at n = 8. n = 0 picks the
-// smallest n ≥ 8 that keeps this parasitic growth over `duration_s` below 1 %.
+// smallest n ≥ 8 that keeps this parasitic growth over `duration_s` below 1 %; that step also caps
+// the adaptive steps.
 FixedStep choose_fixed_step(const Eigen::MatrixXd& K, const Eigen::MatrixXd& M, double duration_s,
                             int steps_per_period = 0);
 

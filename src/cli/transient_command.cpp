@@ -241,8 +241,11 @@ Command register_transient(CLI::App& app) {
                      r.contact->peak_force_n / BladeProperties(scene.blade).critical_load(), 1e6 * r.contact->max_overlap_m,
                      r.contact->stiffness_n_m);
         }
-        fmt::print("energy     balance E(t) − E(0) − W(t) within {:.3g} J, {:.3g} of the vibration energy {:.4g} J\n",
-                   s.checks.energy_error_j, s.checks.energy_error_j / s.checks.vibration_energy_j, s.checks.vibration_energy_j);
+        fmt::print("energy     balance E(t) − E(0) − W(t) within {:.3g} J{}\n", s.checks.energy_error_j,
+                   s.checks.vibration_energy_j > 0 ? fmt::format(", {:.3g} of the vibration energy {:.4g} J",
+                                                                 s.checks.energy_error_j / s.checks.vibration_energy_j,
+                                                                 s.checks.vibration_energy_j)
+                                                   : std::string(" (no vibration)"));
         if (r.growth.omitted.empty()) {
           fmt::print("growth     {:.6g} per revolution (± {:.2g} in ln; the state's change over each revolution, second half "
                      "of the run)\n",
