@@ -31,6 +31,34 @@ double history_difference(const TransientResult& r, const TransientResult& refer
   return d / peak;
 }
 
+struct CliRun {
+  int status = 0;  // as returned by std::system
+  std::string out, err;
+  bool wrote_csv = false;
+};
+
+// `bladestab transient` on the paper scene with `options` (shell words), in a scratch directory.
+CliRun run_transient_cli(const std::string& options) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "bladestab_transient_honesty";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const std::string command = std::string("exec '") + BLADESTAB_EXE + "' transient '" + testing_support::paper_scene_path() +
+                              "' " + options + " --chart none --out '" + dir.string() + "' </dev/null >'" +
+                              (dir / "stdout").string() + "' 2>'" + (dir / "stderr").string() + "'";
+  const auto read = [](const std::filesystem::path& p) {
+    std::ostringstream text;
+    text << std::ifstream(p).rdbuf();
+    return text.str();
+  };
+  CliRun run;
+  run.status = std::system(command.c_str());
+  run.out = read(dir / "stdout");
+  run.err = read(dir / "stderr");
+  run.wrote_csv = std::filesystem::exists(dir / "transient.csv");
+  std::filesystem::remove_all(dir);
+  return run;
+}
+
 }  // namespace
 
 TEST_CASE("tolerance 1e-2 on the issue's run: the capped steps stay stable and match a tight-tolerance run", "[transient][honesty]") {
@@ -190,26 +218,23 @@ TEST_CASE("fit_growth: an exact exponential, a beat that is no exponential, too 
 
 TEST_CASE("the CLI: a run that broke its energy balance is a one-line error with exit 1, and writes nothing", "[transient][honesty]") {
   // The paper's literal step over 7 revolutions (the broken run above).
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "bladestab_transient_honesty";
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  const std::string command = std::string("exec '") + BLADESTAB_EXE + "' transient '" + testing_support::paper_scene_path() +
-                              "' --set model.terms=8 --revolutions 7 --step fixed --steps-per-period 8 --chart none --out '" +
-                              dir.string() + "' </dev/null >'" + (dir / "stdout").string() + "' 2>'" + (dir / "stderr").string() + "'";
-  const int status = std::system(command.c_str());
-  const auto read = [](const std::filesystem::path& p) {
-    std::ostringstream text;
-    text << std::ifstream(p).rdbuf();
-    return text.str();
-  };
-  const std::string err = read(dir / "stderr");
-  INFO(command << "\nstderr: " << err);
-  REQUIRE(WIFEXITED(status));
-  CHECK(WEXITSTATUS(status) == 1);
-  CHECK(read(dir / "stdout").empty());
-  CHECK(std::count(err.begin(), err.end(), '\n') == 1);
-  CHECK(err.find("8 steps per stiffest period, 7 revolutions): the energy balance broke") != std::string::npos);
-  CHECK(err.find("leave out --steps-per-period") != std::string::npos);
-  CHECK(!std::filesystem::exists(dir / "transient.csv"));
-  std::filesystem::remove_all(dir);
+  const CliRun run = run_transient_cli("--set model.terms=8 --revolutions 7 --step fixed --steps-per-period 8");
+  INFO("stderr: " << run.err);
+  REQUIRE(WIFEXITED(run.status));
+  CHECK(WEXITSTATUS(run.status) == 1);
+  CHECK(run.out.empty());
+  CHECK(std::count(run.err.begin(), run.err.end(), '\n') == 1);
+  CHECK(run.err.find("8 steps per stiffest period, 7 revolutions): the energy balance broke") != std::string::npos);
+  CHECK(run.err.find("leave out --steps-per-period") != std::string::npos);
+  CHECK(!run.wrote_csv);
+}
+
+TEST_CASE("the CLI: a 2-revolution run gives growth_per_revolution null and says why", "[transient][honesty]") {
+  const CliRun run = run_transient_cli("--set model.terms=6 --revolutions 2 --tolerance 1e-6 --format json");
+  INFO("stderr: " << run.err);
+  REQUIRE(WIFEXITED(run.status));
+  CHECK(WEXITSTATUS(run.status) == 0);
+  CHECK(run.out.find("\"growth_per_revolution\": null,") != std::string::npos);
+  CHECK(run.out.find("\"growth_per_revolution_omitted\": \"2 whole revolutions; the fit needs 6\"") != std::string::npos);
+  CHECK(run.wrote_csv);
 }
