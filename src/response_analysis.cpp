@@ -6,6 +6,7 @@
 #include <numeric>
 #include <stdexcept>
 
+#include <fmt/format.h>
 #include <unsupported/Eigen/FFT>
 
 namespace bladestab {
@@ -46,23 +47,35 @@ double dominant_frequency(const Spectrum& s, double min_hz) {
   return s.frequency_hz[best] + (std::isfinite(offset) ? std::clamp(offset, -0.5, 0.5) : 0.0) * df;
 }
 
-double growth_per_revolution(const std::vector<double>& revs, const std::vector<double>& x, int first) {
-  std::vector<double> peak;
-  for (std::size_t k = 0; k < x.size(); ++k) {
-    const int r = static_cast<int>(std::floor(revs[k]));
-    if (r < first || revs[k] >= std::floor(revs.back())) continue;  // whole revolutions only
-    if (static_cast<int>(peak.size()) <= r - first) peak.resize(r - first + 1, 0.0);
-    peak[r - first] = std::max(peak[r - first], std::abs(x[k]));
+GrowthFit fit_growth(const std::vector<double>& a, int min_revolutions, double max_standard_error) {
+  GrowthFit fit;
+  const int count = static_cast<int>(a.size());
+  if (count < min_revolutions) {
+    fit.omitted = fmt::format("{} whole revolutions; the fit needs {}", count, min_revolutions);
+    return fit;
   }
-  if (peak.size() < 2) return 1;
-  // Least squares of ln peak against the revolution number.
+  const int first = count / 2, m = count - first;
   double sx = 0, sy = 0, sxx = 0, sxy = 0;
-  const double m = static_cast<double>(peak.size());
-  for (std::size_t i = 0; i < peak.size(); ++i) {
-    const double y = std::log(std::max(peak[i], 1e-300));
-    sx += i, sy += y, sxx += double(i) * i, sxy += i * y;
+  for (int k = first; k < count; ++k) {
+    if (!(a[k] > 0 && std::isfinite(a[k]))) {
+      fit.omitted = fmt::format("revolution {} changed the state by {}: nothing to fit", k + 1, a[k]);
+      return fit;
+    }
+    const double y = std::log(a[k]);
+    sx += k, sy += y, sxx += double(k) * k, sxy += k * y;
   }
-  return std::exp((m * sxy - sx * sy) / (m * sxx - sx * sx));
+  // Least squares y = α + βk; the standard error of β from the residual with m − 2 degrees of freedom.
+  const double Sxx = sxx - sx * sx / m, slope = (sxy - sx * sy / m) / Sxx, intercept = (sy - slope * sx) / m;
+  double residual = 0;
+  for (int k = first; k < count; ++k) residual += std::pow(std::log(a[k]) - intercept - slope * k, 2);
+  fit.growth = std::exp(slope);
+  fit.standard_error = std::sqrt(residual / (m - 2) / Sxx);
+  if (!(fit.standard_error <= max_standard_error)) {
+    fit.omitted = fmt::format("not a steady exponential: the fit over revolutions {} to {} leaves ln growth uncertain by {:.2g} "
+                              "(allowed {:g}); run more revolutions",
+                              first + 1, count, fit.standard_error, max_standard_error);
+  }
+  return fit;
 }
 
 }  // namespace bladestab

@@ -8,6 +8,7 @@
 #include "bladestab/casing_contact.hpp"
 #include "bladestab/damping.hpp"
 #include "bladestab/input_error.hpp"
+#include "bladestab/response_analysis.hpp"
 
 namespace bladestab {
 namespace {
@@ -56,7 +57,8 @@ TransientResult run_transient(const BladeModel& model, const Scene& scene, const
   // ḟ' = M⁻¹(…): every matrix premultiplied once.
   const Eigen::LLT<Eigen::MatrixXd> mass(model.M);
   const Eigen::MatrixXd K = model.stiffness(speed);
-  const Eigen::MatrixXd C = damping_matrix(model, scene.damping, speed) + model.gyroscopic(speed);
+  const Eigen::MatrixXd D = damping_matrix(model, scene.damping, speed);
+  const Eigen::MatrixXd C = D + model.gyroscopic(speed);
   const Eigen::MatrixXd MiK = mass.solve(K), MiC = mass.solve(C), MiG = mass.solve(model.G);
   const Eigen::VectorXd Mi_cf = mass.solve(Eigen::VectorXd(speed * speed * model.P_cf1));
   const Eigen::VectorXd Mi_axial = mass.solve(Eigen::VectorXd(model.tip_axial.transpose()));
@@ -69,28 +71,44 @@ TransientResult run_transient(const BladeModel& model, const Scene& scene, const
   };
   const auto friction = [&](double F, const Eigen::VectorXd& x) {
     if (mu == 0 || F == 0) return 0.0;
-    const double v_rel = rim_speed + cos_beta * model.tip_lateral.dot(x.tail(n));
+    const double v_rel = rim_speed + cos_beta * model.tip_lateral.dot(x.segment(n, n));
     return -mu * std::abs(F) * cos_beta * std::tanh(v_rel / o.friction_velocity);
   };
+  // The state is x = [f; ḟ; W], W the work done on the blade since the start: the energy balance
+  // dE/dt = Ẇ = ḟᵀ(F_ax (p_u − G f) + F_lat p_v − D ḟ), E = ½ḟᵀMḟ + ½fᵀK(Ω)f − Ω²P_cfᵀf the
+  // rotating-frame energy ((55)–(58); the Coriolis forces do no work). A Runge–Kutta method keeps
+  // no quadratic invariant, so a step that spuriously amplifies a mode breaks E(t) − E(0) = W(t).
   const OdeFunction rhs = [&](double t, const Eigen::VectorXd& x, Eigen::VectorXd& dx) {
+    const auto f = x.head(n), v = x.segment(n, n);
     const double F = tip_load(t, x);
-    dx.resize(2 * n);
-    dx.head(n) = x.tail(n);
-    dx.tail(n) = Mi_cf - MiK * x.head(n) - MiC * x.tail(n);
+    dx.resize(2 * n + 1);
+    dx.head(n) = v;
+    dx.segment(n, n) = Mi_cf - MiK * f - MiC * v;
+    dx(2 * n) = -v.dot(D * v);
     if (F == 0) return;
     double axial = F, lateral = friction(F, x);
     if (o.follower) {
-      const double psi = model.tip_slope.dot(x.head(n));
+      const double psi = model.tip_slope.dot(f);
       axial = F * std::cos(psi);
       lateral -= F * std::sin(psi);
     }
-    dx.tail(n) += axial * (Mi_axial - MiG * x.head(n)) + lateral * Mi_lateral;
+    dx.segment(n, n) += axial * (Mi_axial - MiG * f) + lateral * Mi_lateral;
+    dx(2 * n) += axial * (model.tip_axial.dot(v) - f.dot(model.G * v)) + lateral * model.tip_lateral.dot(v);
   };
 
   TransientResult result;
-  Eigen::VectorXd x = o.initial_state ? *o.initial_state : rotating_equilibrium(model, speed);
-  if (x.size() != 2 * n) throw std::invalid_argument("initial state has the wrong size");
-  result.static_tip_axial_m = model.tip_axial.dot(rotating_equilibrium(model, speed).head(n));
+  const Eigen::VectorXd equilibrium = rotating_equilibrium(model, speed);
+  const Eigen::VectorXd start = o.initial_state ? *o.initial_state : equilibrium;
+  if (start.size() != 2 * n) throw std::invalid_argument("initial state has the wrong size");
+  Eigen::VectorXd x(2 * n + 1);
+  x << start, 0.0;
+  result.static_tip_axial_m = model.tip_axial.dot(equilibrium.head(n));
+  const auto blade_energy = [&](const Eigen::VectorXd& s) {  // E, the energy the balance is about
+    const auto f = s.head(n), v = s.segment(n, n);
+    return 0.5 * v.dot(model.M * v) + 0.5 * f.dot(K * f) - speed * speed * model.P_cf1.dot(f);
+  };
+  const double initial_energy = blade_energy(x);
+  result.initial_vibration_energy_j = initial_energy - blade_energy(equilibrium);
 
   // Clearance mode: land on every closing and opening (g = 0) and on every deepest overlap (ġ = 0).
   std::vector<OdeEvent> events;
@@ -99,7 +117,7 @@ TransientResult run_transient(const BladeModel& model, const Scene& scene, const
     result.contact = ContactSummary{casing->stiffness_n_m};
     ContactSummary& c = *result.contact;
     if (casing->overlap(0, x.head(n)) > 0) c.closures = 1;  // starts in contact
-    const auto rate = [&](double t, const Eigen::VectorXd& y) { return casing->overlap_rate(t, y.head(n), y.tail(n)); };
+    const auto rate = [&](double t, const Eigen::VectorXd& y) { return casing->overlap_rate(t, y.head(n), y.segment(n, n)); };
     events.push_back({[&](double t, const Eigen::VectorXd& y) { return casing->overlap(t, y.head(n)); },
                       [&](double t, const Eigen::VectorXd&, int direction) {
                         if (direction > 0) {
@@ -121,34 +139,43 @@ TransientResult run_transient(const BladeModel& model, const Scene& scene, const
   control.rtol = o.tolerance;
   // Absolute floor: a millionth of the tolerance on the scale of the static stretch (≈ mm).
   control.atol = o.tolerance * 1e-6;
-  if (!o.adaptive) {
-    // In clearance mode the stiffest mode is the one with the casing in contact.
-    Eigen::MatrixXd K_stiffest = K;
-    if (casing) K_stiffest += casing->stiffness_n_m * model.tip_axial.transpose() * model.tip_axial;
-    result.fixed = choose_fixed_step(K_stiffest, model.M, t_end, o.steps_per_period);
-    control.fixed_step = result.fixed.step_s;
-  }
+  // In clearance mode the stiffest mode is the one with the casing in contact.
+  Eigen::MatrixXd K_stiffest = K;
+  if (casing) K_stiffest += casing->stiffness_n_m * model.tip_axial.transpose() * model.tip_axial;
+  result.fixed = choose_fixed_step(K_stiffest, model.M, t_end, o.adaptive ? 0 : o.steps_per_period);
+  // Adaptive steps never exceed that step. The error control alone cannot keep RKF45 stable on the
+  // undamped stiff modes: it measures the error relative to |x|, so once a mode amplified by
+  // |R(iωh)| > 1 dominates a component it sets its own allowance, and at rtol 1e-2 it was accepted
+  // to grow ×1e21 in two revolutions. Below this cap the growth per unit time, ln|R(iωh)|/h, is
+  // smaller still for every mode (it rises with ωh), so the whole run stays within the 1 % bound.
+  (o.adaptive ? control.max_step : control.fixed_step) = result.fixed.step_s;
 
   const auto sample = [&](double t, const Eigen::VectorXd& s) {
-    const Eigen::VectorXd f = s.head(n), v = s.tail(n);
-    const double F = tip_load(t, s);
-    const double casing_energy = casing ? casing->energy(t, f) : 0;
+    const Eigen::VectorXd f = s.head(n), v = s.segment(n, n);
+    const double F = tip_load(t, s), E = blade_energy(s), W = s(2 * n);
     result.samples.push_back({t, speed > 0 ? t * speed / two_pi : t / revolution, model.tip_lateral.dot(f),
                               model.tip_axial.dot(f), model.tip_lateral.dot(v), model.tip_axial.dot(v), F,
                               friction(F, s), casing ? casing->overlap(t, f) : 0, 0.5 * f.dot(model.K_S * f),
-                              0.5 * v.dot(model.M * v),
-                              0.5 * v.dot(model.M * v) + 0.5 * f.dot(K * f) - speed * speed * model.P_cf1.dot(f) +
-                                  casing_energy});
+                              0.5 * v.dot(model.M * v), E + (casing ? casing->energy(t, f) : 0), W,
+                              E - initial_energy - W});
   };
   const int per_rev = o.samples_per_revolution;
   const int total_revs = static_cast<int>(std::ceil(o.revolutions));
-  // One revolution at a time, so long runs can report progress.
+  // The change of the state over each whole revolution, in the energy norm (K(Ω) is positive
+  // definite below the blade's spin divergence): for a load periodic in a revolution the map over a
+  // revolution is affine, x_{k+1} = Φ x_k + c, so x_{k+1} − x_k = Φ^k (x_1 − x_0) grows like max|ρ|^k
+  // whatever the forced periodic response (SPEC §5's cross-check with the Floquet multipliers).
+  const auto energy_norm = [&](const Eigen::VectorXd& d) {
+    return std::sqrt(0.5 * d.head(n).dot(K * d.head(n)) + 0.5 * d.segment(n, n).dot(model.M * d.segment(n, n)));
+  };
+  Eigen::VectorXd last_whole = x;
+  // One revolution at a time, so long runs can report progress. The samples are evenly spaced, also
+  // in a last, partial revolution (the spectra assume it).
   for (int r = 0; r < total_revs; ++r) {
     const double a = r * revolution, b = std::min(t_end, (r + 1) * revolution);
     std::vector<double> outputs;
-    for (int k = (r == 0 ? 0 : 1); k <= per_rev; ++k) {
-      const double t = a + (b - a) * k / per_rev;
-      outputs.push_back(k == per_rev ? b : t);
+    for (int k = (r == 0 ? 0 : 1); k <= per_rev && a + k * revolution / per_rev <= b * (1 + 1e-12); ++k) {
+      outputs.push_back(k == per_rev ? b : a + k * revolution / per_rev);
     }
     const StepStatistics s =
         rkf45_integrate(rhs, x, a, b, control, pulses.edges(a, b), outputs, sample, events);
@@ -158,8 +185,13 @@ TransientResult run_transient(const BladeModel& model, const Scene& scene, const
     result.steps.event_landings += s.event_landings;
     result.steps.smallest_step = r == 0 ? s.smallest_step : std::min(result.steps.smallest_step, s.smallest_step);
     result.steps.largest_step = std::max(result.steps.largest_step, s.largest_step);
+    if (b == (r + 1) * revolution) {
+      result.revolution_change.push_back(energy_norm(x - last_whole));
+      last_whole = x;
+    }
     if (o.progress) o.progress(r + 1, total_revs);
   }
+  result.growth = fit_growth(result.revolution_change);
   if (casing && casing->overlap(t_end, x.head(n)) > 0) result.contact->contact_time_s += t_end - contact_start;
   return result;
 }

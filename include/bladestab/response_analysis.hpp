@@ -1,6 +1,7 @@
 #pragma once
 // What a transient response says: amplitude spectra (Hann-windowed FFT), dominant frequencies
 // with sub-bin interpolation, and the growth of the envelope per revolution.
+#include <string>
 #include <vector>
 
 namespace bladestab {
@@ -17,11 +18,18 @@ Spectrum amplitude_spectrum(const std::vector<double>& signal, double sample_rat
 // bins around it (exact for a Gaussian peak; the Hann main lobe is close to one).
 double dominant_frequency(const Spectrum& spectrum, double min_hz = 0);
 
-// Envelope growth per revolution: exp of the least-squares slope of ln(peak |x| per revolution)
-// over the whole revolutions from `first_revolution` on; 1 for a steady response. For a signal
-// about zero (the lateral tip deflection); a multiplier ρ > 0 grows with an offset that a mean
-// subtraction would distort.
-double growth_per_revolution(const std::vector<double>& revolutions, const std::vector<double>& signal,
-                             int first_revolution);
+// Growth per revolution of a sequence a_k > 0, one value per revolution that grows like max|ρ|^k
+// (for a transient: the change of the state over revolution k, see TransientResult): exp of the
+// least-squares slope of ln a_k over the second half of the sequence, where the decaying multipliers
+// have faded. Meaningful only with at least `min_revolutions` values and a fit that pins the slope
+// down to `max_standard_error` (the standard error of ln growth, from the fit's residual);
+// otherwise `omitted` says why.
+struct GrowthFit {
+  double growth = 1;          // per revolution
+  double standard_error = 0;  // of ln growth
+  std::string omitted;        // empty: meaningful
+};
+GrowthFit fit_growth(const std::vector<double>& per_revolution, int min_revolutions = 6,
+                     double max_standard_error = 1e-2);
 
 }  // namespace bladestab

@@ -19,6 +19,7 @@
 
 #include "bladestab/model.hpp"
 #include "bladestab/periodic_load.hpp"
+#include "bladestab/response_analysis.hpp"
 #include "bladestab/rkf45.hpp"
 #include "bladestab/scene.hpp"
 
@@ -51,6 +52,10 @@ struct TransientSample {
   double kinetic_energy_j;  // ½ ḟᵀ M ḟ (57), (58)
   double total_energy_j;    // ½ ḟᵀ M ḟ + ½ fᵀ K(Ω) f − Ω² P_cfᵀ f (+ ½k g₊² in clearance mode), conserved
                             // without pulses, damping and casing motion
+  double work_j;            // W: the work of the tip load (the casing's too), the friction and the damping since
+                            // the start, ∫ ḟᵀ(F_ax (p_u − G f) + F_lat p_v − D ḟ) dt, integrated with the state
+  double energy_balance_error_j;  // E(t) − E(0) − W(t), E the total energy without the casing's ½k g₊²:
+                                  // zero for the exact solution
 };
 
 // Clearance mode: what the casing did, from the exact contact events.
@@ -65,9 +70,14 @@ struct ContactSummary {
 struct TransientResult {
   std::vector<TransientSample> samples;
   StepStatistics steps;
-  FixedStep fixed;          // the fixed step, when used
+  FixedStep fixed;          // the fixed step, or in adaptive mode the cap on the step (same rule, n chosen)
   double static_tip_axial_m = 0;  // the rotating equilibrium's tip stretch
+  double initial_vibration_energy_j = 0;  // E(0) − E at the rotating equilibrium
   std::optional<ContactSummary> contact;  // clearance mode
+  // ‖x((k+1)T) − x(kT)‖ for each whole revolution k, in the energy norm √(½Δfᵀ K(Ω) Δf + ½Δḟᵀ M Δḟ):
+  // states at the ends of the integration, not interpolated, so independent of the output sampling.
+  std::vector<double> revolution_change;
+  GrowthFit growth;  // of revolution_change: the growth per revolution, when meaningful
 };
 
 // The steady rotating equilibrium: K(Ω) f = Ω² P_cf, ḟ = 0.
@@ -77,7 +87,8 @@ Eigen::VectorXd rotating_equilibrium(const BladeModel& model, double speed_rad_s
 // per its period (the paper's rule is Δt ≤ (1/8)(2π/ω_max)). RKF45 is weakly unstable on the
 // imaginary axis (rkf45_stability_function), so a fixed step amplifies that undamped mode by
 // |R(iω_maxΔt)| per step: ×1e4 over 5 revolutions of the paper's blade at n = 8. n = 0 picks the
-// smallest n ≥ 8 that keeps this parasitic growth over `duration_s` below 1 %.
+// smallest n ≥ 8 that keeps this parasitic growth over `duration_s` below 1 %; that step also caps
+// the adaptive steps.
 FixedStep choose_fixed_step(const Eigen::MatrixXd& K, const Eigen::MatrixXd& M, double duration_s,
                             int steps_per_period = 0);
 

@@ -22,7 +22,7 @@ Command register_crosscheck(CLI::App& app) {
     for (double f : *points) {
       if (!(f >= 0 && f <= 1000)) throw InputError(fmt::format("--points: {} is not allowed; F̄_max values are in [0, 1000]", f));
     }
-    if (!(*revolutions >= 6 && *revolutions <= 1000)) {  // the growth fit needs two whole revolutions in the last third
+    if (!(*revolutions >= 6 && *revolutions <= 1000)) {  // the growth fit needs 6 whole revolutions
       throw InputError(fmt::format("--revolutions {}: must be in [6, 1000]", *revolutions));
     }
     const Scene scene = options->load();
@@ -84,8 +84,8 @@ Command register_crosscheck(CLI::App& app) {
                      p.floquet_cosine, p.transient_cosine_growth, p.rkf45_max_abs_multiplier, p.monodromy_difference,
                      p.floquet_pulse, p.pulse_harmonics, p.transient_pulse_growth);
         }
-        fmt::print("\nTransient growth: peak |tip lateral| per revolution over the last third of the run (a stable, forced\n"
-                   "response shows ≈ 1 or below). Floquet: auto method for the cosine load, monodromy for the pulse series.\n");
+        fmt::print("\nTransient growth: of the state's change over each whole revolution, fitted over the second half of\n"
+                   "the run (the forced periodic response cancels in the change). Floquet: auto method for the cosine load, monodromy for the pulse series.\n");
     }
   };
 }

@@ -5,6 +5,7 @@
 #include "bladestab/input_error.hpp"
 #include "bladestab/response_analysis.hpp"
 #include "bladestab/transient.hpp"
+#include "bladestab/transient_checks.hpp"
 #include "chart.hpp"
 #include "commands.hpp"
 #include "json_writer.hpp"
@@ -18,7 +19,7 @@ struct Summary {
   Spectrum lateral, axial;
   double lateral_hz = 0, axial_hz = 0;
   double peak_lateral_m = 0, peak_axial_m = 0, mean_axial_m = 0;
-  double growth_per_revolution = 1;
+  TransientChecks checks;
 };
 
 // Column of the history.
@@ -33,8 +34,7 @@ std::vector<double> column(const TransientResult& r, Field field) {
 Summary summarize(const TransientResult& r, double sample_rate) {
   Summary s;
   const std::vector<double> lat = column(r, &TransientSample::tip_lateral_m),
-                            ax = column(r, &TransientSample::tip_axial_m),
-                            revs = column(r, &TransientSample::revolutions);
+                            ax = column(r, &TransientSample::tip_axial_m);
   s.lateral = amplitude_spectrum(lat, sample_rate);
   s.axial = amplitude_spectrum(ax, sample_rate);
   s.lateral_hz = dominant_frequency(s.lateral);
@@ -44,18 +44,20 @@ Summary summarize(const TransientResult& r, double sample_rate) {
     s.peak_axial_m = std::max(s.peak_axial_m, std::abs(ax[k]));
     s.mean_axial_m += ax[k] / ax.size();
   }
-  s.growth_per_revolution = growth_per_revolution(revs, lat, static_cast<int>(2 * revs.back() / 3));
+  s.checks = check_transient(r);
   return s;
 }
 
 std::string history_csv(const TransientResult& r) {
   std::string csv =
       "time_s,revolutions,tip_lateral_m,tip_axial_m,tip_lateral_velocity_m_s,tip_axial_velocity_m_s,"
-      "axial_force_n,friction_force_n,casing_overlap_m,strain_energy_j,kinetic_energy_j,total_energy_j\n";
+      "axial_force_n,friction_force_n,casing_overlap_m,strain_energy_j,kinetic_energy_j,total_energy_j,work_j,"
+      "energy_balance_error_j\n";
   for (const TransientSample& s : r.samples) {
-    csv += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{}\n", s.time_s, s.revolutions, s.tip_lateral_m, s.tip_axial_m,
-                       s.tip_lateral_velocity_m_s, s.tip_axial_velocity_m_s, s.axial_force_n, s.friction_force_n,
-                       s.casing_overlap_m, s.strain_energy_j, s.kinetic_energy_j, s.total_energy_j);
+    csv += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", s.time_s, s.revolutions, s.tip_lateral_m,
+                       s.tip_axial_m, s.tip_lateral_velocity_m_s, s.tip_axial_velocity_m_s, s.axial_force_n,
+                       s.friction_force_n, s.casing_overlap_m, s.strain_energy_j, s.kinetic_energy_j, s.total_energy_j,
+                       s.work_j, s.energy_balance_error_j);
   }
   return csv;
 }
@@ -68,8 +70,17 @@ void summary_fields(JsonWriter& json, const TransientResult& r, const Summary& s
       .value("peak_tip_lateral_m", s.peak_lateral_m)
       .value("peak_tip_axial_m", s.peak_axial_m)
       .value("mean_tip_axial_m", s.mean_axial_m)
-      .value("static_tip_axial_m", r.static_tip_axial_m)
-      .value("growth_per_revolution", s.growth_per_revolution)
+      .value("static_tip_axial_m", r.static_tip_axial_m);
+  if (r.growth.omitted.empty()) {
+    json.value("growth_per_revolution", r.growth.growth).value("growth_per_revolution_ln_standard_error", r.growth.standard_error);
+  } else {
+    json.null_value("growth_per_revolution").value("growth_per_revolution_omitted", r.growth.omitted);
+  }
+  json.begin_object("energy_balance")
+      .value("max_error_j", s.checks.energy_error_j)
+      .value("vibration_energy_j", s.checks.vibration_energy_j)
+      .value("allowed_fraction", TransientChecks::max_energy_error)
+      .end_object()
       .begin_object("steps")
       .value("mode", adaptive ? "adaptive" : "fixed")
       .value("accepted", static_cast<double>(r.steps.accepted))
@@ -78,12 +89,10 @@ void summary_fields(JsonWriter& json, const TransientResult& r, const Summary& s
       .value("smallest_s", r.steps.smallest_step)
       .value("largest_s", r.steps.largest_step)
       .value("event_landings", static_cast<double>(r.steps.event_landings));
-  if (!adaptive) {
-    json.value("fixed_step_s", r.fixed.step_s)
-        .value("steps_per_stiffest_period", r.fixed.steps_per_period)
-        .value("parasitic_growth_of_stiffest_mode", r.fixed.parasitic_growth);
-  }
-  json.end_object();
+  json.value(adaptive ? "step_cap_s" : "fixed_step_s", r.fixed.step_s)
+      .value("steps_per_stiffest_period", r.fixed.steps_per_period)
+      .value("parasitic_growth_of_stiffest_mode", r.fixed.parasitic_growth)
+      .end_object();
   if (r.contact) {
     json.begin_object("casing_contact")
         .value("penalty_stiffness_n_m", r.contact->stiffness_n_m)
@@ -193,6 +202,17 @@ Command register_transient(CLI::App& app) {
     const TransientResult r = run_transient(model, scene, o);
     const double sample_rate = *samples * scene.operation.speed_rad_s / 6.28318530717958647692;
     const Summary s = summarize(r, sample_rate);
+    if (const auto failure = transient_failure(s.checks, scene.blade.length)) {
+      // A numerical failure (exit 1), not a result: no files, no numbers.
+      const std::string what = o.adaptive ? fmt::format("--tolerance {:g}", *tolerance)
+                                          : fmt::format("--step fixed, {} steps per stiffest period", r.fixed.steps_per_period);
+      throw std::runtime_error(fmt::format(
+          "transient ({}, {:g} revolutions): {}; {}", what, *revolutions, failure->what,
+          failure->integration ? (o.adaptive ? "use a smaller --tolerance" : "leave out --steps-per-period (the default keeps the step stable)")
+          : r.growth.omitted.empty()
+              ? fmt::format("the response grows ×{:.6g} per revolution: run fewer --revolutions or a smaller load", r.growth.growth)
+              : "the response outgrows the model: run fewer --revolutions or a smaller load"));
+    }
 
     const std::vector<std::string> files = write_outputs(
         *out, *name, {{*name + ".csv", history_csv(r)}}, summary_json(scene, model, r, s, o.adaptive, true), "transient", *chart);
@@ -203,7 +223,9 @@ Command register_transient(CLI::App& app) {
         fmt::print("scene      {}\nmodel      {}\n", scene.source, describe_model(model));
         fmt::print("load       {}\n", load_description(scene));
         fmt::print("steps      {}: {} accepted, {} rejected, {} RHS evaluations, step {:.3g} … {:.3g} s\n",
-                   o.adaptive ? fmt::format("adaptive RKF45, rtol {:g}", *tolerance)
+                   o.adaptive ? fmt::format("adaptive RKF45, rtol {:g}, steps ≤ {:.4g} s (1/{} of the stiffest period: "
+                                            "its parasitic growth ≤ ×{:.4g})",
+                                            *tolerance, r.fixed.step_s, r.fixed.steps_per_period, r.fixed.parasitic_growth)
                               : fmt::format("fixed RKF45, Δt = {:.6g} s = 1/{} of the stiffest period (54), "
                                             "its parasitic growth ×{:.4g}",
                                             r.fixed.step_s, r.fixed.steps_per_period, r.fixed.parasitic_growth),
@@ -219,8 +241,18 @@ Command register_transient(CLI::App& app) {
                      r.contact->peak_force_n / BladeProperties(scene.blade).critical_load(), 1e6 * r.contact->max_overlap_m,
                      r.contact->stiffness_n_m);
         }
-        fmt::print("growth     {:.6g} per revolution (lateral envelope, last third of the run)\n",
-                   s.growth_per_revolution);
+        fmt::print("energy     balance E(t) − E(0) − W(t) within {:.3g} J{}\n", s.checks.energy_error_j,
+                   s.checks.vibration_energy_j > 0 ? fmt::format(", {:.3g} of the vibration energy {:.4g} J",
+                                                                 s.checks.energy_error_j / s.checks.vibration_energy_j,
+                                                                 s.checks.vibration_energy_j)
+                                                   : std::string(" (no vibration)"));
+        if (r.growth.omitted.empty()) {
+          fmt::print("growth     {:.6g} per revolution (± {:.2g} in ln; the state's change over each revolution, second half "
+                     "of the run)\n",
+                     r.growth.growth, r.growth.standard_error);
+        } else {
+          fmt::print("growth     not reported: {}\n", r.growth.omitted);
+        }
         fmt::print("written    {}\n", fmt::join(files, ", "));
     }
   };
