@@ -174,7 +174,9 @@ TEST_CASE("error estimates are honest and --tolerance raises the number of terms
   const ConvergedModes loose = modes_with_error_estimate(s, 3, EigenSolverKind::dense);
   const double exact = reference::timoshenko_cantilever_lambdas(0.1, 2 * 1.3 / 0.833, 3)[2];
   const double true_error = std::abs(loose.solution.modes[2].lambda / exact - 1);
-  CHECK(loose.relative_error[2] == Approx(true_error).epsilon(0.05));  // exponential convergence: estimate ≈ error
+  // Exponential convergence: the change against the richer model is the error; the estimate adds 10 %.
+  CHECK(loose.relative_error[2] >= true_error);
+  CHECK(loose.relative_error[2] <= 1.15 * true_error);
   const ConvergedModes tight = modes_with_error_estimate(s, 3, EigenSolverKind::dense, 1e-9);
   CHECK(tight.model.spec.terms > 8);
   CHECK(tight.max_relative_error() <= 1e-9);

@@ -33,7 +33,8 @@ inline constexpr double eigensolver_rounding = 1e-12;
 int reference_terms(BasisKind basis, int terms);
 
 // How much a single comparison |f_N − f_ref| (ref: reference_terms) understates the error of an
-// N-term result: 1 for Legendre (exponential convergence); for sine (f_N − f_∞ ∝ N^−p, p → 1)
+// N-term result: 1.1 for Legendre (exponential convergence; the margin covers the richer model's
+// own error); for sine (f_N − f_∞ ∝ N^−p, p → 1)
 // 1/(1 − 2^−0.9) = 2.15, the rate its modes' estimate trusts at most.
 double basis_tail_factor(BasisKind basis);
 
