@@ -97,10 +97,13 @@ void print(const SceneOptions& options, const Scene& scene, const BladeModel& mo
                  "error");
       for (const EstimatedBoundary& e : result.boundaries) {
         const Boundary& b = e.boundary;
-        // Only the digits the estimate supports, on the quantity it is relative to.
+        // Only the digits the estimate supports, on the quantity it is relative to; the other is given.
         const int digits = significant_digits(e.budget.total());
-        fmt::print("{:>16.{}g} {:>14.{}g} {:>10} {:>5} {:>6} {:>9.1e}\n", b.theta_rad_s, in_load ? 10 : digits,
-                   b.peak_force_n / fcr, in_load ? digits : 10, b.multiplier > 0 ? "+1" : "-1", b.mode, b.order,
+        const auto shown = [digits](double value, bool estimated) {
+          return estimated ? fmt::format("{:#.{}g}", value, digits) : fmt::format("{:.6g}", value);
+        };
+        fmt::print("{:>16} {:>14} {:>10} {:>5} {:>6} {:>9.1e}\n", shown(b.theta_rad_s, !in_load),
+                   shown(b.peak_force_n / fcr, in_load), b.multiplier > 0 ? "+1" : "-1", b.mode, b.order,
                    e.budget.total());
       }
       fmt::print("\nCombination resonances are not boundaries of this kind: check them with `bladestab stability` or `map`.\n");

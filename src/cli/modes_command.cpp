@@ -96,7 +96,7 @@ void print_modes(const SceneOptions& options, const Scene& scene, const Converge
         const int digits = significant_digits(budget.total());
         // ζ below 1e-12 is rounding in an undamped model's eigenvalues, not damping.
         const double zeta = std::abs(m.damping_ratio) < 1e-12 ? 0.0 : m.damping_ratio;
-        fmt::print("{:>4}  {:<9} {:>16.{}g} {:>16.{}g} {:>10.3g} {:>10.1e}\n", m.index, to_string(m.family),
+        fmt::print("{:>4}  {:<9} {:>#16.{}g} {:>#16.{}g} {:>10.3g} {:>10.1e}\n", m.index, to_string(m.family),
                    m.frequency_hz, digits, m.lambda, digits, zeta, budget.total());
       }
       break;
