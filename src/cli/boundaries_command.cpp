@@ -106,6 +106,7 @@ void print(const SceneOptions& options, const Scene& scene, const BladeModel& mo
                    shown(b.peak_force_n / fcr, in_load), b.multiplier > 0 ? "+1" : "-1", b.mode, b.order,
                    e.budget.total());
       }
+      if (result.boundaries.empty()) fmt::print("(none of order <= {} in the window)\n", request.max_order);
       fmt::print("\nCombination resonances are not boundaries of this kind: check them with `bladestab stability` or `map`.\n");
       break;
   }
