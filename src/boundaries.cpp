@@ -107,7 +107,6 @@ double relative_change(const Boundary& a, const Boundary& b, bool in_load) {
   return std::abs(value_of(a, in_load) / value_of(b, in_load) - 1);
 }
 
-
 // For each boundary of `base`, the index of its counterpart in `other` (same family, mode and
 // order; one to one, nearest relative value first), or −1.
 std::vector<int> match(const std::vector<Boundary>& base, const std::vector<Boundary>& other, bool in_load) {
@@ -235,7 +234,8 @@ ErrorBudget BoundaryAnalysis::total() const {
 
 double multiplier_gap(const PeriodicSystem& system, double system_peak_force_n, const Boundary& b, double rtol) {
   PeriodicSystem at = system;
-  // Load scaled to b's F_max: A(t) = A₀ + (F(t) − F₀)B, so the mean load moves A₀ by ΔF₀·B.
+  // Load scaled to b's F_max: A(t) = A₀ + (F(t) − F₀)B (periodic_system.hpp, SPEC §4), so the mean
+  // load moves A₀ by ΔF₀·B.
   const double scale = b.peak_force_n / system_peak_force_n;
   const double F0 = at.load[0].real();
   for (std::complex<double>& F : at.load) F *= scale;
