@@ -131,3 +131,22 @@ TEST_CASE("boundaries: Mathieu's first two tongues with the automatic k", "[boun
     for (const BoundaryCheck& c : a.checks) CHECK(c.gap <= c.allowed);
   }
 }
+
+TEST_CASE("boundaries: the multiplier check tells a boundary from a point inside the region", "[boundaries][mathieu]") {
+  // Mathieu scene, F̄ = 0.6: the principal (−1) tongue between the edges a₁ and b₁.
+  const Scene s = paper_scene({"model.theory=euler-bernoulli", "model.terms=1", "model.axial=false", "model.basis=sine",
+                               "operation.speed_rad_s=0", "load.approximation=cosine", "load.fmax_over_fcr=0.6"});
+  const BladeModel m = assemble_model(s.blade, s.model);
+  const PeriodicSystem sys = periodic_system(m, s, load_series(s));
+  const double peak = 0.6 * m.blade.critical_load();
+  std::vector<Boundary> edges;
+  for (const Boundary& b : boundary_frequencies(sys, peak, 8)) {
+    if (b.multiplier == -1 && b.order == 1) edges.push_back(b);
+  }
+  REQUIRE(edges.size() == 2);
+  for (const Boundary& b : edges) CHECK(multiplier_gap(sys, peak, b, 1e-10) < 1e-3);
+  // Halfway between the edges the multiplier is real, below −1: far from −1.
+  Boundary inside = edges[0];
+  inside.theta_rad_s = 0.5 * (edges[0].theta_rad_s + edges[1].theta_rad_s);
+  CHECK(multiplier_gap(sys, peak, inside, 1e-10) > 0.1);
+}
