@@ -107,37 +107,50 @@ double relative_change(const Boundary& a, const Boundary& b, bool in_load) {
   return std::abs(value_of(a, in_load) / value_of(b, in_load) - 1);
 }
 
-// For each boundary of `base`, the index of its counterpart in `other` (same family, mode and
-// order; one to one, nearest relative value first), or −1.
+// For each boundary of `base`, the index of its counterpart in `other`, or −1. Within each
+// family, mode and order both are taken in order of value and the shorter run is laid along the
+// longer at the offset of least total relative distance: the two edges of a region keep their
+// order even when a model change moves them by more than the region is wide (nearest-value
+// matching paired both edges of the paper blade's order-3 region with one edge under a cut-off).
 std::vector<int> match(const std::vector<Boundary>& base, const std::vector<Boundary>& other, bool in_load) {
-  struct Pair {
-    double distance;
-    std::size_t i, j;
+  std::vector<int> counterpart(base.size(), -1);
+  const auto same_kind = [](const Boundary& a, const Boundary& b) {
+    return a.multiplier == b.multiplier && a.mode == b.mode && a.order == b.order;
   };
-  std::vector<Pair> pairs;
-  for (std::size_t i = 0; i < base.size(); ++i) {
+  std::vector<bool> done(base.size(), false);
+  for (std::size_t first = 0; first < base.size(); ++first) {
+    if (done[first]) continue;
+    std::vector<std::size_t> x, y;  // indices of this kind, by value
+    for (std::size_t i = 0; i < base.size(); ++i) {
+      if (same_kind(base[i], base[first])) x.push_back(i), done[i] = true;
+    }
     for (std::size_t j = 0; j < other.size(); ++j) {
-      const Boundary &a = base[i], &b = other[j];
-      if (a.multiplier != b.multiplier || a.mode != b.mode || a.order != b.order) continue;
-      pairs.push_back({relative_change(a, b, in_load), i, j});
+      if (same_kind(other[j], base[first])) y.push_back(j);
+    }
+    const auto by_value = [&](const std::vector<Boundary>& v) {
+      return [&v, in_load](std::size_t p, std::size_t q) { return value_of(v[p], in_load) < value_of(v[q], in_load); };
+    };
+    std::sort(x.begin(), x.end(), by_value(base));
+    std::sort(y.begin(), y.end(), by_value(other));
+    // Pair x[i] with y[i + shift] (shift ≥ 0) or x[i − shift] with y[i] (shift < 0).
+    const int lo = -static_cast<int>(x.size() > y.size() ? x.size() - y.size() : 0);
+    const int hi = static_cast<int>(y.size() > x.size() ? y.size() - x.size() : 0);
+    double best = std::numeric_limits<double>::infinity();
+    int best_shift = 0;
+    for (int shift = lo; shift <= hi; ++shift) {
+      double total = 0;
+      for (std::size_t i = 0; i < x.size(); ++i) {
+        const long j = static_cast<long>(i) + shift;
+        if (j >= 0 && j < static_cast<long>(y.size())) total += relative_change(base[x[i]], other[y[j]], in_load);
+      }
+      if (total < best) best = total, best_shift = shift;
+    }
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      const long j = static_cast<long>(i) + best_shift;
+      if (j >= 0 && j < static_cast<long>(y.size())) counterpart[x[i]] = static_cast<int>(y[j]);
     }
   }
-  std::sort(pairs.begin(), pairs.end(), [](const Pair& x, const Pair& y) { return x.distance < y.distance; });
-  std::vector<int> counterpart(base.size(), -1);
-  std::vector<bool> taken(other.size(), false);
-  for (const Pair& p : pairs) {
-    if (counterpart[p.i] >= 0 || taken[p.j]) continue;
-    counterpart[p.i] = static_cast<int>(p.j);
-    taken[p.j] = true;
-  }
   return counterpart;
-}
-
-// Relative change of `b` against its counterpart in `other`, if it has one.
-std::optional<double> change(const Boundary& b, const std::vector<Boundary>& other, bool in_load) {
-  const int j = match({b}, other, in_load)[0];
-  if (j < 0) return std::nullopt;
-  return relative_change(b, other[j], in_load);
 }
 
 // The boundaries of one model of the scene, cached per approximation k.
@@ -303,10 +316,21 @@ BoundaryAnalysis boundaries_with_error_estimate(const Scene& scene_in, const Bou
 
   // The other parts of each budget, at the approximation each boundary comes from.
   const auto compare = [&](BoundarySolver& other, double factor, double ErrorBudget::*part, const char* missing) {
-    for (EstimatedBoundary& e : result.boundaries) {
-      const std::optional<double> c = change(e.boundary, other.at(e.approximation), in_load);
-      e.budget.*part = c ? factor * *c : 1.0;
-      if (!c) e.budget.unbounded.push_back(missing);
+    for (int k : {result.approximation, result.approximation + 2}) {
+      std::vector<Boundary> at_k;  // the reported boundaries that come from k, matched together
+      for (const EstimatedBoundary& e : result.boundaries) {
+        if (e.approximation == k) at_k.push_back(e.boundary);
+      }
+      if (at_k.empty()) continue;
+      const std::vector<Boundary>& there = other.at(k);
+      const std::vector<int> to = match(at_k, there, in_load);
+      std::size_t next = 0;
+      for (EstimatedBoundary& e : result.boundaries) {
+        if (e.approximation != k) continue;
+        const int j = to[next++];
+        e.budget.*part = j < 0 ? 1.0 : factor * relative_change(e.boundary, there[j], in_load);
+        if (j < 0) e.budget.unbounded.push_back(missing);
+      }
     }
   };
   ModelSpec richer = scene.model;

@@ -95,6 +95,27 @@ TEST_CASE("boundaries: the whole error estimate covers the true error against a 
   CHECK(compared >= 10);
 }
 
+TEST_CASE("boundaries: with a modal cut-off the reduction part covers the true error", "[boundaries]") {
+  const Scene s = paper_scene({"model.terms=8"});
+  const double fcr = assemble_model(s.blade, s.model).blade.critical_load();
+  BoundaryRequest r;
+  r.theta_rad_s = 300;
+  r.cutoff_hz = 3000;  // drops the rotation modes and all but the first axial mode
+  const BoundaryAnalysis a = boundaries_with_error_estimate(s, r);
+  const std::vector<Boundary> truth_set = reference_loads(paper_scene({"model.terms=14"}), 300, a.approximation + 4);
+  REQUIRE(a.boundaries.size() >= 4);
+  for (const EstimatedBoundary& e : a.boundaries) {
+    const Boundary* ref = counterpart(e.boundary, truth_set);
+    REQUIRE(ref != nullptr);
+    const double truth = std::abs(e.boundary.peak_force_n / ref->peak_force_n - 1);
+    INFO("F̄ = " << e.boundary.peak_force_n / fcr << " (N = 14, all modes: " << ref->peak_force_n / fcr
+                 << "): estimate " << e.budget.total() << " (reduction " << e.budget.reduction << "), true " << truth
+                 << ", ratio " << e.budget.total() / truth);
+    CHECK(e.budget.reduction > 0);
+    CHECK(truth <= e.budget.total());
+  }
+}
+
 TEST_CASE("boundaries: Mathieu's first two tongues with the automatic k", "[boundaries][mathieu]") {
   for (double fbar : {0.2, 0.6, 1.2}) {
     const Scene s = paper_scene({"model.theory=euler-bernoulli", "model.terms=1", "model.axial=false",
