@@ -2,7 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <map>
 #include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "bladestab/floquet.hpp"
+#include "bladestab/mode_convergence.hpp"
 
 namespace bladestab {
 namespace {
@@ -87,7 +94,259 @@ void add_family(const PeriodicSystem& sys, int multiplier, int approximation, do
   }
 }
 
+constexpr double two_pi = 6.28318530717958647692;
+constexpr double check_rtol = 1e-10;  // RKF45 tolerance of the multiplier check
+// The check keeps the modes below check_reach·order·θ/2π: RKF45's cost grows like the fastest
+// kept frequency times the period (≈ 2π·check_reach·order radians a period); at 20 the paper
+// blade's boundary at θ = 300 rad/s lost its Coriolis-coupled axial mode (1280 Hz) and moved 2 %.
+constexpr double check_reach = 200;
+
+double value_of(const Boundary& b, bool in_load) { return in_load ? b.peak_force_n : b.theta_rad_s; }
+
+double relative_change(const Boundary& a, const Boundary& b, bool in_load) {
+  return std::abs(value_of(a, in_load) / value_of(b, in_load) - 1);
+}
+
+// For each boundary of `base`, the index of its counterpart in `other`, or −1. Within each
+// family, mode and order both are taken in order of value and the shorter run is laid along the
+// longer at the offset of least total relative distance: the two edges of a region keep their
+// order even when a model change moves them by more than the region is wide (nearest-value
+// matching paired both edges of the paper blade's order-3 region with one edge under a cut-off).
+std::vector<int> match(const std::vector<Boundary>& base, const std::vector<Boundary>& other, bool in_load) {
+  std::vector<int> counterpart(base.size(), -1);
+  const auto same_kind = [](const Boundary& a, const Boundary& b) {
+    return a.multiplier == b.multiplier && a.mode == b.mode && a.order == b.order;
+  };
+  std::vector<bool> done(base.size(), false);
+  for (std::size_t first = 0; first < base.size(); ++first) {
+    if (done[first]) continue;
+    std::vector<std::size_t> x, y;  // indices of this kind, by value
+    for (std::size_t i = 0; i < base.size(); ++i) {
+      if (same_kind(base[i], base[first])) x.push_back(i), done[i] = true;
+    }
+    for (std::size_t j = 0; j < other.size(); ++j) {
+      if (same_kind(other[j], base[first])) y.push_back(j);
+    }
+    const auto by_value = [&](const std::vector<Boundary>& v) {
+      return [&v, in_load](std::size_t p, std::size_t q) { return value_of(v[p], in_load) < value_of(v[q], in_load); };
+    };
+    std::sort(x.begin(), x.end(), by_value(base));
+    std::sort(y.begin(), y.end(), by_value(other));
+    // Pair x[i] with y[i + shift] (shift ≥ 0) or x[i − shift] with y[i] (shift < 0).
+    const int lo = -static_cast<int>(x.size() > y.size() ? x.size() - y.size() : 0);
+    const int hi = static_cast<int>(y.size() > x.size() ? y.size() - x.size() : 0);
+    double best = std::numeric_limits<double>::infinity();
+    int best_shift = 0;
+    for (int shift = lo; shift <= hi; ++shift) {
+      double total = 0;
+      for (std::size_t i = 0; i < x.size(); ++i) {
+        const long j = static_cast<long>(i) + shift;
+        if (j >= 0 && j < static_cast<long>(y.size())) total += relative_change(base[x[i]], other[y[j]], in_load);
+      }
+      if (total < best) best = total, best_shift = shift;
+    }
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      const long j = static_cast<long>(i) + best_shift;
+      if (j >= 0 && j < static_cast<long>(y.size())) counterpart[x[i]] = static_cast<int>(y[j]);
+    }
+  }
+  return counterpart;
+}
+
+// The boundaries of one model of the scene, cached per approximation k.
+class BoundarySolver {
+public:
+  BoundarySolver(PeriodicSystem system, double peak, std::optional<double> theta)
+      : system_(std::move(system)), peak_(peak), theta_(theta) {}
+  const std::vector<Boundary>& at(int k) {
+    auto it = cache_.find(k);
+    if (it == cache_.end()) {
+      it = cache_.emplace(k, theta_ ? boundary_loads(system_, peak_, *theta_, k) : boundary_frequencies(system_, peak_, k))
+               .first;
+    }
+    return it->second;
+  }
+  const PeriodicSystem& system() const { return system_; }
+  double peak() const { return peak_; }
+
+private:
+  PeriodicSystem system_;
+  double peak_;
+  std::optional<double> theta_;
+  std::map<int, std::vector<Boundary>> cache_;
+};
+
+// The method part from the change δ between k and k + 2 harmonics: the tail of a convergence at
+// least geometric with ratio 1/2 per step is at most 2δ (measured on the paper blade: ratios
+// 1e-4 to 3e-5 per step at θ = 300; δ alone came out 0.99997 of the change to k = 12), plus the
+// eigensolver's rounding.
+double harmonics_error(double change) { return 2 * change + eigensolver_rounding; }
+
+std::vector<EstimatedBoundary> sorted(std::vector<EstimatedBoundary> all, bool in_load) {
+  std::sort(all.begin(), all.end(), [in_load](const EstimatedBoundary& a, const EstimatedBoundary& b) {
+    return value_of(a.boundary, in_load) < value_of(b.boundary, in_load);
+  });
+  return all;
+}
+
+// The reported boundaries (in `window`, of order ≤ max_order) at k with their method part: those of k against k + 2, and those that
+// appear only at k + 2 against k + 4 (dropped if they have no counterpart there). `worst` is the
+// largest change of a boundary of k, which decides whether k is enough.
+std::vector<EstimatedBoundary> converge_at(BoundarySolver& solver, int k, bool in_load,
+                                           const std::pair<double, double>& window, int max_order, double& worst) {
+  const auto inside = [&](const Boundary& b) {
+    return b.order <= max_order && value_of(b, in_load) >= window.first && value_of(b, in_load) <= window.second;
+  };
+  std::vector<Boundary> lo;
+  for (const Boundary& b : solver.at(k)) {
+    if (inside(b)) lo.push_back(b);
+  }
+  // Counterparts are sought in the whole of k + 2 and k + 4: a boundary may step out of the window.
+  const std::vector<Boundary>& mid = solver.at(k + 2);
+  std::vector<EstimatedBoundary> out;
+  worst = 0;
+  const std::vector<int> to_mid = match(lo, mid, in_load);
+  std::vector<bool> seen(mid.size(), false);
+  for (std::size_t i = 0; i < lo.size(); ++i) {
+    const double c = to_mid[i] < 0 ? 1.0 : harmonics_error(relative_change(lo[i], mid[to_mid[i]], in_load));  // 1: vanished at k + 2
+    if (to_mid[i] >= 0) seen[to_mid[i]] = true;
+    worst = std::max(worst, c);
+    out.push_back({lo[i], k, {}});
+    out.back().budget.method = c;
+  }
+  std::vector<Boundary> fresh;
+  for (std::size_t j = 0; j < mid.size(); ++j) {
+    if (!seen[j] && inside(mid[j])) fresh.push_back(mid[j]);
+  }
+  if (fresh.empty()) return sorted(std::move(out), in_load);
+  const std::vector<Boundary>& hi = solver.at(k + 4);
+  const std::vector<int> to_hi = match(fresh, hi, in_load);
+  for (std::size_t j = 0; j < fresh.size(); ++j) {
+    if (to_hi[j] < 0) continue;
+    out.push_back({fresh[j], k + 2, {}});
+    out.back().budget.method = harmonics_error(relative_change(fresh[j], hi[to_hi[j]], in_load));
+  }
+  return sorted(std::move(out), in_load);
+}
+
 }  // namespace
+
+ErrorBudget BoundaryAnalysis::total() const {
+  ErrorBudget t;
+  for (const EstimatedBoundary& b : boundaries) {
+    t.basis = std::max(t.basis, b.budget.basis);
+    t.reduction = std::max(t.reduction, b.budget.reduction);
+    t.load = std::max(t.load, b.budget.load);
+    t.method = std::max(t.method, b.budget.method);
+    for (const std::string& u : b.budget.unbounded) {
+      if (std::find(t.unbounded.begin(), t.unbounded.end(), u) == t.unbounded.end()) t.unbounded.push_back(u);
+    }
+  }
+  return t;
+}
+
+double multiplier_gap(const PeriodicSystem& system, double system_peak_force_n, const Boundary& b, double rtol) {
+  PeriodicSystem at = system;
+  // Load scaled to b's F_max: A(t) = A₀ + (F(t) − F₀)B (periodic_system.hpp, SPEC §4), so the mean
+  // load moves A₀ by ΔF₀·B.
+  const double scale = b.peak_force_n / system_peak_force_n;
+  const double F0 = at.load[0].real();
+  for (std::complex<double>& F : at.load) F *= scale;
+  at.A0 += (at.load[0].real() - F0) * at.B;
+  at.angular_frequency = b.theta_rad_s;
+  const Eigen::VectorXcd rho = Eigen::EigenSolver<Eigen::MatrixXd>(rkf45_monodromy(at, rtol), false).eigenvalues();
+  return (rho.array() - std::complex<double>(b.multiplier, 0)).abs().minCoeff();
+}
+
+BoundaryAnalysis boundaries_with_error_estimate(const Scene& scene_in, const BoundaryRequest& r) {
+  const bool in_load = r.theta_rad_s.has_value();
+  Scene scene = scene_in;
+  if (in_load && scene.load.fmax_over_fcr == 0) scene.load.fmax_over_fcr = 1;  // only the load's shape matters
+  const BladeModel model = assemble_model(scene.blade, scene.model);
+  const double peak = scene.load.fmax_over_fcr * model.blade.critical_load();
+  const LoadSeries load = load_series(scene);
+  const auto solver_for = [&](const BladeModel& m, const LoadSeries& series, double cutoff_hz) {
+    return BoundarySolver(periodic_system(m, scene, series, {ReductionKind::modal, 0, cutoff_hz}), peak, r.theta_rad_s);
+  };
+  BoundarySolver solver = solver_for(model, load, r.cutoff_hz);
+  const double centre = in_load ? peak : load.angular_frequency;
+  const std::pair<double, double> window = r.window.value_or(std::make_pair(in_load ? 0.0 : centre / 2, 2 * centre));
+
+  BoundaryAnalysis result;
+  result.window = window;
+  for (int k = r.first_approximation;; k += 2) {
+    if (k + 4 > r.max_approximation) {
+      throw std::runtime_error(fmt::format(
+          "boundaries: not converged to --tolerance {} with up to {} harmonics per family{}", r.tolerance,
+          r.max_approximation,
+          result.checks.empty() ? "" : fmt::format(" (the multiplier check failed: |ρ ∓ 1| = {:.2g} > {:.2g})",
+                                                   result.checks.back().gap, result.checks.back().allowed)));
+    }
+    double worst = 0;
+    std::vector<EstimatedBoundary> found = converge_at(solver, k, in_load, window, r.max_order, worst);
+    if (worst > r.tolerance) continue;
+    result.approximation = k;
+    result.boundaries = std::move(found);
+    // The check: the lowest-order boundaries (one or two) on a system whose fastest mode RKF45
+    // integrates cheaply over a period.
+    result.checks.clear();
+    int lowest = std::numeric_limits<int>::max();
+    for (const EstimatedBoundary& e : result.boundaries) lowest = std::min(lowest, e.boundary.order);
+    bool passed = true;
+    for (const EstimatedBoundary& e : result.boundaries) {
+      if (e.boundary.order != lowest || result.checks.size() == 2) continue;
+      const double reach_hz = check_reach * std::max(1, lowest) * e.boundary.theta_rad_s / two_pi;
+      BoundaryCheck check;
+      check.cutoff_hz = r.cutoff_hz > 0 ? std::min(r.cutoff_hz, reach_hz) : reach_hz;
+      BoundarySolver checker = solver_for(model, load, check.cutoff_hz);
+      if (checker.system().kept_modes == checker.system().all_modes) check.cutoff_hz = 0;
+      const std::vector<Boundary>& there = checker.at(e.approximation);
+      const int j = match({e.boundary}, there, in_load)[0];  // the same boundary in the check's model
+      // Multipliers split like the square root of the distance from the boundary (test_map:
+      // 2e-4 in ρ for 1e-8 in F̄); the check's boundary carries the same harmonics' error.
+      check.allowed = std::max(1e-3, 10 * std::sqrt(e.budget.method));
+      check.boundary = j < 0 ? e.boundary : there[j];
+      check.gap = j < 0 ? std::numeric_limits<double>::infinity()
+                        : multiplier_gap(checker.system(), peak, check.boundary, check_rtol);
+      passed = passed && check.gap <= check.allowed;
+      result.checks.push_back(check);
+    }
+    if (passed) break;
+  }
+
+  // The other parts of each budget, at the approximation each boundary comes from.
+  const auto compare = [&](BoundarySolver& other, double factor, double ErrorBudget::*part, const char* missing) {
+    for (int k : {result.approximation, result.approximation + 2}) {
+      std::vector<Boundary> at_k;  // the reported boundaries that come from k, matched together
+      for (const EstimatedBoundary& e : result.boundaries) {
+        if (e.approximation == k) at_k.push_back(e.boundary);
+      }
+      if (at_k.empty()) continue;
+      const std::vector<Boundary>& there = other.at(k);
+      const std::vector<int> to = match(at_k, there, in_load);
+      std::size_t next = 0;
+      for (EstimatedBoundary& e : result.boundaries) {
+        if (e.approximation != k) continue;
+        const int j = to[next++];
+        e.budget.*part = j < 0 ? 1.0 : factor * relative_change(e.boundary, there[j], in_load);
+        if (j < 0) e.budget.unbounded.push_back(missing);
+      }
+    }
+  };
+  ModelSpec richer = scene.model;
+  richer.terms = reference_terms(richer.basis, richer.terms);
+  BoundarySolver richer_solver = solver_for(assemble_model(scene.blade, richer), load, r.cutoff_hz);
+  compare(richer_solver, basis_tail_factor(richer.basis), &ErrorBudget::basis, "basis: no counterpart with a richer basis");
+  if (solver.system().kept_modes < solver.system().all_modes) {
+    BoundarySolver full = solver_for(model, load, 0);
+    compare(full, 1, &ErrorBudget::reduction, "reduction: no counterpart with all modes");
+  }
+  if (!load.cosine_approximation) {
+    BoundarySolver longer = solver_for(model, load_series(scene, load.relative_tail / 10, 10 * (load.harmonics() + 1)), r.cutoff_hz);
+    compare(longer, 1, &ErrorBudget::load, "load: no counterpart with a longer series");
+  }
+  return result;
+}
 
 std::vector<Boundary> boundary_frequencies(const PeriodicSystem& sys, double peak_force_n, int approximation) {
   // The system's load is already at peak_force_n; K1 carries it, so scale 1.

@@ -318,7 +318,16 @@ TEST_CASE("bad input: stability, boundaries and map options (bad_input)", "[bad_
                     {"load.profile = \"impulse\"", "Fourier series"});
   }
   SECTION("boundaries --approximation 0") {
-    expect_rejected(with({"boundaries", "--approximation", "0"}), {"--approximation 0", "[1, 40]"});
+    expect_rejected(with({"boundaries", "--approximation", "0"}), {"--approximation 0", "[1, 36]"});
+  }
+  SECTION("boundaries --tolerance 2") {
+    expect_rejected(with({"boundaries", "--tolerance", "2"}), {"--tolerance 2", "(0, 1)"});
+  }
+  SECTION("boundaries --range 5") {
+    expect_rejected(with({"boundaries", "--range", "5"}), {"--range 5", "LO:HI"});
+  }
+  SECTION("boundaries --range 9:3") {
+    expect_rejected(with({"boundaries", "--range", "9:3"}), {"--range 9:3", "0 <= LO < HI"});
   }
   SECTION("boundaries --at-theta -5") {
     expect_rejected(with({"boundaries", "--at-theta", "-5"}), {"--at-theta -5", "> 0"});

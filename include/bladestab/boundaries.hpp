@@ -13,9 +13,13 @@
 // regions.
 // Combination resonances (|ρ| leaving the unit circle away from ±1) are not boundaries of this
 // kind; only the Floquet multipliers show them.
+#include <optional>
+#include <utility>
 #include <vector>
 
+#include "bladestab/error_budget.hpp"
 #include "bladestab/periodic_system.hpp"
+#include "bladestab/scene.hpp"
 
 namespace bladestab {
 
@@ -35,5 +39,67 @@ std::vector<Boundary> boundary_frequencies(const PeriodicSystem& system, double 
 // load divided by `system_peak_force_n`), both families, sorted by F_max.
 std::vector<Boundary> boundary_loads(const PeriodicSystem& system, double system_peak_force_n, double theta_rad_s,
                                      int approximation);
+
+// |ρ − b.multiplier| for the Floquet multiplier ρ of `system` closest to ±1 at the boundary point
+// (θ = b.theta_rad_s, F_max = b.peak_force_n; the system's load is at `system_peak_force_n`),
+// from the monodromy matrix integrated by RKF45 at relative tolerance `rtol`: a check that shares
+// nothing with the boundary eigenproblem. On a boundary it is 0; it grows like the square root of
+// the distance from it.
+double multiplier_gap(const PeriodicSystem& system, double system_peak_force_n, const Boundary& b, double rtol);
+
+// Boundaries with an estimate of their whole error against the continuum model of the scene.
+struct BoundaryRequest {
+  std::optional<double> theta_rad_s;  // set: boundary F_max at this θ; unset: boundary θ at the scene's F_max
+  double cutoff_hz = 0;               // keep only the modes below (0: all)
+  // The window of θ [rad/s] (or of F_max [N] with theta_rad_s) whose boundaries are reported and
+  // converged; unset: θ/2 to 2θ of the scene's θ (0 to 2 F_max of the scene). The set of
+  // boundaries is infinite (orders n → ∞ accumulate at θ → 0, thin high-order tongues at every
+  // F_max) and new ones appear with every k, so only a window can converge.
+  std::optional<std::pair<double, double>> window;
+  // Orders n (θ ≈ 2ω/n) reported and converged: the thin tongues of high order converge slowly in
+  // k (measured on the paper blade: mode 2, order 13 still moves 4e-3 from k = 8 to 10) and new
+  // ones appear with every k.
+  int max_order = 4;
+  double tolerance = 1e-6;            // on the harmonics' part, relative on θ or F_max
+  int first_approximation = 2;        // k to start from
+  int max_approximation = 40;
+};
+
+struct EstimatedBoundary {
+  Boundary boundary;
+  int approximation = 0;  // k its value comes from
+  ErrorBudget budget;     // relative on θ (boundaries in θ) or on F_max (in F_max)
+};
+
+struct BoundaryCheck {
+  Boundary boundary;      // the boundary checked, in the check's model
+  double cutoff_hz = 0;   // the check's modal cut-off (0: all modes)
+  double gap = 0;         // multiplier_gap there
+  double allowed = 0;     // the largest gap accepted
+};
+
+struct BoundaryAnalysis {
+  int approximation = 0;  // the chosen k: boundaries of k (and, those that appear only there, of k + 2)
+  std::pair<double, double> window;  // the window used
+  std::vector<EstimatedBoundary> boundaries;  // sorted by θ or F_max
+  std::vector<BoundaryCheck> checks;
+  ErrorBudget total() const;  // each part the largest over the boundaries
+};
+
+// Raises k from request.first_approximation in steps of 2 until every boundary found at k in the
+// window, of order ≤ max_order, moves by at most request.tolerance (relative) at k + 2 — boundaries are matched by family, mode, order
+// and nearest value; one that first appears at k + 2 is reported from k + 2 with its change at
+// k + 4. The error budget of each boundary (SPEC §2–§4):
+//   basis      change against the richer Ritz basis reference_terms(basis, N) (for the sine basis
+//              times basis_tail_factor)
+//   reduction  change against all modes kept (with a cut-off)
+//   load       change against a series with a 10 times smaller tail (load.approximation =
+//              "fourier"); 0 for the cosine approximation (42), which is the scene's load
+//   method     twice the change from k to k + 2 harmonics (or k + 2 to k + 4), plus the
+//              eigensolver's rounding
+// Then the multiplier at the (one or two) lowest-order boundaries is checked by multiplier_gap on
+// a system cut off at 200·order·θ/2π (cheap for RKF45); a failed check raises k, and at
+// max_approximation it is a std::runtime_error, never a number.
+BoundaryAnalysis boundaries_with_error_estimate(const Scene& scene, const BoundaryRequest& request);
 
 }  // namespace bladestab

@@ -5,6 +5,7 @@
 #include <optional>
 #include <vector>
 
+#include "bladestab/error_budget.hpp"
 #include "bladestab/modes.hpp"
 #include "bladestab/scene.hpp"
 
@@ -13,14 +14,29 @@ namespace bladestab {
 struct ConvergedModes {
   BladeModel model;                   // the model the modes belong to
   ModalSolution solution;
-  int reference_terms = 0;            // terms of the richer model used for the estimate
-  std::vector<double> relative_error; // |f_N − f_ref| / f_ref per mode
+  int reference_terms = 0;            // terms of the richest model used for the estimate
+  std::vector<double> relative_error; // estimated |f_N − f_∞| / f_∞ per mode (the basis part)
   double max_relative_error() const;
+  // Mode k's whole error: basis = relative_error[k], method = eigensolver_rounding; no cut-off
+  // (reduction 0), no load (0).
+  ErrorBudget budget(std::size_t k) const;
+  ErrorBudget worst_budget() const;  // each part the largest over the modes
 };
 
+// Relative rounding of a dense eigensolve of the modal problem (LAPACK, double precision, a few
+// hundred dofs: ≲ 1e-13 on the frequencies; 1e-12 bounds it).
+inline constexpr double eigensolver_rounding = 1e-12;
+
 // Terms of the richer model used to estimate the error of an N-term model: Legendre (exponential
-// convergence) N + max(4, N/2); sine (algebraic convergence) 2N.
+// convergence) N + max(4, N/2); sine (algebraic convergence) 2N, and a third level 4N to measure
+// the rate of convergence.
 int reference_terms(BasisKind basis, int terms);
+
+// How much a single comparison |f_N − f_ref| (ref: reference_terms) understates the error of an
+// N-term result: 1.1 for Legendre (exponential convergence; the margin covers the richer model's
+// own error); for sine (f_N − f_∞ ∝ N^−p, p → 1)
+// 1/(1 − 2^−0.9) = 2.15, the rate its modes' estimate trusts at most.
+double basis_tail_factor(BasisKind basis);
 
 // Modes of `scene` at its speed with their error estimates. With a tolerance, the number of terms
 // starts at the scene's and grows until every one of the `count` lowest modes meets it (an

@@ -5,8 +5,10 @@
 
 #include "bladestab/campbell.hpp"
 #include "bladestab/input_error.hpp"
+#include "bladestab/mode_convergence.hpp"
 #include "chart.hpp"
 #include "commands.hpp"
+#include "error_output.hpp"
 #include "json_writer.hpp"
 #include "options.hpp"
 #include "progress.hpp"
@@ -16,7 +18,20 @@ namespace {
 
 constexpr double rpm_per_rad_s = 60 / 6.28318530717958647692;
 
-std::string campbell_json(const Scene& scene, const BladeModel& model, const CampbellDiagram& d) {
+// Per speed, the error of the `count` lowest modes there (each part the largest over them), from
+// the same richer-basis comparison as `modes`.
+std::vector<ErrorBudget> errors_by_speed(const Scene& scene, const CampbellDiagram& d, int count, EigenSolverKind solver) {
+  std::vector<ErrorBudget> errors;
+  for (double speed : d.speeds_rad_s) {
+    Scene at = scene;
+    at.operation.speed_rad_s = speed;
+    errors.push_back(modes_with_error_estimate(at, count, solver).worst_budget());
+  }
+  return errors;
+}
+
+std::string campbell_json(const Scene& scene, const BladeModel& model, const CampbellDiagram& d,
+                          const std::vector<ErrorBudget>& errors) {
   JsonWriter json;
   json.begin_object()
       .value("title", fmt::format("{} — Campbell diagram", scene_title(scene)))
@@ -25,8 +40,20 @@ std::string campbell_json(const Scene& scene, const BladeModel& model, const Cam
       .value("damping", to_string(scene.damping.model))
       .value("solver", to_string(d.solver))
       .numbers("speeds_rad_s", d.speeds_rad_s)
-      .numbers("engine_orders", d.engine_orders)
-      .begin_array("curves");
+      .numbers("engine_orders", d.engine_orders);
+  ErrorBudget worst;  // over the speeds
+  for (const ErrorBudget& e : errors) {
+    worst.basis = std::max(worst.basis, e.basis);
+    worst.method = std::max(worst.method, e.method);
+  }
+  write_error_budget(json, worst);
+  json.begin_array("error_by_speed");
+  for (std::size_t s = 0; s < errors.size(); ++s) {
+    json.begin_object().value("speed_rad_s", d.speeds_rad_s[s]);
+    write_error_budget(json, errors[s]);
+    json.end_object();
+  }
+  json.end_array().begin_array("curves");
   for (const CampbellCurve& c : d.curves) {
     json.begin_object()
         .value("mode", c.mode)
@@ -122,7 +149,8 @@ Command register_campbell(CLI::App& app) {
     const CampbellDiagram diagram =
         campbell_diagram(model, scene.damping, campbell, progress_reporter("campbell: speeds", for_people));
 
-    const std::string json = campbell_json(scene, model, diagram);
+    const std::string json =
+        campbell_json(scene, model, diagram, errors_by_speed(scene, diagram, *count, options->eigen_solver()));
     const std::vector<std::string> files =
         write_outputs(*out, "campbell", {{"campbell.csv", curves_csv(diagram)}, {"campbell_crossings.csv", crossings_csv(diagram)}},
                       json, "campbell", *chart);

@@ -8,6 +8,7 @@
 #include "bladestab/input_error.hpp"
 #include "bladestab/mode_convergence.hpp"
 #include "commands.hpp"
+#include "error_output.hpp"
 #include "json_writer.hpp"
 #include "options.hpp"
 
@@ -37,12 +38,15 @@ void print_modes(const SceneOptions& options, const Scene& scene, const Converge
           .end_object()
           .value("damping", to_string(scene.damping.model))
           .value("solver", to_string(sol.solver))
-          .begin_object("error_estimate")
-          .value("method", "relative change against a richer model")
+          .begin_object("accuracy")
+          .value("method", result.model.spec.basis == BasisKind::sine
+                               ? "tail of algebraic convergence from models with N, 2N and 4N terms"
+                               : "relative change against a richer model")
           .value("reference_terms", result.reference_terms)
           .value("max_relative_error", result.max_relative_error())
-          .end_object()
-          .begin_array("modes");
+          .end_object();
+      write_error_budget(json, result.worst_budget());
+      json.begin_array("modes");
       for (std::size_t k = 0; k < sol.modes.size(); ++k) {
         const Mode& m = sol.modes[k];
         json.begin_object()
@@ -51,8 +55,9 @@ void print_modes(const SceneOptions& options, const Scene& scene, const Converge
             .value("frequency_hz", m.frequency_hz)
             .value("lambda", m.lambda)
             .value("damping_ratio", m.damping_ratio)
-            .value("relative_error", result.relative_error[k])
-            .begin_object("energy_share")
+            .value("relative_error", result.relative_error[k]);
+        write_error_budget(json, result.budget(k));
+        json.begin_object("energy_share")
             .value("rotation", m.energy_share(0))
             .value("lateral", m.energy_share(1))
             .value("axial", m.energy_share(2))
@@ -77,17 +82,22 @@ void print_modes(const SceneOptions& options, const Scene& scene, const Converge
       fmt::print("speed     {:.6g} rad/s = {:.6g} rpm, nondimensional {:.6g}; damping {}; solver {}\n", speed,
                  speed * rpm_per_rad_s, result.model.blade.nondimensional_speed(speed), to_string(scene.damping.model),
                  to_string(sol.solver));
-      fmt::print("accuracy  relative change against a {}-term model, at most {:.1e}; digits shown are those it supports\n\n",
-                 result.reference_terms, result.max_relative_error());
+      fmt::print("accuracy  {} against {}-term models, at most {:.1e}; digits shown are those the error supports\n\n",
+                 result.model.spec.basis == BasisKind::sine ? "tail of algebraic convergence" : "relative change",
+                 result.model.spec.basis == BasisKind::sine
+                     ? fmt::format("{}- and {}", reference_terms(BasisKind::sine, result.model.spec.terms), result.reference_terms)
+                     : fmt::format("{}", result.reference_terms),
+                 result.max_relative_error());
       fmt::print("{:>4}  {:<9} {:>16} {:>16} {:>10} {:>10}\n", "mode", "family", "frequency [Hz]", "Λ", "ζ",
-                 "rel. error");
+                 "error");
       for (std::size_t k = 0; k < sol.modes.size(); ++k) {
         const Mode& m = sol.modes[k];
-        const int digits = significant_digits(result.relative_error[k]);
+        const ErrorBudget budget = result.budget(k);
+        const int digits = significant_digits(budget.total());
         // ζ below 1e-12 is rounding in an undamped model's eigenvalues, not damping.
         const double zeta = std::abs(m.damping_ratio) < 1e-12 ? 0.0 : m.damping_ratio;
-        fmt::print("{:>4}  {:<9} {:>16.{}g} {:>16.{}g} {:>10.3g} {:>10.1e}\n", m.index, to_string(m.family),
-                   m.frequency_hz, digits, m.lambda, digits, zeta, result.relative_error[k]);
+        fmt::print("{:>4}  {:<9} {:>#16.{}g} {:>#16.{}g} {:>10.3g} {:>10.1e}\n", m.index, to_string(m.family),
+                   m.frequency_hz, digits, m.lambda, digits, zeta, budget.total());
       }
       break;
     }

@@ -1,0 +1,173 @@
+// Boundaries with error estimates: k raised to the tolerance converges to the large-k value, the
+// estimated whole error covers the true error against a richer model, Mathieu's tongues with the
+// automatic k, and the multiplier check.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <functional>
+
+#include "bladestab/boundaries.hpp"
+#include "bladestab/damping.hpp"
+#include "reference/mathieu.hpp"
+#include "support/scenes.hpp"
+
+using namespace bladestab;
+using reference::MathieuKind;
+using testing_support::paper_scene;
+
+namespace {
+
+// The reference boundaries: the paper blade with a richer model, straight from the eigenproblem.
+std::vector<Boundary> reference_loads(const Scene& s, double theta, int k) {
+  const BladeModel m = assemble_model(s.blade, s.model);
+  const PeriodicSystem sys = periodic_system(m, s, load_series(s), {ReductionKind::none, 0, 0});
+  return boundary_loads(sys, s.load.fmax_over_fcr * m.blade.critical_load(), theta, k);
+}
+
+// The reference boundary nearest to b of the same family, mode and order.
+const Boundary* counterpart(const Boundary& b, const std::vector<Boundary>& all) {
+  const Boundary* best = nullptr;
+  for (const Boundary& r : all) {
+    if (r.multiplier != b.multiplier || r.mode != b.mode || r.order != b.order) continue;
+    if (!best || std::abs(r.peak_force_n - b.peak_force_n) < std::abs(best->peak_force_n - b.peak_force_n)) best = &r;
+  }
+  return best;
+}
+
+}  // namespace
+
+TEST_CASE("boundaries at theta = 300: k is raised until converged, to the large-k value within the estimate",
+          "[boundaries]") {
+  const Scene s = paper_scene({"model.terms=8"});
+  BoundaryRequest r;
+  r.theta_rad_s = 300;
+  const BoundaryAnalysis a = boundaries_with_error_estimate(s, r);
+  const double fcr = assemble_model(s.blade, s.model).blade.critical_load();
+  // k = 4 gives the mode-1, order-2 boundary at F̄ = 6.1594; k >= 8 gives 6.0926.
+  CHECK(a.approximation >= 6);
+  const std::vector<Boundary> k12 = reference_loads(s, 300, 12);
+  int compared = 0;
+  for (const EstimatedBoundary& e : a.boundaries) {
+    const Boundary* ref = counterpart(e.boundary, k12);
+    REQUIRE(ref != nullptr);
+    const double truth = std::abs(e.boundary.peak_force_n / ref->peak_force_n - 1);
+    INFO("F̄ = " << e.boundary.peak_force_n / fcr << " (k = 12: " << ref->peak_force_n / fcr << "), mode "
+                 << e.boundary.mode << ", order " << e.boundary.order << ": harmonics' estimate " << e.budget.method
+                 << ", true " << truth << ", ratio " << e.budget.method / truth);
+    CHECK(truth <= e.budget.method);
+    CHECK(e.budget.method <= r.tolerance);
+    ++compared;
+  }
+  CHECK(compared >= 5);
+  const auto principal = std::find_if(a.boundaries.begin(), a.boundaries.end(), [&](const EstimatedBoundary& e) {
+    return e.boundary.multiplier == 1 && std::abs(e.boundary.peak_force_n / fcr - 6.0926) < 1e-3;
+  });
+  REQUIRE(principal != a.boundaries.end());
+  // The check: a Floquet multiplier at −1 or +1 by RKF45 monodromy.
+  REQUIRE(!a.checks.empty());
+  for (const BoundaryCheck& c : a.checks) CHECK(c.gap <= c.allowed);
+}
+
+TEST_CASE("boundaries: the whole error estimate covers the true error against a richer model", "[boundaries]") {
+  // N = 8 with the estimate against N = 12; the truth from N = 14 (Legendre: exponential
+  // convergence) with 4 harmonics more than the analysis chose.
+  const Scene s = paper_scene({"model.terms=8"});
+  const Scene rich = paper_scene({"model.terms=14"});
+  const double fcr = assemble_model(s.blade, s.model).blade.critical_load();
+  int compared = 0;
+  for (double theta : {250.0, 300.0, 400.0}) {
+    BoundaryRequest r;
+    r.theta_rad_s = theta;
+    const BoundaryAnalysis a = boundaries_with_error_estimate(s, r);
+    const std::vector<Boundary> truth_set = reference_loads(rich, theta, a.approximation + 4);
+    for (const EstimatedBoundary& e : a.boundaries) {
+      const Boundary* ref = counterpart(e.boundary, truth_set);
+      REQUIRE(ref != nullptr);
+      const double truth = std::abs(e.boundary.peak_force_n / ref->peak_force_n - 1);
+      INFO("θ = " << theta << ", F̄ = " << e.boundary.peak_force_n / fcr << " (N = 14: " << ref->peak_force_n / fcr
+                  << "), mode " << e.boundary.mode << ", order " << e.boundary.order << ": estimate "
+                  << e.budget.total() << " (basis " << e.budget.basis << "), true " << truth << ", ratio "
+                  << e.budget.total() / truth);
+      CHECK(truth <= e.budget.total());
+      ++compared;
+    }
+  }
+  CHECK(compared >= 10);
+}
+
+TEST_CASE("boundaries: with a modal cut-off the reduction part covers the true error", "[boundaries]") {
+  const Scene s = paper_scene({"model.terms=8"});
+  const double fcr = assemble_model(s.blade, s.model).blade.critical_load();
+  BoundaryRequest r;
+  r.theta_rad_s = 300;
+  r.cutoff_hz = 3000;  // drops the rotation modes and all but the first axial mode
+  const BoundaryAnalysis a = boundaries_with_error_estimate(s, r);
+  const std::vector<Boundary> truth_set = reference_loads(paper_scene({"model.terms=14"}), 300, a.approximation + 4);
+  REQUIRE(a.boundaries.size() >= 4);
+  for (const EstimatedBoundary& e : a.boundaries) {
+    const Boundary* ref = counterpart(e.boundary, truth_set);
+    REQUIRE(ref != nullptr);
+    const double truth = std::abs(e.boundary.peak_force_n / ref->peak_force_n - 1);
+    INFO("F̄ = " << e.boundary.peak_force_n / fcr << " (N = 14, all modes: " << ref->peak_force_n / fcr
+                 << "): estimate " << e.budget.total() << " (reduction " << e.budget.reduction << "), true " << truth
+                 << ", ratio " << e.budget.total() / truth);
+    CHECK(e.budget.reduction > 0);
+    CHECK(truth <= e.budget.total());
+  }
+}
+
+TEST_CASE("boundaries: Mathieu's first two tongues with the automatic k", "[boundaries][mathieu]") {
+  for (double fbar : {0.2, 0.6, 1.2}) {
+    const Scene s = paper_scene({"model.theory=euler-bernoulli", "model.terms=1", "model.axial=false",
+                                 "model.basis=sine", "operation.speed_rad_s=0", "load.approximation=cosine",
+                                 "load.fmax_over_fcr=" + std::to_string(fbar)});
+    const BladeModel m = assemble_model(s.blade, s.model);
+    const double w0 = std::sqrt(m.K_S(0, 0) / m.M(0, 0));
+    BoundaryRequest r;
+    r.tolerance = 1e-9;
+    r.window = std::make_pair(0.25 * w0, 4 * w0);  // the tongues θ ≈ 2ω and θ ≈ ω (ω ≥ 0.63 ω0 under the mean load)
+    const BoundaryAnalysis a = boundaries_with_error_estimate(s, r);
+    // τ = θt/2: y'' + (a − 2q cos 2τ) y = 0 with x = 4ω0²/θ², a = x(1 − F̄/2), q = −x F̄/4 (as in
+    // test_stability.cpp); the edges are where a equals a characteristic value.
+    for (auto [kind, rank, x0, x1] : {std::tuple{MathieuKind::a_odd, 0, 0.01, 60.0}, std::tuple{MathieuKind::b_odd, 0, 0.01, 60.0},
+                                      std::tuple{MathieuKind::a_even, 1, 2.0, 80.0}, std::tuple{MathieuKind::b_even, 0, 2.0, 80.0}}) {
+      double lo = x0, hi = x1;
+      const auto g = [&](double x) { return x * (1 - fbar / 2) - reference::mathieu(kind, rank, x * fbar / 4); };
+      for (int i = 0; i < 200; ++i) ((g(0.5 * (lo + hi)) > 0) == (g(lo) > 0) ? lo : hi) = 0.5 * (lo + hi);
+      const double theta = 2 * w0 / std::sqrt(0.5 * (lo + hi));
+      const EstimatedBoundary* best = nullptr;
+      for (const EstimatedBoundary& e : a.boundaries) {
+        if (!best || std::abs(e.boundary.theta_rad_s - theta) < std::abs(best->boundary.theta_rad_s - theta)) best = &e;
+      }
+      REQUIRE(best != nullptr);
+      const double truth = std::abs(best->boundary.theta_rad_s / theta - 1);
+      INFO("F̄ = " << fbar << ", kind " << static_cast<int>(kind) << ": θ = " << theta << ", found "
+                  << best->boundary.theta_rad_s << " with k = " << a.approximation << ", estimate "
+                  << best->budget.total() << ", true " << truth);
+      // The one-dof model is Mathieu's equation exactly, so its error is the method part (the
+      // basis part is the beam's, against two terms); 5e-12 is the reference's own rounding.
+      CHECK(truth <= best->budget.method + 5e-12);
+      CHECK(best->budget.method <= r.tolerance);
+    }
+    for (const BoundaryCheck& c : a.checks) CHECK(c.gap <= c.allowed);
+  }
+}
+
+TEST_CASE("boundaries: the multiplier check tells a boundary from a point inside the region", "[boundaries][mathieu]") {
+  // Mathieu scene, F̄ = 0.6: the principal (−1) tongue between the edges a₁ and b₁.
+  const Scene s = paper_scene({"model.theory=euler-bernoulli", "model.terms=1", "model.axial=false", "model.basis=sine",
+                               "operation.speed_rad_s=0", "load.approximation=cosine", "load.fmax_over_fcr=0.6"});
+  const BladeModel m = assemble_model(s.blade, s.model);
+  const PeriodicSystem sys = periodic_system(m, s, load_series(s));
+  const double peak = 0.6 * m.blade.critical_load();
+  std::vector<Boundary> edges;
+  for (const Boundary& b : boundary_frequencies(sys, peak, 8)) {
+    if (b.multiplier == -1 && b.order == 1) edges.push_back(b);
+  }
+  REQUIRE(edges.size() == 2);
+  for (const Boundary& b : edges) CHECK(multiplier_gap(sys, peak, b, 1e-10) < 1e-3);
+  // Halfway between the edges the multiplier is real, below −1: far from −1.
+  Boundary inside = edges[0];
+  inside.theta_rad_s = 0.5 * (edges[0].theta_rad_s + edges[1].theta_rad_s);
+  CHECK(multiplier_gap(sys, peak, inside, 1e-10) > 0.1);
+}
