@@ -55,7 +55,10 @@ PulseMonodromy exact_pulse_monodromy(const PeriodicSystem& sys, const PulseTrain
     result.monodromy = pulse_monodromy(sys, train, 0);
     result.multipliers = sorted_multipliers(result.monodromy);
   } else {
-    constexpr int first_steps = 2, max_steps = 1 << 16;
+    // From where h‖A‖ ≤ 2 on the contact (fewer steps would only be rejected).
+    constexpr int max_steps = 1 << 16;
+    const double contact_steps = minimum_magnus_steps(sys) * train.contact_time_s / train.period_s;
+    const int first_steps = std::max(2, 1 << static_cast<int>(std::ceil(std::log2(std::max(1.0, contact_steps / 2)))));
     Eigen::VectorXcd previous = sorted_multipliers(pulse_monodromy(sys, train, first_steps));
     for (int steps = 2 * first_steps;; steps *= 2) {
       if (steps > max_steps) {

@@ -84,6 +84,14 @@ StabilityAnswer analyse_stability(const Scene& scene, const StabilityRequest& re
                      "(in Hz, > 0) or a speed > 0");
   }
   const bool vectors_free = f.reduction.kind == ReductionKind::automatic && f.reduction.vectors == 0;
+  if (vectors_free && f.load.exact_pulse) {
+    // The true train integrates only through the contacts: the whole Ritz model is cheap unless the
+    // contact is long against its stiffest period, and it resolves the pulse's high harmonics,
+    // which the narrow tongues of the true train depend on.
+    const PeriodicSystem whole = system_at(scene, {f.model, {ReductionKind::none, 0, 0}, f.load});
+    const PulseTrain train = pulse_train(scene);
+    if (minimum_magnus_steps(whole) * train.contact_time_s / train.period_s <= 4096) f.reduction.kind = ReductionKind::none;
+  }
   if (f.reduction.kind == ReductionKind::automatic && f.reduction.vectors == 0) {
     f.reduction.vectors = default_reduction_vectors;
   }
@@ -102,7 +110,8 @@ StabilityAnswer analyse_stability(const Scene& scene, const StabilityRequest& re
     const ErrorBudget& b = a.budget;
     if (b.basis >= std::max(b.reduction, b.load) && f.model.terms < max_terms) {
       f.model.terms = std::min(max_terms, reference_terms(f.model.basis, f.model.terms));
-    } else if (b.reduction >= b.load && vectors_free && 2 * f.reduction.vectors <= sys.all_modes) {
+    } else if (b.reduction >= b.load && vectors_free && 12 * f.reduction.vectors < sys.all_modes) {
+      // Only while the budget's richer variant (twice as many again) stays a reduced model.
       f.reduction.vectors *= 2;
     } else {
       a.tolerance_met = false;

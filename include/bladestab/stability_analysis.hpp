@@ -2,7 +2,9 @@
 // Dynamic stability of a scene at its operating point, with the whole error against the
 // continuum model (issue "every answer right or refused"):
 //
-//  1. the LTP system on the automatic reduction of the scene's Ritz model (reduction.hpp);
+//  1. the LTP system on the automatic reduction of the scene's Ritz model (reduction.hpp); the true
+//     pulse train on the whole Ritz model where its contacts are short against its stiffest period
+//     (it is integrated only through them, and its narrow tongues need the high modes);
 //  2. Floquet multipliers by the requested method, with its own checks (floquet.hpp);
 //  3. the error budget on max|ρ|, each part from a second computation that differs in that part only:
 //       basis      the same at the richer Ritz basis of mode_convergence.hpp (sine: ×2, its

@@ -116,7 +116,7 @@ void print(const SceneOptions& options, const Scene& scene, const StabilityAnswe
                                   to_string(scene.load.profile), load.relative_tail));
       fmt::print("method     {}, {}\n", to_string(r.method), truncation(r, load.exact_pulse));
       fmt::print("error      {} on max|ρ|{}\n", describe_error_budget(a.budget),
-                 a.tolerance_met ? "" : "  — above the tolerance: a fidelity fixed by the scene limits it");
+                 a.tolerance_met ? "" : "  — above the tolerance: terms or reduction could not be raised further");
       fmt::print("checks     det Φ vs Liouville {}, reciprocal pairs {}, RKF45 residual of the dominant vector {}\n\n",
                  check_value(r.checks.determinant_error), check_value(r.checks.reciprocal_error),
                  check_value(r.checks.residual));
