@@ -179,7 +179,8 @@ double dominant_residual(const Eigen::MatrixXd& phi, const PeriodicSystem& sys, 
 FloquetChecks check_monodromy(const Eigen::MatrixXd& phi, const Eigen::VectorXcd& rho, const PeriodicSystem& sys,
                               double tol, bool integrate, const LoadVariation& load) {
   FloquetChecks c;
-  // Rounding of the LU grows with Φ's condition: ~1e-16/rcond; not informative beyond 1e10.
+  // Φ carries relative errors of ~1e-13 (rounding over the steps), which its determinant magnifies by
+  // Φ's condition (measured: 8e-7 at 1/rcond = 2.7e7); not informative beyond 1e10.
   const double rcond = Eigen::PartialPivLU<Eigen::MatrixXd>(phi).rcond();
   c.determinant_error = rcond < 1e-10 ? std::numeric_limits<double>::quiet_NaN() : liouville_error(phi, sys);
   c.reciprocal_error = is_hamiltonian(sys) ? reciprocal_error(rho) : std::numeric_limits<double>::quiet_NaN();
@@ -189,7 +190,7 @@ FloquetChecks check_monodromy(const Eigen::MatrixXd& phi, const Eigen::VectorXcd
   c.residual = integrate && affordable ? dominant_residual(phi, sys, load, rtol) : std::numeric_limits<double>::quiet_NaN();
   c.monodromy_max_abs_multiplier = max_abs(rho);
   const double allowed = std::max(10 * tol, 1e-8);
-  if (c.determinant_error > allowed + 1e-14 / rcond) {
+  if (c.determinant_error > allowed + 1e-13 / rcond) {
     throw NumericalError(fmt::format("monodromy check failed: det Φ(T) is off Liouville's exp(∫tr A) by {:.2g}; "
                                      "lower --tolerance", c.determinant_error));
   }
