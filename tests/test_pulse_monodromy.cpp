@@ -13,7 +13,6 @@
 #include <boost/numeric/odeint.hpp>
 #include <unsupported/Eigen/MatrixFunctions>
 
-#include "bladestab/damping.hpp"
 #include "bladestab/floquet.hpp"
 #include "bladestab/input_error.hpp"
 #include "bladestab/pulse_monodromy.hpp"
@@ -35,8 +34,7 @@ struct Setup {
 // The paper blade (Legendre, Timoshenko, axial, Coriolis) with `terms` per field, exact load.
 Setup setup(const Scene& s) {
   BladeModel m = assemble_model(s.blade, s.model);
-  const double W = s.operation.speed_rad_s;
-  PeriodicSystem sys = periodic_system(m, W, damping_matrix(m, s.damping, W), load_series(s));
+  PeriodicSystem sys = periodic_system(m, s, load_series(s));
   return {s, std::move(m), std::move(sys), pulse_train(s)};
 }
 

@@ -6,7 +6,6 @@
 #include <functional>
 
 #include "bladestab/boundaries.hpp"
-#include "bladestab/damping.hpp"
 #include "bladestab/floquet.hpp"
 #include "reference/mathieu.hpp"
 #include "support/scenes.hpp"
@@ -34,8 +33,7 @@ struct Setup {
 
 Setup setup(const Scene& s) {
   BladeModel m = assemble_model(s.blade, s.model);
-  const double W = s.operation.speed_rad_s;
-  PeriodicSystem sys = periodic_system(m, W, damping_matrix(m, s.damping, W), load_series(s));
+  PeriodicSystem sys = periodic_system(m, s, load_series(s));
   const double peak = s.load.fmax_over_fcr * m.blade.critical_load();
   return {std::move(m), std::move(sys), peak};
 }
