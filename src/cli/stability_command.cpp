@@ -35,7 +35,9 @@ std::string describe_reduction(const StabilityAnswer& a) {
       return fmt::format("automatic: {} modes at F = 0 and at the peak load + gyroscopic corrections → {} of {} dofs",
                          a.reduction.vectors, a.reduced_size, a.full_size);
     case ReductionKind::modal:
-      return fmt::format("modal: {} modes below {:g} Hz of {} dofs", a.reduced_size, a.reduction.cutoff_hz, a.full_size);
+      return a.reduction.cutoff_hz > 0 ? fmt::format("modal: {} modes below {:g} Hz of {} dofs", a.reduced_size,
+                                                     a.reduction.cutoff_hz, a.full_size)
+                                         : fmt::format("modal: all {} modes", a.full_size);
     case ReductionKind::none: return fmt::format("none: all {} dofs", a.full_size);
   }
   return "";
