@@ -145,6 +145,25 @@ LoadVariation series_variation(const PeriodicSystem& sys) {
   return {[&sys](double t) { return sys.load_variation(t); }, {}};
 }
 
+// X(T) of Ẋ = (A₀ + φ(t) B) X from X(0) by RKF45, landing on the load's breakpoints.
+Eigen::MatrixXd rkf45_propagate(const PeriodicSystem& sys, const LoadVariation& load, const Eigen::MatrixXd& X0,
+                                double rtol, double atol) {
+  const Eigen::Index n = X0.rows(), columns = X0.cols();
+  const OdeFunction rhs = [&sys, &load, n, columns](double t, const Eigen::VectorXd& y, Eigen::VectorXd& dy) {
+    dy.resize(y.size());
+    const auto Y = Eigen::Map<const Eigen::MatrixXd>(y.data(), n, columns);
+    auto D = Eigen::Map<Eigen::MatrixXd>(dy.data(), n, columns);
+    D.noalias() = sys.A0 * Y;
+    D.noalias() += load.phi(t) * (sys.B * Y);
+  };
+  Eigen::VectorXd x = X0.reshaped();
+  StepControl control;
+  control.rtol = rtol;
+  control.atol = atol;
+  rkf45_integrate(rhs, x, 0, sys.period(), control, load.breakpoints, {}, [](double, const Eigen::VectorXd&) {});
+  return x.reshaped(n, columns);
+}
+
 // Integrates the dominant eigenvector v of Φ over one period with RKF45 and compares x(T) with ρv.
 double dominant_residual(const Eigen::MatrixXd& phi, const PeriodicSystem& sys, const LoadVariation& load,
                          double rtol) {
@@ -154,22 +173,9 @@ double dominant_residual(const Eigen::MatrixXd& phi, const PeriodicSystem& sys, 
   eig.eigenvalues().cwiseAbs().maxCoeff(&k);
   const cplx rho = eig.eigenvalues()(k);
   const Eigen::VectorXcd v = eig.eigenvectors().col(k).normalized();
-  const int n = sys.state_size();
-  Eigen::MatrixXd X(n, 2);
+  Eigen::MatrixXd X(sys.state_size(), 2);
   X << v.real(), v.imag();
-  Eigen::VectorXd x = X.reshaped();
-  const OdeFunction rhs = [&sys, &load, n](double t, const Eigen::VectorXd& y, Eigen::VectorXd& dy) {
-    dy.resize(y.size());
-    const auto Y = Eigen::Map<const Eigen::MatrixXd>(y.data(), n, 2);
-    auto D = Eigen::Map<Eigen::MatrixXd>(dy.data(), n, 2);
-    D.noalias() = sys.A0 * Y;
-    D.noalias() += load.phi(t) * (sys.B * Y);
-  };
-  StepControl control;
-  control.rtol = rtol;
-  control.atol = rtol * 1e-3;
-  rkf45_integrate(rhs, x, 0, sys.period(), control, load.breakpoints, {}, [](double, const Eigen::VectorXd&) {});
-  const Eigen::MatrixXd XT = x.reshaped(n, 2);
+  const Eigen::MatrixXd XT = rkf45_propagate(sys, load, X, rtol, rtol * 1e-3);
   const Eigen::VectorXcd end = XT.col(0).cast<cplx>() + cplx(0, 1) * XT.col(1).cast<cplx>();
   return (end - rho * v).norm() / std::abs(rho);
 }
@@ -333,18 +339,9 @@ Eigen::VectorXcd monodromy_multipliers(const PeriodicSystem& sys, int steps) {
 }
 
 Eigen::MatrixXd rkf45_monodromy(const PeriodicSystem& sys, double rtol) {
+  // The scaled coordinates make every entry of Φ order one: atol = rtol.
   const int n = sys.state_size();
-  // The n fundamental solutions as one vector: Ẋ = A(t) X, X(0) = I.
-  const OdeFunction rhs = [&sys, n](double t, const Eigen::VectorXd& x, Eigen::VectorXd& dx) {
-    dx.resize(x.size());
-    Eigen::Map<Eigen::MatrixXd>(dx.data(), n, n).noalias() = sys.A(t) * Eigen::Map<const Eigen::MatrixXd>(x.data(), n, n);
-  };
-  Eigen::VectorXd x = Eigen::MatrixXd::Identity(n, n).reshaped();
-  StepControl control;
-  control.rtol = rtol;
-  control.atol = rtol;  // the scaled coordinates make every entry of Φ order one
-  rkf45_integrate(rhs, x, 0, sys.period(), control, {}, {}, [](double, const Eigen::VectorXd&) {});
-  return x.reshaped(n, n);
+  return rkf45_propagate(sys, series_variation(sys), Eigen::MatrixXd::Identity(n, n), rtol, rtol);
 }
 
 FloquetResult floquet_multipliers(const PeriodicSystem& sys, const FloquetOptions& options) {

@@ -34,7 +34,6 @@ struct PeriodicSystem {
   int state_size() const { return static_cast<int>(A0.rows()); }
   // F(t) − F₀ from the series.
   double load_variation(double t) const;
-  Eigen::MatrixXd A(double t) const { return A0 + load_variation(t) * B; }
   // A_m of A(t) = Σ A_m e^{imθt}: A₀ for m = 0, F_m B otherwise.
   Eigen::MatrixXcd harmonic(int m) const;
 };
