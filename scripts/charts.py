@@ -38,6 +38,13 @@ map
         "max_abs_multiplier": [[float|null, ...], ...]
                                               one row per y, len(x) values each
       },
+      "refinement": {                         optional; drawn instead of the grid
+        "cells_x": int, "cells_y": int,       the fine lattice's cells
+        "x_lo": float, "x_hi": float, "y_lo": float, "y_hi": float,
+        "cells": [[i, j, width, height, float|null], ...]
+                                              leaves covering the lattice
+      },
+      "stable_below": float (optional),       max|rho| at or below: stable (white)
       "curves": [                             optional boundary curves
         {"multiplier": -1 | 1, "mode": int (optional), "order": int (optional),
          "x": [float|null, ...], "y": [float|null, ...]}  same length; null = gap
@@ -422,38 +429,70 @@ def _map_markers(data):
     return markers
 
 
-def _map_shading(ax, grid, stable_below=STABLE_LIMIT):
-    """Shade log10 max|rho| over the grid; return the legend handles."""
+def _map_refined(data):
+    """The refined shading as cell edges and a raster; None if absent."""
+    ref = data.get("refinement")
+    if ref is None:
+        return None
+    if not isinstance(ref, dict):
+        raise InputError("'refinement' is not an object")
+    nx = _integer(_require(ref, "cells_x", int), "refinement.cells_x")
+    ny = _integer(_require(ref, "cells_y", int), "refinement.cells_y")
+    if not (1 <= nx <= 20000 and 1 <= ny <= 20000):
+        raise InputError(f"refinement: {nx} x {ny} cells is outside 1..20000")
+    bounds = [_number(_require(ref, k, (int, float)), f"refinement.{k}")
+              for k in ("x_lo", "x_hi", "y_lo", "y_hi")]
+    if not (bounds[0] < bounds[1] and bounds[2] < bounds[3]):
+        raise InputError("refinement: x_lo < x_hi and y_lo < y_hi are required")
+    raster = np.full((ny, nx), np.nan)
+    for k, cell in enumerate(_require(ref, "cells", list)):
+        if not isinstance(cell, list) or len(cell) != 5:
+            raise InputError(f"refinement.cells[{k}] is not [i, j, width, height, value]")
+        i, j, w, h = (_integer(v, f"refinement.cells[{k}]") for v in cell[:4])
+        v = _number(cell[4], f"refinement.cells[{k}][4]", allow_null=True)
+        if i < 0 or j < 0 or w < 1 or h < 1 or i + w > nx or j + h > ny:
+            raise InputError(f"refinement.cells[{k}] lies outside the {nx} x {ny} lattice")
+        raster[j:j + h, i:i + w] = np.nan if v is None else v
+    x = np.linspace(bounds[0], bounds[1], nx + 1)
+    y = np.linspace(bounds[2], bounds[3], ny + 1)
+    return x, y, raster
+
+
+def _map_shading(ax, grid, stable_below=STABLE_LIMIT, edges=False):
+    """Shade growth per period, log10 max|rho|, with its lower end at the
+    stability threshold: every unstable cell is clearly coloured, stable ones
+    are white. `grid` holds cell centres, or cell edges if `edges`."""
     x, y, values = grid
     rho = np.array(values, dtype=float)
     missing = np.isnan(rho)
     unstable = ~missing & (rho > stable_below)
+    floor = math.log10(stable_below)
     with np.errstate(divide="ignore", invalid="ignore"):
         level = np.log10(np.where(unstable, rho, 1.0))
     finite = level[unstable & np.isfinite(level)]
-    top = MAP_SHADE_MIN
+    top = floor + MAP_SHADE_MIN
     if finite.size:
-        top = max(float(np.percentile(finite, MAP_SHADE_PERCENTILE)), MAP_SHADE_MIN)
+        top = max(float(np.percentile(finite, MAP_SHADE_PERCENTILE)), top)
     # Stable cells fall below the scale ("under" = white), divergent ones
     # (inf) above it; missing cells are "bad" (light grey).
-    level = np.where(unstable, np.minimum(level, 2.0 * top + 1.0), -1.0)
+    level = np.where(unstable, np.minimum(level, 2.0 * top + 1.0), floor - 1.0)
     level = np.ma.masked_array(level, mask=missing)
 
     base = matplotlib.colormaps["OrRd"]
-    cmap = ListedColormap(base(np.linspace(0.18, 0.92, 256)), name="bladestab_map")
+    cmap = ListedColormap(base(np.linspace(0.45, 0.97, 256)), name="bladestab_map")
     cmap.set_under("white")
     cmap.set_bad("0.82")
-    mesh = ax.pcolormesh(x, y, level, shading="nearest", cmap=cmap,
-                         norm=Normalize(vmin=0.0, vmax=top),
+    mesh = ax.pcolormesh(x, y, level, shading="flat" if edges else "nearest",
+                         cmap=cmap, norm=Normalize(vmin=floor, vmax=top),
                          rasterized=rho.size > 1000, zorder=0)
-    above = bool((level.filled(-1.0) > top).any())
+    above = bool((level.filled(floor - 1.0) > top).any())
     cbar = ax.figure.colorbar(mesh, ax=ax, extend="max" if above else "neither",
                               pad=0.02, fraction=0.05)
-    cbar.set_label("log10 max|ρ|")
+    cbar.set_label(f"log10 max|ρ| (growth per period); white: max|ρ| ≤ {stable_below:.6g}")
     cbar.ax.tick_params(labelsize=8)
 
-    handles = [Patch(facecolor=cmap(0.55), edgecolor="none",
-                     label="unstable (max|ρ| > 1)")]
+    handles = [Patch(facecolor=cmap(0.0), edgecolor="none",
+                     label=f"unstable (max|ρ| > {stable_below:.6g})")]
     if missing.any():
         handles.append(Patch(facecolor="0.82", edgecolor="none", label="no data"))
     return handles
@@ -513,7 +552,16 @@ def chart_map(data, ax):
     ax.set_xlim(x_lo, x_hi)
     ax.set_ylim(0.0, y_hi)
 
-    handles = _map_shading(ax, grid, _number(data.get("stable_below", STABLE_LIMIT), "stable_below")) if grid is not None else []
+    stable_below = _number(data.get("stable_below", STABLE_LIMIT), "stable_below")
+    if not stable_below >= 1.0:
+        raise InputError(f"stable_below = {stable_below:g}: must be >= 1")
+    refined = _map_refined(data)
+    if refined is not None:
+        handles = _map_shading(ax, refined, stable_below, edges=True)
+    elif grid is not None:
+        handles = _map_shading(ax, grid, stable_below)
+    else:
+        handles = []
 
     # Boundary curves, one legend entry per multiplier family.
     legend_lines = {}

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include <unsupported/Eigen/MatrixFunctions>
+#include "bladestab/small_expm.hpp"
 
 namespace bladestab {
 
@@ -19,7 +19,9 @@ Eigen::MatrixXd magnus_propagator(const Eigen::MatrixXd& A0, const Eigen::Matrix
                         S5 = commutator(P, Q), S6 = commutator(P, R);
   const double h = (t1 - t0) / steps, r = std::sqrt(15.0) / 10;
   const Eigen::Index n = A0.rows();
-  Eigen::MatrixXd X = Eigen::MatrixXd::Identity(n, n), omega(n, n), next(n, n);
+  // Every buffer is sized here: the loop allocates nothing.
+  Eigen::MatrixXd X = Eigen::MatrixXd::Identity(n, n), omega(n, n), step(n, n), next(n, n);
+  SmallExpm expm(n);
   for (int k = 0; k < steps; ++k) {
     const double t = t0 + k * h;
     const double f1 = phi(t + (0.5 - r) * h), f2 = phi(t + 0.5 * h), f3 = phi(t + (0.5 + r) * h);
@@ -32,7 +34,8 @@ Eigen::MatrixXd magnus_propagator(const Eigen::MatrixXd& A0, const Eigen::Matrix
             ((xB * yP - xP * yB) / 240) * R;
     omega += (x0 * yQ / 240) * S1 + (x0 * yR / 240) * S2 + (xB * yQ / 240) * S3 + (xB * yR / 240) * S4 +
              (xP * yQ / 240) * S5 + (xP * yR / 240) * S6;
-    next.noalias() = omega.exp() * X;
+    expm.compute(omega, step);
+    next.noalias() = step * X;
     X.swap(next);
   }
   return X;

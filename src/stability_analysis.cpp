@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include <fmt/format.h>
 
@@ -38,9 +39,33 @@ FloquetResult floquet_of(const Scene& scene, const Fidelity& f, const PeriodicSy
   return pulse_train_multipliers(sys, pulse_train(scene), o);
 }
 
-// max|ρ| of a variant, by the monodromy to a tolerance well below the part it measures.
-double variant_max_rho(const Scene& scene, const Fidelity& f, double tol) {
-  return floquet_of(scene, f, system_at(scene, f), {FloquetMethod::monodromy, 0, tol, false}).max_abs_multiplier;
+// max|ρ| of a variant and the error of that value.
+struct VariantRho {
+  double rho = 0, error = 0;
+};
+
+// A variant of a Magnus answer (N steps) is integrated with N/4 and N/2 steps, and N if those
+// two differ by more than `tol`: the variant's value at the finer count and its difference to the
+// coarser one. The answer's coarser levels were within the ladder's Δ_N of its level N, and
+// both systems carry nearly the same discretization error, which the budget's `method` part
+// counts once; the variant's own difference bounds what differs. A variant stiffer than the
+// ladder would start at (a richer unreduced basis), Hill answers and the exact train take the
+// variant's own ladder to `tol`.
+VariantRho variant_max_rho(const Scene& scene, const Fidelity& f, const FloquetResult& answer, double tol) {
+  const PeriodicSystem sys = system_at(scene, f);
+  const int coarsest = answer.steps / 4;
+  if (coarsest >= 8 && 64 * coarsest >= minimum_magnus_steps(sys) && !f.load.exact_pulse) {
+    std::optional<double> previous;
+    for (int steps = coarsest; steps <= answer.steps; steps *= 2) {
+      const Eigen::MatrixXd phi = magnus_monodromy(sys, steps);
+      if (!phi.allFinite()) break;
+      const double rho = phi.eigenvalues().cwiseAbs().maxCoeff();
+      if (previous && std::abs(rho - *previous) <= tol * std::max(1.0, rho)) return {rho, std::abs(rho - *previous)};
+      previous = rho;
+    }
+  }
+  const FloquetResult r = floquet_of(scene, f, sys, {FloquetMethod::monodromy, 0, tol, false});
+  return {r.max_abs_multiplier, r.error_estimate};
 }
 
 // Each part of the budget from a variant that differs from `f` in that part only.
@@ -48,29 +73,33 @@ ErrorBudget budget_of(const Scene& scene, const Fidelity& f, const FloquetResult
   ErrorBudget b;
   const double rho = r.max_abs_multiplier, variant_tol = tol / 8;
   b.method = r.error_estimate;
+  // factor · |ρ − ρ_variant| plus the variant's own error.
+  const auto part = [&](const Fidelity& variant, double factor) {
+    const VariantRho v = variant_max_rho(scene, variant, r, variant_tol);
+    return factor * std::abs(rho - v.rho) + v.error;
+  };
 
   Fidelity richer_basis = f;
   richer_basis.model.terms = reference_terms(f.model.basis, f.model.terms);
   // Algebraic convergence (sine basis): the difference to 2N understates the error up to 2×.
-  const double basis_factor = f.model.basis == BasisKind::sine ? 2 : 1;
-  b.basis = basis_factor * std::abs(rho - variant_max_rho(scene, richer_basis, variant_tol));
+  b.basis = part(richer_basis, f.model.basis == BasisKind::sine ? 2 : 1);
 
   if (f.reduction.kind == ReductionKind::automatic) {
     Fidelity richer = f;
     richer.reduction.vectors = 2 * f.reduction.vectors;
     // Galerkin projections do not converge monotonically in max|ρ|: a factor 2 of safety.
-    b.reduction = 2 * std::abs(rho - variant_max_rho(scene, richer, variant_tol));
+    b.reduction = part(richer, 2);
   } else if (f.reduction.kind == ReductionKind::modal && f.reduction.cutoff_hz > 0) {
     Fidelity reduced = f;
     reduced.reduction = {ReductionKind::automatic, 2 * default_reduction_vectors, 0};
-    b.reduction = std::abs(rho - variant_max_rho(scene, reduced, variant_tol));
+    b.reduction = part(reduced, 1);
   }
 
   if (!f.load.cosine_approximation && !f.load.exact_pulse) {
     // The truncated series against the true pulse train it stands for.
     Fidelity exact = f;
     exact.load = exact_pulse_mean(pulse_train(scene));
-    b.load = std::abs(rho - variant_max_rho(scene, exact, variant_tol));
+    b.load = part(exact, 1);
   }
   return b;
 }

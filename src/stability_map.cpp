@@ -4,12 +4,13 @@
 #include <atomic>
 #include <exception>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <mutex>
 #include <thread>
 #include <tuple>
+#include <unordered_map>
 
-#include "bladestab/blas_threads.hpp"
 #include "bladestab/boundaries.hpp"
 #include "bladestab/input_error.hpp"
 
@@ -91,7 +92,8 @@ StabilityMap stability_map(const Scene& scene, const MapOptions& o, const std::f
     throw InputError("--speeds: the speed plane needs speeds > 0 (θ = kΩ must be a pulse frequency)");
   }
   const int nx = static_cast<int>(o.grid_x.size()), ny = static_cast<int>(o.grid_fbar.size());
-  const int total = nx * ny + static_cast<int>(o.trace.size());
+  // The refinement's points are known one level at a time: the total grows as they are.
+  std::atomic<int> total{nx * ny + static_cast<int>(o.trace.size())};
   std::atomic<int> done{0};
   std::mutex report;
   const auto tick = [&] {
@@ -137,44 +139,126 @@ StabilityMap stability_map(const Scene& scene, const MapOptions& o, const std::f
   map.curves.erase(std::remove_if(map.curves.begin(), map.curves.end(), [](const BoundaryCurve& c) { return c.x.size() < 2; }),
                    map.curves.end());
 
-  // Shading, rows shared among threads.
-  std::atomic<int> next_row{0};
+  // Shading on the fine lattice: the grid's cells split 2^k times in each direction.
+  const auto levels = [](int coarse_cells, int wanted) {
+    int k = 0;
+    while (coarse_cells << k < wanted && k < 12) ++k;
+    return k;
+  };
+  const int kx = levels(nx - 1, o.resolution_x), ky = levels(ny - 1, o.resolution_y);
+  map.cells_x = (nx - 1) << kx;
+  map.cells_y = (ny - 1) << ky;
+  const double y_lo = o.grid_fbar.front();
+  const auto lattice_x = [&](int i) { return x_lo + (x_hi - x_lo) * i / map.cells_x; };
+  const auto lattice_y = [&](int j) { return y_lo + (y_hi - y_lo) * j / map.cells_y; };
+  std::unordered_map<long long, double> value;  // by i · (cells_y + 1) + j
+  const auto key = [&](int i, int j) { return static_cast<long long>(i) * (map.cells_y + 1) + j; };
+
   std::mutex error_lock;
   double max_error = 0;
-  std::exception_ptr failure;
-  const std::function<void()> rows = [&] {
-    for (int j = next_row++; j < ny; j = next_row++) {
-      for (int i = 0; i < nx; ++i) {
-        const double x = o.grid_x[i], fbar = o.grid_fbar[j];
-        const Scene at = theta_plane ? scene_at(scene, speed, x, fbar) : scene_at(scene, x, o.engine_order * x, fbar);
-        if (x > 0) {
-          const FloquetResult r = floquet_multipliers(system_for(model, at, ReductionKind::automatic),
-                                                      {FloquetMethod::automatic, 0, o.tolerance, false});
-          map.max_abs_multiplier(j, i) = r.max_abs_multiplier;
-          std::lock_guard<std::mutex> lock(error_lock);
-          max_error = std::max(max_error, r.error_estimate / std::max(1.0, r.max_abs_multiplier));
+  // max|ρ| at the lattice points `points`, shared among the threads.
+  const auto evaluate = [&](const std::vector<std::pair<int, int>>& points) {
+    std::vector<double> result(points.size(), std::nan(""));
+    std::atomic<std::size_t> next{0};
+    std::exception_ptr failure;
+    const auto worker = [&] {
+      try {
+        for (std::size_t k = next++; k < points.size(); k = next++) {
+          const double x = lattice_x(points[k].first), fbar = lattice_y(points[k].second);
+          if (x > 0) {
+            const Scene at = theta_plane ? scene_at(scene, speed, x, fbar) : scene_at(scene, x, o.engine_order * x, fbar);
+            const FloquetResult r = floquet_multipliers(system_for(model, at, ReductionKind::automatic),
+                                                        {FloquetMethod::automatic, 0, o.tolerance, false});
+            result[k] = r.max_abs_multiplier;
+            std::lock_guard<std::mutex> lock(error_lock);
+            max_error = std::max(max_error, r.error_estimate / std::max(1.0, r.max_abs_multiplier));
+          }
+          tick();
         }
-        tick();
+      } catch (...) {
+        std::lock_guard<std::mutex> lock(error_lock);
+        if (!failure) failure = std::current_exception();
+        next = points.size();  // the other threads stop at their next point
+      }
+    };
+    std::vector<std::thread> pool;
+    for (int t = 0; t < std::max(1, o.threads); ++t) pool.emplace_back(worker);
+    for (std::thread& t : pool) t.join();
+    if (failure) std::rethrow_exception(failure);
+    for (std::size_t k = 0; k < points.size(); ++k) {
+      value[key(points[k].first, points[k].second)] = result[k];
+      map.samples.push_back({lattice_x(points[k].first), lattice_y(points[k].second), result[k]});
+    }
+  };
+  // Points not yet evaluated among the corners of `cells`.
+  const auto missing_corners = [&](const std::vector<MapCell>& cells) {
+    std::vector<std::pair<int, int>> points;
+    std::unordered_map<long long, bool> queued;
+    for (const MapCell& c : cells) {
+      for (const auto& [i, j] : {std::pair{c.i, c.j}, {c.i + c.width, c.j}, {c.i, c.j + c.height},
+                                 {c.i + c.width, c.j + c.height}}) {
+        if (!value.count(key(i, j)) && !queued[key(i, j)]) queued[key(i, j)] = true, points.emplace_back(i, j);
       }
     }
+    return points;
   };
-  const auto worker = [&] {
-    try {
-      rows();
-    } catch (...) {
-      std::lock_guard<std::mutex> lock(error_lock);
-      if (!failure) failure = std::current_exception();
-      next_row = ny;  // the other threads stop at their next row
+  const double stable_below = 1 + o.tolerance;
+  // Whether a cell's corners disagree about stability (NaN counts as its own verdict).
+  const auto mixed = [&](const MapCell& c) {
+    const double v[4] = {value[key(c.i, c.j)], value[key(c.i + c.width, c.j)], value[key(c.i, c.j + c.height)],
+                         value[key(c.i + c.width, c.j + c.height)]};
+    const auto verdict = [&](double r) { return std::isnan(r) ? 2 : r > stable_below ? 1 : 0; };
+    for (int k = 1; k < 4; ++k) {
+      if (verdict(v[k]) != verdict(v[0])) return true;
     }
+    return false;
   };
-  // OpenBLAS's own threads would fight the workers for the cores.
-  const int blas_threads = openblas_get_num_threads();
-  use_single_threaded_blas();
-  std::vector<std::thread> pool;
-  for (int t = 0; t < std::max(1, o.threads); ++t) pool.emplace_back(worker);
-  for (std::thread& t : pool) t.join();
-  openblas_set_num_threads(blas_threads);
-  if (failure) std::rethrow_exception(failure);
+  const auto holds_curve = [&](const MapCell& c) {
+    const double a = lattice_x(c.i), b = lattice_x(c.i + c.width), lo = lattice_y(c.j), hi = lattice_y(c.j + c.height);
+    for (const BoundaryCurve& curve : map.curves) {
+      for (std::size_t k = 0; k < curve.x.size(); ++k) {
+        if (curve.x[k] >= a && curve.x[k] <= b && curve.fbar[k] >= lo && curve.fbar[k] <= hi) return true;
+      }
+    }
+    return false;
+  };
+
+  std::vector<MapCell> cells;
+  for (int j = 0; j + 1 < ny; ++j) {
+    for (int i = 0; i + 1 < nx; ++i) cells.push_back({i << kx, j << ky, 1 << kx, 1 << ky, 0});
+  }
+  total -= nx * ny;
+  const auto evaluate_new = [&](const std::vector<MapCell>& of) {
+    const std::vector<std::pair<int, int>> points = missing_corners(of);
+    total += static_cast<int>(points.size());
+    evaluate(points);
+  };
+  evaluate_new(cells);
+  while (!cells.empty()) {
+    std::vector<MapCell> split;
+    for (const MapCell& c : cells) {
+      if ((c.width > 1 || c.height > 1) && (mixed(c) || holds_curve(c))) {
+        const int w = std::max(1, c.width / 2), h = std::max(1, c.height / 2);
+        for (int dj = 0; dj < c.height; dj += h) {
+          for (int di = 0; di < c.width; di += w) split.push_back({c.i + di, c.j + dj, w, h, 0});
+        }
+      } else {
+        MapCell leaf = c;
+        leaf.max_abs_multiplier = -std::numeric_limits<double>::infinity();
+        for (const double v : {value[key(c.i, c.j)], value[key(c.i + c.width, c.j)], value[key(c.i, c.j + c.height)],
+                               value[key(c.i + c.width, c.j + c.height)]}) {
+          leaf.max_abs_multiplier = std::isnan(v) || std::isnan(leaf.max_abs_multiplier) ? std::nan("")
+                                                                                        : std::max(leaf.max_abs_multiplier, v);
+        }
+        map.cells.push_back(leaf);
+      }
+    }
+    evaluate_new(split);
+    cells.swap(split);
+  }
+  for (int j = 0; j < ny; ++j) {
+    for (int i = 0; i < nx; ++i) map.max_abs_multiplier(j, i) = value[key(i << kx, j << ky)];
+  }
   map.max_error_estimate = max_error;
   return map;
 }

@@ -52,7 +52,18 @@ struct Case {
   std::string name;
   std::vector<std::string> overrides;
   StabilityRequest request;
+  // Where the load excites modes that a reduced reference misses: the whole Ritz model of the
+  // scene's own basis, with this many Magnus steps (and twice as many, which must agree).
+  int whole_model_steps = 0;
 };
+
+double whole_model_max_rho(const Scene& scene, int steps) {
+  const PeriodicSystem whole = periodic_system(assemble_model(scene.blade, scene.model), scene, load_series(scene),
+                                               {ReductionKind::none, 0, 0});
+  const double rho = monodromy_multipliers(whole, steps).cwiseAbs().maxCoeff();
+  CHECK(std::abs(monodromy_multipliers(whole, 2 * steps).cwiseAbs().maxCoeff() - rho) < 1e-10);
+  return rho;
+}
 
 }  // namespace
 
@@ -97,7 +108,9 @@ TEST_CASE("total error estimate covers the true error over the space a user trie
       {"theta = 0.3 w1", {theta(0.3)}, plain},
       {"theta = w1", {theta(1.0)}, plain},
       {"theta = 2 w1", {theta(2.0)}, plain},
-      {"theta = 3 w1", {theta(3.0)}, plain},
+      // The 3-vector reference is 6.5e-7 off here (1.061162988 against the whole model's
+      // 1.0611623423, converged to 4e-13 between 4096 and 16384 steps).
+      {"theta = 3 w1", {theta(3.0)}, plain, 4096},
       {"N = 4", {"model.terms=4"}, plain},
       {"N = 60", {"model.terms=60"}, plain},
       {"sine basis N = 10", {"model.basis=sine", "model.terms=10"}, {FloquetMethod::automatic, 0, 1e-3}},
@@ -117,7 +130,7 @@ TEST_CASE("total error estimate covers the true error over the space a user trie
   for (const Case& c : cases) {
     const Scene scene = paper_scene(c.overrides);
     const StabilityAnswer a = analyse_stability(scene, c.request);
-    const double reference = reference_max_rho(scene);
+    const double reference = c.whole_model_steps ? whole_model_max_rho(scene, c.whole_model_steps) : reference_max_rho(scene);
     const double error = std::abs(a.floquet.max_abs_multiplier - reference);
     const double estimate = a.budget.total();
     const double floor = 1e-8 * std::max(1.0, reference);

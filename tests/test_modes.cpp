@@ -166,7 +166,9 @@ TEST_CASE("damping models give the damping ratios they promise", "[modes][dampin
   // Paper (37): C_D = (2ζ/Ω) K_S.
   const Scene p = paper_scene({"damping.model=paper", "damping.ratio=0.01"});
   const BladeModel m = assemble_model(p.blade, p.model);
-  CHECK((damping_matrix(m, p.damping, 300) - (2 * 0.01 / 300) * m.K_S).norm() == 0);
+  // To rounding (the factor may be applied as one product or fused into two).
+  const Eigen::MatrixXd expected = (2 * 0.01 / 300) * m.K_S;
+  CHECK((damping_matrix(m, p.damping, 300) - expected).norm() <= 1e-15 * expected.norm());
 }
 
 TEST_CASE("error estimates are honest and --tolerance raises the number of terms", "[modes][convergence]") {

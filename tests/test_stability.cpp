@@ -78,8 +78,9 @@ TEST_CASE("Mathieu: approximation 1 is Bolotin's first approximation 2ω0 sqrt(1
       if (b.multiplier == -1) principal.push_back(b.theta_rad_s);
     }
     REQUIRE(principal.size() == 2);
-    CHECK(principal[0] == Approx(2 * w * std::sqrt(1 - mu)).epsilon(1e-12));
-    CHECK(principal[1] == Approx(2 * w * std::sqrt(1 + mu)).epsilon(1e-12));
+    // To the rounding of the boundary eigenproblem (measured 2e-12 with fused multiply–add).
+    CHECK(principal[0] == Approx(2 * w * std::sqrt(1 - mu)).epsilon(1e-11));
+    CHECK(principal[1] == Approx(2 * w * std::sqrt(1 + mu)).epsilon(1e-11));
   }
 }
 

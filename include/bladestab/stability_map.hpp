@@ -2,8 +2,10 @@
 // Stability maps (SPEC §4 "Charts"): regions of dynamic instability in the (θ, F̄_max) plane at
 // the scene's speed (Ince–Strutt) or in the (Ω, F̄_max) plane with θ = k Ω (an engine order).
 // The ±1 boundaries are traced as curves from the boundary eigenproblems — along F̄ in the θ
-// plane (all θ at once), along Ω in the speed plane (all F̄ at once) — and a coarser grid of
-// Floquet max|ρ| shades the regions, which also reveals combination resonances.
+// plane (all θ at once), along Ω in the speed plane (all F̄ at once) — and Floquet max|ρ| shades
+// the regions, which also reveals combination resonances. The shading starts on the given grid
+// and splits, like a quadtree, every cell whose corners disagree about stability or that holds a
+// traced boundary point, until the cells reach the requested resolution.
 #include <functional>
 #include <vector>
 
@@ -23,7 +25,20 @@ struct MapOptions {
   int engine_order = 1;                   // speed plane: θ = k Ω
   int approximation = 4;                  // harmonics per family in the boundary equations
   double tolerance = 1e-3;                // on max|ρ| of the shading
+  int resolution_x = 400, resolution_y = 200;  // effective cells of the refined shading (at least)
   int threads = 2;
+};
+
+// One evaluated shading point.
+struct MapSample {
+  double x = 0, fbar = 0, max_abs_multiplier = 0;
+};
+
+// A leaf of the refinement on the fine lattice: cells [i, i + width) × [j, j + height), the
+// largest max|ρ| of its corners (NaN where a corner has no periodic load).
+struct MapCell {
+  int i = 0, j = 0, width = 1, height = 1;
+  double max_abs_multiplier = 0;
 };
 
 struct BoundaryCurve {
@@ -35,6 +50,9 @@ struct StabilityMap {
   MapPlane plane = MapPlane::theta_fmax;
   std::vector<double> grid_x, grid_fbar;
   Eigen::MatrixXd max_abs_multiplier;  // rows: F̄, columns: x; NaN where the point has no periodic load
+  int cells_x = 0, cells_y = 0;        // the fine lattice: the grid's cells split 2^k times
+  std::vector<MapSample> samples;      // every evaluated point, the grid's included
+  std::vector<MapCell> cells;          // the refinement's leaves, covering the window
   double max_error_estimate = 0;
   std::vector<BoundaryCurve> curves;
 };

@@ -1,6 +1,7 @@
 // bladestab map SCENE --plane theta-fmax|speed-fmax: stability map, CSV/JSON data and a chart.
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include <fmt/format.h>
 
@@ -42,7 +43,32 @@ std::string map_json(const Scene& scene, const BladeModel& model, const MapOptio
     const Eigen::RowVectorXd row = m.max_abs_multiplier.row(j);
     json.numbers_or_null(nullptr, std::vector<double>(row.data(), row.data() + row.size()));
   }
-  json.end_array().end_object().begin_array("curves");
+  json.end_array().end_object();
+  // The refined shading: every evaluated point, and the leaves of the refinement on the fine
+  // lattice ([i, j, width, height, max|ρ| of the corners]; x = x_lo + i (x_hi − x_lo)/cells_x).
+  json.begin_object("refinement")
+      .value("cells_x", m.cells_x)
+      .value("cells_y", m.cells_y)
+      .value("x_lo", m.grid_x.front())
+      .value("x_hi", m.grid_x.back())
+      .value("y_lo", m.grid_fbar.front())
+      .value("y_hi", m.grid_fbar.back())
+      .begin_array("cells");
+  for (const MapCell& c : m.cells) {
+    json.numbers_or_null(nullptr, {static_cast<double>(c.i), static_cast<double>(c.j), static_cast<double>(c.width),
+                                   static_cast<double>(c.height), c.max_abs_multiplier});
+  }
+  json.end_array().end_object().begin_array("samples");
+  for (const MapSample& p : m.samples) {
+    json.begin_object().value("x", p.x).value("y", p.fbar);
+    if (std::isnan(p.max_abs_multiplier)) {
+      json.null_value("max_abs_multiplier");
+    } else {
+      json.value("max_abs_multiplier", p.max_abs_multiplier);
+    }
+    json.end_object();
+  }
+  json.end_array().begin_array("curves");
   for (const BoundaryCurve& c : m.curves) {
     json.begin_object()
         .value("multiplier", c.multiplier)
@@ -116,6 +142,10 @@ Command register_map(CLI::App& app) {
   command->add_option("--engine-order", *order, "k in θ = kΩ (default: load.pulses_per_rev)");
   command->add_option("--approximation", *approximation, "harmonics per family in the boundary equations (default 4)");
   command->add_option("--tolerance", *tolerance, "accuracy of max|ρ| in the shading (default 1e-3)");
+  auto resolution = std::make_shared<std::string>("400x200");
+  command->add_option("--resolution", *resolution,
+                      "effective cells NXxNY of the refined shading (default 400x200; the grid's cells are split "
+                      "where stability changes)");
   add_chart_options(*command, *out, *chart, "directory for map_<plane>.json, _curves.csv, _grid.csv and the chart");
   return [=] {
     Scene scene = options->load();
@@ -133,6 +163,17 @@ Command register_map(CLI::App& app) {
     if (*order < 0) throw InputError(fmt::format("--engine-order {}: must be an integer >= 1", *order));
     o.approximation = *approximation;
     o.tolerance = *tolerance;
+    {
+      int rx = 0, ry = 0;
+      char sep = 0, extra = 0;
+      if (std::sscanf(resolution->c_str(), "%d%c%d%c", &rx, &sep, &ry, &extra) != 3 || sep != 'x' || rx < 1 ||
+          ry < 1 || rx > 4096 || ry > 4096) {
+        throw InputError(fmt::format("--resolution {}: must be NXxNY with integers in [1, 4096], e.g. 400x200",
+                                     *resolution));
+      }
+      o.resolution_x = rx;
+      o.resolution_y = ry;
+    }
     const BladeModel model = assemble_model(scene.blade, scene.model);
     if (theta_plane) {
       if (scene.operation.speed_rad_s <= 0 && scene.damping.model == DampingModel::paper) {
@@ -173,8 +214,9 @@ Command register_map(CLI::App& app) {
                    theta_plane ? fmt::format(" at Ω = {:g} rad/s", scene.operation.speed_rad_s)
                                : fmt::format(", θ = {}·Ω", o.engine_order));
         fmt::print("curves    {} boundary curves ({} harmonics per family)\n", m.curves.size(), o.approximation);
-        fmt::print("shading   {} of {} grid points unstable; max|ρ| relative error ≤ {:.1e}\n", unstable, points,
-                   m.max_error_estimate);
+        fmt::print("shading   {} of {} grid points unstable; refined to {} × {} cells with {} Floquet points; "
+                   "max|ρ| relative error ≤ {:.1e}\n",
+                   unstable, points, m.cells_x, m.cells_y, m.samples.size(), m.max_error_estimate);
         fmt::print("written   {}\n", fmt::join(files, ", "));
       }
     }
