@@ -145,12 +145,19 @@ StabilityMap stability_map(const Scene& scene, const MapOptions& o, const std::f
     while (coarse_cells << k < wanted && k < 12) ++k;
     return k;
   };
-  const int kx = levels(nx - 1, o.resolution_x), ky = levels(ny - 1, o.resolution_y);
+  // A single row or column has no cells: its points are the shading.
+  const bool refine = nx > 1 && ny > 1;
+  const int kx = refine ? levels(nx - 1, o.resolution_x) : 0, ky = refine ? levels(ny - 1, o.resolution_y) : 0;
   map.cells_x = (nx - 1) << kx;
   map.cells_y = (ny - 1) << ky;
-  const double y_lo = o.grid_fbar.front();
-  const auto lattice_x = [&](int i) { return x_lo + (x_hi - x_lo) * i / map.cells_x; };
-  const auto lattice_y = [&](int j) { return y_lo + (y_hi - y_lo) * j / map.cells_y; };
+  // Lattice point i lies in grid cell i >> k, linearly between its grid points.
+  const auto on_lattice = [](const std::vector<double>& grid, int k, int i) {
+    const int cell = std::min(i >> k, static_cast<int>(grid.size()) - 2), first = cell << k;
+    if (grid.size() == 1) return grid.front();
+    return grid[cell] + (grid[cell + 1] - grid[cell]) * (i - first) / static_cast<double>(1 << k);
+  };
+  const auto lattice_x = [&](int i) { return on_lattice(o.grid_x, kx, i); };
+  const auto lattice_y = [&](int j) { return on_lattice(o.grid_fbar, ky, j); };
   std::unordered_map<long long, double> value;  // by i · (cells_y + 1) + j
   const auto key = [&](int i, int j) { return static_cast<long long>(i) * (map.cells_y + 1) + j; };
 
@@ -226,6 +233,13 @@ StabilityMap stability_map(const Scene& scene, const MapOptions& o, const std::f
   std::vector<MapCell> cells;
   for (int j = 0; j + 1 < ny; ++j) {
     for (int i = 0; i + 1 < nx; ++i) cells.push_back({i << kx, j << ky, 1 << kx, 1 << ky, 0});
+  }
+  if (!refine) {
+    std::vector<std::pair<int, int>> points;
+    for (int j = 0; j < ny; ++j) {
+      for (int i = 0; i < nx; ++i) points.emplace_back(i, j);
+    }
+    evaluate(points);
   }
   total -= nx * ny;
   const auto evaluate_new = [&](const std::vector<MapCell>& of) {

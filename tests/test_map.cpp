@@ -84,3 +84,48 @@ TEST_CASE("theta-plane map of Mathieu's equation: unstable inside the principal 
   }
   CHECK(edges == 2);
 }
+
+TEST_CASE("refined shading: leaves tile the lattice, agree at their corners, and samples match the whole model",
+          "[map][refinement]") {
+  const Scene scene = paper_scene({"model.terms=4"});
+  MapOptions o;
+  o.plane = MapPlane::theta_fmax;
+  o.grid_x = linspace(150, 650, 6);
+  o.grid_fbar = linspace(0, 6, 4);
+  o.trace = linspace(0, 6, 7);
+  o.tolerance = 1e-7;
+  o.resolution_x = 40;
+  o.resolution_y = 24;
+  const StabilityMap map = stability_map(scene, o);
+  REQUIRE(map.cells_x == 40);  // 5 grid cells split 8 times
+  REQUIRE(map.cells_y == 24);  // 3 grid cells split 8 times
+
+  // The leaves cover the lattice once.
+  Eigen::MatrixXi cover = Eigen::MatrixXi::Zero(map.cells_y, map.cells_x);
+  for (const MapCell& c : map.cells) cover.block(c.j, c.i, c.height, c.width).array() += 1;
+  CHECK(cover.minCoeff() == 1);
+  CHECK(cover.maxCoeff() == 1);
+  // The refinement went down to single cells somewhere, and skipped a good part of the lattice.
+  int unit = 0;
+  for (const MapCell& c : map.cells) unit += c.width == 1 && c.height == 1;
+  CHECK(unit > 20);
+  CHECK(map.samples.size() < static_cast<std::size_t>(3 * (map.cells_x + 1) * (map.cells_y + 1) / 4));
+
+  // Every 7th sample against the whole (unreduced) N = 4 model's monodromy with 4096 Magnus steps:
+  // independent of the reduction and of the step ladder.
+  int compared = 0;
+  for (std::size_t k = 0; k < map.samples.size(); k += 7) {
+    const MapSample& p = map.samples[k];
+    Scene at = scene;
+    at.load.pulse_frequency_hz = p.x / (2 * 3.14159265358979323846);
+    at.load.fmax_over_fcr = p.fbar;
+    const BladeModel m = assemble_model(at.blade, at.model);
+    const PeriodicSystem whole = periodic_system(m, at, load_series(at), {ReductionKind::none, 0, 0});
+    const double rho = monodromy_multipliers(whole, 4096).cwiseAbs().maxCoeff();
+    INFO("θ = " << p.x << ", F̄ = " << p.fbar << ": map " << p.max_abs_multiplier << ", whole model " << rho);
+    // The map's tolerance on the method, plus the 3-vector reduction's error (≲1e-7 here).
+    CHECK(std::abs(p.max_abs_multiplier - rho) <= 1e-6 * std::max(1.0, rho));
+    ++compared;
+  }
+  CHECK(compared >= 20);
+}

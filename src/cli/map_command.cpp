@@ -18,6 +18,24 @@
 namespace bladestab::cli {
 namespace {
 
+// The refined shading: the leaves of the refinement on the fine lattice ([i, j, width, height,
+// max|ρ| of the corners]; lattice point i lies in grid cell i >> k, linearly between its points).
+void write_refinement(JsonWriter& json, const StabilityMap& m) {
+  json.begin_object("refinement")
+      .value("cells_x", m.cells_x)
+      .value("cells_y", m.cells_y)
+      .value("x_lo", m.grid_x.front())
+      .value("x_hi", m.grid_x.back())
+      .value("y_lo", m.grid_fbar.front())
+      .value("y_hi", m.grid_fbar.back())
+      .begin_array("cells");
+  for (const MapCell& c : m.cells) {
+    json.numbers_or_null(nullptr, {static_cast<double>(c.i), static_cast<double>(c.j), static_cast<double>(c.width),
+                                   static_cast<double>(c.height), c.max_abs_multiplier});
+  }
+  json.end_array().end_object();
+}
+
 std::string map_json(const Scene& scene, const BladeModel& model, const MapOptions& o, const StabilityMap& m) {
   const bool theta = m.plane == MapPlane::theta_fmax;
   const std::string stem = scene_title(scene);
@@ -44,21 +62,8 @@ std::string map_json(const Scene& scene, const BladeModel& model, const MapOptio
     json.numbers_or_null(nullptr, std::vector<double>(row.data(), row.data() + row.size()));
   }
   json.end_array().end_object();
-  // The refined shading: every evaluated point, and the leaves of the refinement on the fine
-  // lattice ([i, j, width, height, max|ρ| of the corners]; x = x_lo + i (x_hi − x_lo)/cells_x).
-  json.begin_object("refinement")
-      .value("cells_x", m.cells_x)
-      .value("cells_y", m.cells_y)
-      .value("x_lo", m.grid_x.front())
-      .value("x_hi", m.grid_x.back())
-      .value("y_lo", m.grid_fbar.front())
-      .value("y_hi", m.grid_fbar.back())
-      .begin_array("cells");
-  for (const MapCell& c : m.cells) {
-    json.numbers_or_null(nullptr, {static_cast<double>(c.i), static_cast<double>(c.j), static_cast<double>(c.width),
-                                   static_cast<double>(c.height), c.max_abs_multiplier});
-  }
-  json.end_array().end_object().begin_array("samples");
+  if (!m.cells.empty()) write_refinement(json, m);
+  json.begin_array("samples");
   for (const MapSample& p : m.samples) {
     json.begin_object().value("x", p.x).value("y", p.fbar);
     if (std::isnan(p.max_abs_multiplier)) {
