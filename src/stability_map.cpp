@@ -33,6 +33,27 @@ PeriodicSystem system_for(const BladeModel& model, const Scene& scene, Reduction
   return periodic_system(model, scene, load_series(scene), {reduction, 0, 0});
 }
 
+// task(k) for k = 0..count − 1 on `threads` threads; the first exception stops the others at
+// their next task and is rethrown.
+void parallel_for(std::size_t count, int threads, const std::function<void(std::size_t)>& task) {
+  std::atomic<std::size_t> next{0};
+  std::mutex failure_lock;
+  std::exception_ptr failure;
+  const auto worker = [&] {
+    try {
+      for (std::size_t k = next++; k < count; k = next++) task(k);
+    } catch (...) {
+      std::lock_guard<std::mutex> lock(failure_lock);
+      if (!failure) failure = std::current_exception();
+      next = count;
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int t = 0; t < std::max(1, threads); ++t) pool.emplace_back(worker);
+  for (std::thread& t : pool) t.join();
+  if (failure) std::rethrow_exception(failure);
+}
+
 // Joins boundary points into curves by continuity: at each new parameter value, every curve
 // still open takes the nearest point of its family (±1) within `max_jump`; points left over
 // start new curves and curves left over end. The curve's mode and order are its first point's.
@@ -112,28 +133,30 @@ StabilityMap stability_map(const Scene& scene, const MapOptions& o, const std::f
 
   // Boundary curves, traced within the plotted window.
   const double x_lo = o.grid_x.front(), x_hi = o.grid_x.back(), y_hi = o.grid_fbar.back();
-  Tracer tracer(0.05 * (theta_plane ? x_hi - x_lo : y_hi));
-  for (std::size_t i = 0; i < o.trace.size(); ++i) {
-    std::vector<Boundary> found;
-    std::vector<double> value;
+  // The boundary equations of each parameter value in parallel, then joined in order.
+  std::vector<std::vector<Boundary>> found(o.trace.size());
+  std::vector<std::vector<double>> found_value(o.trace.size());
+  parallel_for(o.trace.size(), o.threads, [&](std::size_t i) {
     if (theta_plane) {
       const double fbar = o.trace[i];
       if (fbar > 0) {
         const Scene at = scene_at(scene, speed, two_pi, fbar);  // θ is the unknown; any value will do
         for (const Boundary& b : boundary_frequencies(system_for(model, at, ReductionKind::none), fbar * fcr, o.approximation)) {
-          if (b.theta_rad_s >= x_lo && b.theta_rad_s <= x_hi) found.push_back(b), value.push_back(b.theta_rad_s);
+          if (b.theta_rad_s >= x_lo && b.theta_rad_s <= x_hi) found[i].push_back(b), found_value[i].push_back(b.theta_rad_s);
         }
       }
-      tracer.add(static_cast<int>(i), found, value, fbar, true);
     } else {
       const double W = o.trace[i], theta = o.engine_order * W;
       const Scene at = scene_at(scene, W, theta, 1.0);
       for (const Boundary& b : boundary_loads(system_for(model, at, ReductionKind::none), fcr, theta, o.approximation)) {
-        if (b.peak_force_n / fcr <= y_hi) found.push_back(b), value.push_back(b.peak_force_n / fcr);
+        if (b.peak_force_n / fcr <= y_hi) found[i].push_back(b), found_value[i].push_back(b.peak_force_n / fcr);
       }
-      tracer.add(static_cast<int>(i), found, value, W, false);
     }
     tick();
+  });
+  Tracer tracer(0.05 * (theta_plane ? x_hi - x_lo : y_hi));
+  for (std::size_t i = 0; i < o.trace.size(); ++i) {
+    tracer.add(static_cast<int>(i), found[i], found_value[i], o.trace[i], theta_plane);
   }
   map.curves = tracer.curves();
   map.curves.erase(std::remove_if(map.curves.begin(), map.curves.end(), [](const BoundaryCurve& c) { return c.x.size() < 2; }),
@@ -166,32 +189,18 @@ StabilityMap stability_map(const Scene& scene, const MapOptions& o, const std::f
   // max|ρ| at the lattice points `points`, shared among the threads.
   const auto evaluate = [&](const std::vector<std::pair<int, int>>& points) {
     std::vector<double> result(points.size(), std::nan(""));
-    std::atomic<std::size_t> next{0};
-    std::exception_ptr failure;
-    const auto worker = [&] {
-      try {
-        for (std::size_t k = next++; k < points.size(); k = next++) {
-          const double x = lattice_x(points[k].first), fbar = lattice_y(points[k].second);
-          if (x > 0) {
-            const Scene at = theta_plane ? scene_at(scene, speed, x, fbar) : scene_at(scene, x, o.engine_order * x, fbar);
-            const FloquetResult r = floquet_multipliers(system_for(model, at, ReductionKind::automatic),
-                                                        {FloquetMethod::automatic, 0, o.tolerance, false});
-            result[k] = r.max_abs_multiplier;
-            std::lock_guard<std::mutex> lock(error_lock);
-            max_error = std::max(max_error, r.error_estimate / std::max(1.0, r.max_abs_multiplier));
-          }
-          tick();
-        }
-      } catch (...) {
+    parallel_for(points.size(), o.threads, [&](std::size_t k) {
+      const double x = lattice_x(points[k].first), fbar = lattice_y(points[k].second);
+      if (x > 0) {
+        const Scene at = theta_plane ? scene_at(scene, speed, x, fbar) : scene_at(scene, x, o.engine_order * x, fbar);
+        const FloquetResult r = floquet_multipliers(system_for(model, at, ReductionKind::automatic),
+                                                    {FloquetMethod::automatic, 0, o.tolerance, false});
+        result[k] = r.max_abs_multiplier;
         std::lock_guard<std::mutex> lock(error_lock);
-        if (!failure) failure = std::current_exception();
-        next = points.size();  // the other threads stop at their next point
+        max_error = std::max(max_error, r.error_estimate / std::max(1.0, r.max_abs_multiplier));
       }
-    };
-    std::vector<std::thread> pool;
-    for (int t = 0; t < std::max(1, o.threads); ++t) pool.emplace_back(worker);
-    for (std::thread& t : pool) t.join();
-    if (failure) std::rethrow_exception(failure);
+      tick();
+    });
     for (std::size_t k = 0; k < points.size(); ++k) {
       value[key(points[k].first, points[k].second)] = result[k];
       map.samples.push_back({lattice_x(points[k].first), lattice_y(points[k].second), result[k]});
