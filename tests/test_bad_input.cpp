@@ -317,6 +317,21 @@ TEST_CASE("bad input: stability, boundaries and map options (bad_input)", "[bad_
     expect_rejected(with({"stability", "--set", "load.profile=impulse", "--set", "load.approximation=fourier"}),
                     {"load.profile = \"impulse\"", "Fourier series"});
   }
+  SECTION("stability --export-matrices to a file that is not a .json manifest") {
+    expect_rejected(with({"stability", "--export-matrices", (scratch() / "system.npz").string()}),
+                    {"--export-matrices", "system.npz", "FILE.json"});
+  }
+  SECTION("stability --export-matrices below a regular file") {
+    std::ofstream(scratch() / "plain_file") << "x";
+    expect_rejected(with({"stability", "--export-matrices", (scratch() / "plain_file" / "system.json").string()}),
+                    {"--export-matrices", "plain_file/system.json", "cannot write"});
+  }
+  SECTION("stability --export-matrices of the true pulse train") {
+    expect_rejected(with({"stability", "--set", "load.approximation=exact", "--export-matrices",
+                          (scratch() / "exact.json").string()}),
+                    {"--export-matrices", "load.approximation = \"exact\"", "no series"});
+    CHECK(!fs::exists(scratch() / "exact.json"));
+  }
   SECTION("boundaries --approximation 0") {
     expect_rejected(with({"boundaries", "--approximation", "0"}), {"--approximation 0", "[1, 36]"});
   }

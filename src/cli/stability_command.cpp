@@ -1,11 +1,15 @@
 // bladestab stability SCENE: Floquet multipliers at the scene's operating point.
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 
 #include <fmt/format.h>
 
 #include "bladestab/stability_analysis.hpp"
 #include "bladestab/input_error.hpp"
+#include "bladestab/matrix_export.hpp"
+#include "bladestab/periodic_system.hpp"
 #include "commands.hpp"
 #include "error_output.hpp"
 #include "json_writer.hpp"
@@ -139,6 +143,67 @@ void print(const SceneOptions& options, const Scene& scene, const StabilityAnswe
   }
 }
 
+// --export-matrices FILE.json: the manifest's path and the stem of its Matrix Market files, checked
+// before anything is computed (a path that cannot be written is an input error, exit 2).
+std::string export_stem(const std::string& path) {
+  namespace fs = std::filesystem;
+  const fs::path p(path);
+  if (p.extension() != ".json" || p.stem().empty()) {
+    throw InputError(fmt::format("--export-matrices {}: must be a FILE.json (the manifest; the matrices go beside it "
+                                 "as FILE.A0.mtx, FILE.B.mtx and FILE.load.mtx)", path));
+  }
+  std::error_code ec;
+  if (p.has_parent_path()) fs::create_directories(p.parent_path(), ec);
+  const fs::path stem = fs::path(p).replace_extension();
+  const ExportedArrays arrays = matrix_market_files(stem.string());
+  for (const std::string& file : {path, arrays.A0, arrays.B, arrays.load}) {
+    const bool existed = fs::exists(file, ec);
+    bool writable = !fs::is_directory(file, ec);
+    if (writable) writable = static_cast<bool>(std::ofstream(file, std::ios::app));
+    if (!existed) fs::remove(file, ec);
+    if (!writable) throw InputError(fmt::format("--export-matrices {}: cannot write {}", path, file));
+  }
+  return stem.string();
+}
+
+// The system the answer's Floquet analysis integrated (its basis, reduction and load series), in
+// Matrix Market files, and a manifest with everything else a reader needs.
+void export_matrices(const std::string& path, const std::string& stem, const Scene& scene, const StabilityAnswer& a,
+                     double tolerance) {
+  const PeriodicSystem sys = periodic_system(assemble_model(scene.blade, a.model), scene, a.load, a.reduction);
+  const ExportedArrays files = write_matrix_market(sys, stem);
+  const auto name = [](const std::string& file) { return std::filesystem::path(file).filename().string(); };
+  JsonWriter json;
+  json.begin_object()
+      .value("format", "bladestab periodic system, Matrix Market")
+      .value("equation", "dy/dt = (A0 + (F(t) - F0) B) y,  F(t) = sum over |m| <= M of F_m exp(i m theta t), "
+                         "F_-m = conj(F_m), F0 = F_0")
+      .value("A0", name(files.A0))
+      .value("B", name(files.B))
+      .value("load", name(files.load))
+      .value("states", sys.state_size())
+      .value("theta_rad_s", sys.angular_frequency)
+      .value("period_s", sys.period())
+      .value("load_harmonics", static_cast<int>(sys.load.size()) - 1)
+      .value("scene", scene.source)
+      .value("speed_rad_s", scene.operation.speed_rad_s)
+      .value("fmax_over_fcr", scene.load.fmax_over_fcr)
+      .value("load_approximation", to_string(scene.load.approximation))
+      .value("basis", to_string(a.model.basis))
+      .value("terms", a.model.terms)
+      .value("reduction", to_string(a.reduction.kind))
+      .value("reduction_vectors", a.reduction.vectors)
+      .value("reduced_dofs", sys.kept_modes)
+      .value("full_dofs", sys.all_modes)
+      .value("method", to_string(a.floquet.method))
+      .value("tolerance", tolerance)
+      .value("max_abs_multiplier", a.floquet.max_abs_multiplier)
+      .value("stable", a.stable);
+  write_error_budget(json, a.budget);
+  json.end_object();
+  write_file(path, json.str() + "\n");
+}
+
 }  // namespace
 
 Command register_stability(CLI::App& app) {
@@ -148,6 +213,7 @@ Command register_stability(CLI::App& app) {
   auto harmonics = std::make_shared<int>(0);
   auto tolerance = std::make_shared<double>(1e-6);
   auto cutoff = std::make_shared<double>(0);
+  auto export_path = std::make_shared<std::string>();
   add_scene_options(*command, *options);
   command->add_option("--method", *method, "hill, koopman-hill, monodromy (Magnus), monodromy-rkf45 or auto (default)")
       ->check(CLI::IsMember({"hill", "koopman-hill", "monodromy", "monodromy-rkf45", "auto"}));
@@ -156,13 +222,23 @@ Command register_stability(CLI::App& app) {
   command->add_option("--cutoff-hz", *cutoff,
                       "modal truncation: keep only the unloaded modes below this frequency (model.reduction = "
                       "\"modal\"; default: the automatic reduction)");
+  command->add_option("--export-matrices", *export_path,
+                      "write the periodic system the analysis integrated: FILE.json (manifest) and beside it "
+                      "FILE.A0.mtx, FILE.B.mtx, FILE.load.mtx (Matrix Market)");
   return [=] {
     if (*harmonics < 0 || *harmonics > 60) throw InputError(fmt::format("--harmonics {}: must be in [1, 60]", *harmonics));
     if (!(*tolerance > 0 && *tolerance < 1)) throw InputError(fmt::format("--tolerance {}: must be in (0, 1)", *tolerance));
     if (!(*cutoff >= 0)) throw InputError(fmt::format("--cutoff-hz {}: must be >= 0", *cutoff));
+    const std::string stem = export_path->empty() ? "" : export_stem(*export_path);
     Scene scene = options->load();
     if (*cutoff > 0) scene.model.reduction = {ReductionKind::modal, 0, *cutoff};
-    print(*options, scene, analyse_stability(scene, {parse_method(*method), *harmonics, *tolerance}));
+    if (!stem.empty() && scene.load.approximation == LoadApproximation::exact) {
+      throw InputError(fmt::format("--export-matrices {}: load.approximation = \"exact\" is integrated through each "
+                                   "pulse and has no series to export; use \"cosine\" or \"fourier\"", *export_path));
+    }
+    const StabilityAnswer answer = analyse_stability(scene, {parse_method(*method), *harmonics, *tolerance});
+    if (!stem.empty()) export_matrices(*export_path, stem, scene, answer, *tolerance);
+    print(*options, scene, answer);
   };
 }
 
