@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "bladestab/error_budget.hpp"
+#include "bladestab/input_error.hpp"
 #include "bladestab/modes.hpp"
 #include "bladestab/scene.hpp"
 
@@ -38,9 +39,32 @@ int reference_terms(BasisKind basis, int terms);
 // 1/(1 − 2^−0.9) = 2.15, the rate its modes' estimate trusts at most.
 double basis_tail_factor(BasisKind basis);
 
+// Relative basis error of f[0] (n[0] terms) from the same mode in richer models: f[1] (n[1]
+// terms) and, for the sine basis' algebraic convergence, f[2] (n[2] terms). `relative` is
+// `factor` · |f[0] − f[1]| / |f[1]|: 1.1 for exponential convergence, 1/(1 − (n₀/n₁)^p) for
+// algebraic convergence at the measured rate p (at most 0.9).
+struct BasisTail {
+  double relative = 0;
+  double factor = 1;
+};
+BasisTail basis_tail(const std::vector<double>& f, const std::vector<int>& n);
+
+// The terms to try next for `tolerance` when an N-term model's estimate is `estimate`: Legendre
+// N + 2, sine 2N (at most 200); none when N is at that limit, or for the sine basis when even a
+// convergence like N^−2 (its asymptotic rate is 1) would need more than 200 terms.
+std::optional<int> terms_for_tolerance(BasisKind basis, int terms, double estimate, double tolerance);
+
+// InputError (naming --tolerance) unless 0 < tolerance < 1 and tolerance > 1e-12, the
+// eigensolver's rounding that every estimate includes.
+void check_tolerance(double tolerance);
+
+// The one-line InputError for a tolerance that raising the terms cannot meet.
+InputError tolerance_not_met(double tolerance, const ModelSpec& spec, double estimate);
+
 // Modes of `scene` at its speed with their error estimates. With a tolerance, the number of terms
-// starts at the scene's and grows until every one of the `count` lowest modes meets it (an
-// InputError if 200 terms do not suffice).
+// starts at the scene's and grows until every one of the `count` lowest modes has a whole
+// estimate (basis + method) within it; an InputError when raising cannot get there
+// (terms_for_tolerance) or the tolerance is out of range (check_tolerance).
 ConvergedModes modes_with_error_estimate(const Scene& scene, int count, EigenSolverKind solver,
                                          std::optional<double> tolerance = std::nullopt);
 
