@@ -97,6 +97,7 @@ Tracked track(SpeedSweep& sweep, const BladeModel& model, const CampbellOptions&
     c.damping_ratio.reserve(ns);
     c.correlation.reserve(ns);
     c.reduction_bound.reserve(ns);
+    c.rounding.reserve(ns);
   }
   Eigen::MatrixXcd previous;
   std::vector<int> pick(nt);
@@ -121,6 +122,7 @@ Tracked track(SpeedSweep& sweep, const BladeModel& model, const CampbellOptions&
       c.damping_ratio.push_back(here.damping_ratio[pick[i]]);
       c.correlation.push_back(mac[i]);
       c.reduction_bound.push_back(here.bound[pick[i]]);
+      c.rounding.push_back(here.rounding[pick[i]]);
     }
   }
   return t;
@@ -140,6 +142,8 @@ void find_crossings(SpeedSweep& sweep, const Tracked& t, CampbellDiagram& d, std
         const double g0 = curve.frequency_hz[s] - line * speeds[s];
         const double g1 = curve.frequency_hz[s + 1] - line * speeds[s + 1];
         if (!((g0 > 0 && g1 <= 0) || (g0 < 0 && g1 >= 0))) continue;
+        // A pair that does not oscillate at either end (heavy damping) meets no line.
+        if (curve.frequency_hz[s] <= 0 || curve.frequency_hz[s + 1] <= 0) continue;
         const Eigen::VectorXcd shape = t.modes[s].shapes.col(t.pick[i][s]);
         const auto g = [&](double speed) {
           const SpeedModes modes = sweep.at(speed, false);
@@ -148,12 +152,13 @@ void find_crossings(SpeedSweep& sweep, const Tracked& t, CampbellDiagram& d, std
         const double root = g1 == 0 ? speeds[s + 1] : refine_crossing(g, speeds[s], g0, speeds[s + 1], g1);
         // Slope of g by a central difference on the sweep's modes.
         const double h = 1e-4 * (speeds[s + 1] - speeds[s]);
-        const double lo = std::max(0.0, root - h), hi = root + h;
+        const double lo = std::max(speeds[s], root - h), hi = std::min(speeds[s + 1], root + h);
         const double slope = (g(hi) - g(lo)) / (hi - lo);
         // The whole model at the root, one secant step with that slope, and the whole model again.
         const double first = sweep.whole_frequency(root, shape) - line * root;
         const bool steep = std::abs(slope) > 1e-9 * line;
-        const double speed = steep ? root - first / slope : root;
+        double speed = steep ? root - first / slope : root;
+        if (!(speed >= speeds[s] && speed <= speeds[s + 1])) speed = root;
         const double residual = sweep.whole_frequency(speed, shape) - line * speed;
         EngineOrderCrossing x;
         x.engine_order = k;
@@ -226,24 +231,29 @@ Eigen::MatrixXcd coordinate_map(const SpeedSweep& base, const BladeModel& base_m
   return (richer.metric() * (embedding(base_model, richer_model) * base.dofs())).cast<std::complex<double>>();
 }
 
-// Budget of one point: the base model's frequency f0 with its reduction bound b0 and shape, the
-// richer models' modes at the same speed.
-ErrorBudget point_budget(double f0, double b0, const Eigen::VectorXcd& shape, const std::vector<Reference>& refs,
-                         const std::vector<const SpeedModes*>& at, const std::vector<int>& terms) {
+// Budget of one point: mode j of the base model's modes `here`, with its shape, against the
+// richer models' modes at the same speed. Relative on the frequency; on |λ| for a pair that does
+// not oscillate (frequency 0, heavy damping), as `modes` does.
+ErrorBudget point_budget(const SpeedModes& here, int j, const Eigen::VectorXcd& shape,
+                         const std::vector<Reference>& refs, const std::vector<const SpeedModes*>& at,
+                         const std::vector<int>& terms) {
+  const bool oscillates = here.frequency_hz[j] > 0;
+  const auto value = [&](const SpeedModes& m, int k) { return oscillates ? m.frequency_hz[k] : m.natural_hz[k]; };
   ErrorBudget b;
+  const double f0 = value(here, j), b0 = here.bound[j];
   b.reduction = b0;
-  b.method = eigensolver_rounding;
+  b.method = here.rounding[j];
   std::vector<double> f{f0};
   double f1_bound = 0;
   for (std::size_t r = 0; r < refs.size(); ++r) {
     double mac = 0;
-    const int j = most_like(*at[r], refs[r].map * shape, &mac);
-    if (mac < counterpart_mac) {
+    const int k = most_like(*at[r], refs[r].map * shape, &mac);
+    if (mac < counterpart_mac || value(*at[r], k) <= 0) {
       b.basis = 1;  // no counterpart: nothing is known
       return b;
     }
-    f.push_back(at[r]->frequency_hz[j]);
-    if (r == 0) f1_bound = at[r]->frequency_hz[j] * at[r]->bound[j];
+    f.push_back(value(*at[r], k));
+    if (r == 0) f1_bound = f.back() * at[r]->bound[k];
   }
   // |f_N − f_ref| of the whole models is at most the reduced values' difference plus both bounds.
   const BasisTail tail = basis_tail(f, terms);
@@ -251,10 +261,15 @@ ErrorBudget point_budget(double f0, double b0, const Eigen::VectorXcd& shape, co
   return b;
 }
 
-double worst_total(const std::vector<std::vector<ErrorBudget>>& budget) {
+// The largest whole estimate over the points that oscillate. A pair that does not (frequency 0,
+// heavy damping) keeps its estimate on |λ| but does not steer the terms: the 0 printed for it is
+// right whatever they are, as long as the pair stays overdamped.
+double worst_total(const CampbellDiagram& d, const std::vector<std::vector<ErrorBudget>>& budget) {
   double worst = 0;
-  for (const auto& curve : budget) {
-    for (const ErrorBudget& b : curve) worst = std::max(worst, b.total());
+  for (std::size_t i = 0; i < budget.size(); ++i) {
+    for (std::size_t s = 0; s < budget[i].size(); ++s) {
+      if (d.curves[i].frequency_hz[s] > 0) worst = std::max(worst, budget[i][s].total());
+    }
   }
   return worst;
 }
@@ -305,9 +320,11 @@ CampbellWithErrors campbell_with_error_estimate(const Scene& scene, const Campbe
   while (true) {
     auto model = std::make_unique<BladeModel>(assemble_model(scene.blade, spec));
     const int count = solve_count(*model, wanted), nt = tracked_count(*model, wanted);
-    const auto sweep_of = [&](const BladeModel& m, int modes) {
-      return dense ? make_dense_speed_sweep(m, scene.damping, modes, wanted.solver)
-                   : make_speed_sweep(m, scene.damping, modes, wanted.solver, wanted.reduction_tolerance, lo, hi);
+    // The richer models are solved densely where they are solved whole, as `modes` does (ARPACK
+    // is for the lowest modes of large models, and some damped pairs defeat it).
+    const auto sweep_of = [&](const BladeModel& m, int modes, EigenSolverKind solver) {
+      return dense ? make_dense_speed_sweep(m, scene.damping, modes, solver)
+                   : make_speed_sweep(m, scene.damping, modes, solver, wanted.reduction_tolerance, lo, hi);
     };
     std::vector<int> terms{spec.terms};
     std::vector<Reference> refs;
@@ -323,8 +340,13 @@ CampbellWithErrors campbell_with_error_estimate(const Scene& scene, const Campbe
       spec.terms = *next;
     };
     try {
-      std::unique_ptr<SpeedSweep> base = sweep_of(*model, count);
-      for (Reference& r : refs) r.sweep = sweep_of(*r.model, count);
+      std::unique_ptr<SpeedSweep> base = sweep_of(*model, count, wanted.solver);
+      const EigenSolverKind richer_solver =
+          wanted.solver == EigenSolverKind::arpack ? EigenSolverKind::dense : wanted.solver;
+      for (Reference& r : refs) {
+        r.sweep = reduced_sweep_applies(*r.model, scene.damping) ? sweep_of(*r.model, count, richer_solver)
+                                                                 : sweep_of(*r.model, count, EigenSolverKind::dense);
+      }
       const auto maps = [&] {
         for (Reference& r : refs) r.map = coordinate_map(*base, *model, *r.sweep, *r.model);
       };
@@ -339,9 +361,9 @@ CampbellWithErrors campbell_with_error_estimate(const Scene& scene, const Campbe
         std::vector<const SpeedModes*> at;
         for (const SpeedModes& m : richer) at.push_back(&m);
         for (int j = 0; j < nt; ++j) {
-          screened = std::max(screened, point_budget(here.frequency_hz[j], here.bound[j], here.shapes.col(j), refs,
-                                                     at, terms)
-                                            .total());
+          if (here.frequency_hz[j] > 0) {
+            screened = std::max(screened, point_budget(here, j, here.shapes.col(j), refs, at, terms).total());
+          }
         }
       }
       if (screened > tolerance) {
@@ -362,11 +384,10 @@ CampbellWithErrors campbell_with_error_estimate(const Scene& scene, const Campbe
         const SpeedModes& here = t.modes[s];
         for (int i = 0; i < nt; ++i) {
           const int j = t.pick[i][s];
-          budget[i][s] =
-              point_budget(here.frequency_hz[j], here.bound[j], here.shapes.col(j), refs, at, terms);
+          budget[i][s] = point_budget(here, j, here.shapes.col(j), refs, at, terms);
         }
       }
-      const double worst = worst_total(budget);
+      const double worst = worst_total(diagram, budget);
       if (worst > tolerance) {
         raise(worst);
         continue;
@@ -382,7 +403,7 @@ CampbellWithErrors campbell_with_error_estimate(const Scene& scene, const Campbe
         for (Reference& r : refs) there.push_back(r.sweep->at(x.speed_rad_s, true));
         for (std::size_t r = 0; r < refs.size(); ++r) at[r] = &there[r];
         const int j = most_like(here, shapes[c]);
-        const ErrorBudget f = point_budget(here.frequency_hz[j], here.bound[j], here.shapes.col(j), refs, at, terms);
+        const ErrorBudget f = point_budget(here, j, here.shapes.col(j), refs, at, terms);
         ErrorBudget b;
         b.basis = x.amplification * f.basis;
         b.reduction = x.amplification * x.residual;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 
 #include <fmt/format.h>
@@ -92,8 +93,14 @@ std::vector<double> compare(const std::vector<ModalSolution>& models, const std:
 ErrorBudget ConvergedModes::budget(std::size_t k) const {
   ErrorBudget b;
   b.basis = relative_error[k];
-  b.method = eigensolver_rounding;
+  b.method = rounding[k];
   return b;
+}
+
+double frequency_rounding(const Eigen::MatrixXd& absolute_stiffness, const Eigen::VectorXd& absolute_shape,
+                          double stiffness_form) {
+  const double spread = absolute_shape.dot(absolute_stiffness * absolute_shape) / std::abs(stiffness_form);
+  return std::max(eigensolver_rounding, 10 * std::numeric_limits<double>::epsilon() * spread);
 }
 
 ErrorBudget ConvergedModes::worst_budget() const {
@@ -162,7 +169,14 @@ ConvergedModes modes_with_error_estimate(const Scene& scene, int count, EigenSol
       models.push_back(modes_of(assemble_model(scene.blade, richer), scene, 0, EigenSolverKind::dense));
       terms.push_back(richer.terms);
     }
-    ConvergedModes result{std::move(model), std::move(solution), terms.back(), compare(models, terms)};
+    std::vector<double> rounding;
+    const Eigen::MatrixXd K = model.stiffness(scene.operation.speed_rad_s);
+    const Eigen::MatrixXd absolute = K.cwiseAbs();
+    for (const Mode& m : solution.modes) {
+      rounding.push_back(frequency_rounding(absolute, m.shape.cwiseAbs(), (m.shape.adjoint() * K * m.shape)(0).real()));
+    }
+    ConvergedModes result{std::move(model), std::move(solution), terms.back(), compare(models, terms),
+                          std::move(rounding)};
     // The whole estimate of every mode (basis + method), as printed, must meet the tolerance.
     const double estimate = result.worst_budget().total();
     if (!tolerance || estimate <= *tolerance) return result;

@@ -9,6 +9,7 @@
 #include <lapacke.h>
 
 #include "bladestab/damping.hpp"
+#include "bladestab/mode_convergence.hpp"
 
 namespace bladestab {
 namespace {
@@ -53,11 +54,20 @@ public:
     for (int j = 0; j < k; ++j) {
       const Mode& m = sol.modes[j];
       out.frequency_hz.push_back(m.frequency_hz);
+      out.natural_hz.push_back(std::abs(m.eigenvalue) / two_pi);
       out.damping_ratio.push_back(m.damping_ratio);
       out.family.push_back(m.family);
       out.shapes.col(j) = upper_complex_ * m.shape;  // Lᵀq: qᴴMq = 1 makes it a unit vector
     }
-    if (certify) out.bound.assign(k, 0.0);
+    if (certify) {
+      out.bound.assign(k, 0.0);
+      const Eigen::MatrixXd K = model_.stiffness(speed);
+      const Eigen::MatrixXd absolute = K.cwiseAbs();
+      for (const Mode& m : sol.modes) {
+        out.rounding.push_back(
+            frequency_rounding(absolute, m.shape.cwiseAbs(), (m.shape.adjoint() * K * m.shape)(0).real()));
+      }
+    }
     return out;
   }
 
@@ -98,13 +108,14 @@ private:
 // for all eigenvalues a third of it.
 class SubsetEigensolver {
 public:
-  // Uses the lower triangle of `a`. Values in values().head(count), vectors in vectors().
-  void solve(const Eigen::MatrixXd& a, int first, int count) {
+  // Uses the lower triangle of `a`. Values in values().head(count), vectors in vectors();
+  // `hints` (optional) are guesses of the values.
+  void solve(const Eigen::MatrixXd& a, int first, int count, const Eigen::VectorXd* hints = nullptr) {
     const Eigen::Index n = a.rows();
     tridiagonal_.compute(a);
     diagonal_ = tridiagonal_.diagonal();
     sub_ = tridiagonal_.subDiagonal();
-    bisect(first, count);
+    bisect(first, count, hints);
     if (start_.size() != n) {
       start_.resize(n);
       for (Eigen::Index i = 0; i < n; ++i) start_(i) = 1 + 0.5 * std::sin(1.7 * static_cast<double>(i));
@@ -125,15 +136,26 @@ public:
       }
       z.normalize();
     }
-    vectors_.noalias() = tridiagonal_.matrixQ() * z_;
+    // Back by the reflections one by one: Eigen's blocked product forms a triangular factor that
+    // costs more than it saves at these sizes.
+    vectors_ = z_;
+    const Eigen::MatrixXd& packed = tridiagonal_.packedMatrix();
+    const Eigen::VectorXd& tau = tridiagonal_.householderCoefficients();
+    workspace_.resize(count);
+    for (Eigen::Index k = n - 2; k >= 0; --k) {
+      vectors_.bottomRows(n - k - 1).applyHouseholderOnTheLeft(packed.col(k).tail(n - k - 2), tau(k),
+                                                                 workspace_.data());
+    }
   }
   const Eigen::VectorXd& values() const { return values_; }
   const Eigen::MatrixXd& vectors() const { return vectors_; }
 
 private:
   // Eigenvalues first .. first + count − 1 to a relative 1e-8: shifts for inverse iteration, whose
-  // three steps need no more (the Ritz values are recomputed from the vectors).
-  void bisect(int first, int count) {
+  // three steps need no more (the Ritz values are recomputed from the vectors). `hints`, if as
+  // many, are guesses (the last speed's values): counts on either side of each narrow the
+  // brackets at once; wrong guesses cost only those counts.
+  void bisect(int first, int count, const Eigen::VectorXd* hints) {
     const Eigen::Index n = diagonal_.size();
     squares_ = sub_.cwiseAbs2();
     double lo = diagonal_(0), hi = diagonal_(0);
@@ -143,52 +165,65 @@ private:
       hi = std::max(hi, diagonal_(i) + radius);
     }
     norm_ = std::max(std::abs(lo), std::abs(hi));
-    const double pivmin = std::numeric_limits<double>::min() * std::max(1.0, squares_.size() ? squares_.maxCoeff() : 1.0);
-    // Exactly `first` eigenvalues lie below zero for the matrices here (±ω); start there if so.
+    pivmin_ = std::numeric_limits<double>::min() * std::max(1.0, squares_.size() ? squares_.maxCoeff() : 1.0);
     lower_.assign(count, lo);
     upper_.assign(count, hi);
-    middle_.resize(count);
-    q_.resize(count);
-    below_.resize(count);
-    const double* d = diagonal_.data();
-    const double* e2 = squares_.data();
+    if (hints && hints->size() == count) {
+      points_.resize(2 * static_cast<std::size_t>(count));
+      for (int k = 0; k < count; ++k) {
+        points_[2 * k] = (*hints)(k) - 0.02 * std::abs((*hints)(k));
+        points_[2 * k + 1] = (*hints)(k) + 0.02 * std::abs((*hints)(k));
+      }
+      narrow(first, count);
+    }
+    points_.resize(count);
     for (int iteration = 0; iteration < 200; ++iteration) {
       bool converged = true;
       for (int k = 0; k < count; ++k) {
-        middle_[k] = 0.5 * (lower_[k] + upper_[k]);
-        converged = converged && upper_[k] - lower_[k] <= 1e-8 * std::abs(middle_[k]) + 1e3 * pivmin;
+        points_[k] = 0.5 * (lower_[k] + upper_[k]);
+        converged = converged && upper_[k] - lower_[k] <= 1e-8 * std::abs(points_[k]) + 1e3 * pivmin_;
       }
       if (converged) break;
-      // Sturm counts: eigenvalues below each midpoint (the signs of the LDLᵀ pivots of T − x I),
-      // the lanes interleaved so that their divisions overlap.
-      for (int k = 0; k < count; ++k) {
-        double q = d[0] - middle_[k];
-        if (std::abs(q) < pivmin) q = -pivmin;
-        q_[k] = q;
-        below_[k] = q < 0;
-      }
-      for (Eigen::Index i = 1; i < n; ++i) {
-        const double di = d[i], ei = e2[i - 1];
-        for (int k = 0; k < count; ++k) {
-          double q = (di - middle_[k]) - ei / q_[k];
-          if (std::abs(q) < pivmin) q = -pivmin;
-          q_[k] = q;
-          below_[k] += q < 0;
-        }
-      }
-      // Each count places every wanted eigenvalue above or below its midpoint.
-      for (int k = 0; k < count; ++k) {
-        for (int j = 0; j < count; ++j) {
-          if (below_[k] > first + j) {
-            upper_[j] = std::min(upper_[j], middle_[k]);
-          } else {
-            lower_[j] = std::max(lower_[j], middle_[k]);
-          }
-        }
-      }
+      narrow(first, count);
     }
     values_.resize(count);
     for (int k = 0; k < count; ++k) values_(k) = 0.5 * (lower_[k] + upper_[k]);
+  }
+
+  // Sturm counts at points_ (the eigenvalues below each: signs of the LDLᵀ pivots of T − x I, the
+  // points interleaved so that their divisions overlap); each count places every wanted
+  // eigenvalue above or below its point.
+  void narrow(int first, int count) {
+    const Eigen::Index n = diagonal_.size();
+    const std::size_t np = points_.size();
+    q_.resize(np);
+    below_.resize(np);
+    const double* d = diagonal_.data();
+    const double* e2 = squares_.data();
+    for (std::size_t k = 0; k < np; ++k) {
+      double q = d[0] - points_[k];
+      if (std::abs(q) < pivmin_) q = -pivmin_;
+      q_[k] = q;
+      below_[k] = q < 0;
+    }
+    for (Eigen::Index i = 1; i < n; ++i) {
+      const double di = d[i], ei = e2[i - 1];
+      for (std::size_t k = 0; k < np; ++k) {
+        double q = (di - points_[k]) - ei / q_[k];
+        if (std::abs(q) < pivmin_) q = -pivmin_;
+        q_[k] = q;
+        below_[k] += q < 0;
+      }
+    }
+    for (std::size_t k = 0; k < np; ++k) {
+      for (int j = 0; j < count; ++j) {
+        if (below_[k] > first + j) {
+          upper_[j] = std::min(upper_[j], points_[k]);
+        } else {
+          lower_[j] = std::max(lower_[j], points_[k]);
+        }
+      }
+    }
   }
 
   // LU with partial pivoting of T − shift·I (tridiagonal; U gets a second superdiagonal).
@@ -233,11 +268,12 @@ private:
 
   Eigen::Tridiagonalization<Eigen::MatrixXd> tridiagonal_;
   Eigen::VectorXd diagonal_, sub_, squares_, values_, start_, u0_, u1_, u2_, l_;
-  std::vector<double> lower_, upper_, middle_, q_;
+  std::vector<double> lower_, upper_, points_, q_;
   std::vector<int> below_;
-  double norm_ = 0;
+  double norm_ = 0, pivmin_ = 0;
   std::vector<bool> swapped_;
   Eigen::MatrixXd z_, vectors_;
+  Eigen::VectorXd workspace_;
 };
 
 // Number of negative eigenvalues of a symmetric matrix (lower triangle) by Bunch–Kaufman LDLᵀ
@@ -310,6 +346,8 @@ public:
     C1_.middleRows(model.layout.axial_offset(), model.layout.axial_count) *= -1;
     C1_ = 0.5 * (C1_ + C1_.transpose());
     gram_floor_ = std::clamp(0.002 * tolerance, 1e-24, 1e-10);
+    absolute_KS_ = model.K_S.cwiseAbs();
+    absolute_KC1_ = model.K_C1.cwiseAbs();
     V_.resize(n_, 0);
     for (double speed : {lo, 0.5 * (lo + hi), hi}) add_sample(speed);
   }
@@ -367,7 +405,8 @@ public:
     H_.setZero(2 * m, 2 * m);
     H_.bottomLeftCorner(m, m) = reduced_cholesky_.matrixL();
     H_.bottomRightCorner(m, m) = -Cr_;
-    eigensolver_.solve(H_, m, p);
+    // The last speed's Ritz values guess these (the speeds come in order).
+    eigensolver_.solve(H_, m, p, theta_.size() == p ? &theta_ : nullptr);
     Xr_ = eigensolver_.vectors().block(m, 0, m, p);
     Xr_.colwise().normalize();
     KrX_.noalias() = Kr_ * Xr_;
@@ -386,10 +425,11 @@ public:
     out.frequency_hz.resize(k);
     out.damping_ratio.assign(k, 0.0);
     for (int j = 0; j < k; ++j) out.frequency_hz[j] = theta_(j) / two_pi;
+    out.natural_hz = out.frequency_hz;
     out.shapes = Xr_.leftCols(k).cast<std::complex<double>>();
     if (certify) {
       out.bound = bounds(speed, k);
-      families(out, k);
+      families(out, speed, k);
     }
     return out;
   }
@@ -536,22 +576,30 @@ private:
     return bound;
   }
 
-  // Families from the kinetic-energy shares of the first k Ritz vectors (after bounds()).
-  void families(SpeedModes& out, int k) const {
-    const Eigen::MatrixXd X = V_ * Xr_.leftCols(k);
+  // Families from the kinetic-energy shares of the first k Ritz vectors, and their frequencies'
+  // rounding (after bounds()).
+  void families(SpeedModes& out, double speed, int k) {
+    X_.noalias() = V_ * Xr_.leftCols(k);
+    absolute_X_ = X_.cwiseAbs();
+    spread_.noalias() = absolute_KS_ * absolute_X_;
+    spread_.noalias() += (speed * speed) * (absolute_KC1_ * absolute_X_);
     const DofLayout& l = model_.layout;
     const int offsets[3] = {l.theta_offset(), l.lateral_offset(), l.axial_offset()};
     const int counts[3] = {l.theta_count, l.lateral_count, l.axial_count};
     out.family.resize(k);
+    out.rounding.resize(k);
     for (int j = 0; j < k; ++j) {
       Eigen::Vector3d share;
       for (int f = 0; f < 3; ++f) {
-        share(f) = counts[f] ? X.col(j).segment(offsets[f], counts[f]).dot(MX_.col(j).segment(offsets[f], counts[f]))
+        share(f) = counts[f] ? X_.col(j).segment(offsets[f], counts[f]).dot(MX_.col(j).segment(offsets[f], counts[f]))
                              : 0.0;
       }
       Eigen::Index family = 0;
       share.maxCoeff(&family);
       out.family[j] = family == 0 ? ModeFamily::rotation : family == 1 ? ModeFamily::bending : ModeFamily::axial;
+      // frequency_rounding with |K(Ω)| ≤ |K_S| + Ω²|K_C1|
+      out.rounding[j] = std::max(eigensolver_rounding, 10 * std::numeric_limits<double>::epsilon() *
+                                                           absolute_X_.col(j).dot(spread_.col(j)) / stiffness_form_(j));
     }
   }
 
@@ -563,7 +611,8 @@ private:
   Eigen::MatrixXd V_, KSV_, KC1V_, C1V_, MV_, KSr_, KC1r_, C1r_;
   std::vector<double> samples_;
   // Workspace of at() and bounds(), reused from speed to speed.
-  Eigen::MatrixXd Kr_, Cr_, H_, Xr_, KrX_, CrX_, K_, Q_, KX_, CX_, MX_, residual_;
+  Eigen::MatrixXd Kr_, Cr_, H_, Xr_, KrX_, CrX_, K_, Q_, KX_, CX_, MX_, residual_, X_, absolute_X_, spread_;
+  Eigen::MatrixXd absolute_KS_, absolute_KC1_;
   Eigen::VectorXd theta_, stiffness_form_, mu_, eps_;
   Eigen::LLT<Eigen::MatrixXd> reduced_cholesky_, stiffness_cholesky_;
   SubsetEigensolver eigensolver_;

@@ -30,6 +30,7 @@ struct CampbellCurve {
   std::vector<double> damping_ratio;
   std::vector<double> correlation;        // MAC with the previous speed's shape (1 at the first)
   std::vector<double> reduction_bound;    // relative bound on |f − f_Ritz model| / f (0 when solved whole)
+  std::vector<double> rounding;           // relative rounding of f (frequency_rounding)
 };
 
 struct EngineOrderCrossing {

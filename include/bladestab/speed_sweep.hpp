@@ -44,10 +44,12 @@ namespace bladestab {
 // The `count` lowest modes of one model at one speed, by frequency.
 struct SpeedModes {
   double speed_rad_s = 0;
-  std::vector<double> frequency_hz;
+  std::vector<double> frequency_hz;  // |Im λ| / 2π (0 for an overdamped pair)
+  std::vector<double> natural_hz;    // |λ| / 2π, the same as frequency_hz without damping
   std::vector<double> damping_ratio;
   std::vector<double> bound;       // relative bound on |f − f_Ritz model| / f (0 when solved whole;
                                    // empty when not asked for)
+  std::vector<double> rounding;    // relative rounding of f (frequency_rounding), with the bound
   std::vector<ModeFamily> family;
   Eigen::MatrixXcd shapes;         // unit columns in the sweep's coordinates: MAC(a, b) = |aᴴ b|²
 };
