@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <future>
 #include <memory>
 #include <optional>
 
@@ -340,20 +341,31 @@ CampbellWithErrors campbell_with_error_estimate(const Scene& scene, const Campbe
       spec.terms = *next;
     };
     try {
-      std::unique_ptr<SpeedSweep> base = sweep_of(*model, count, wanted.solver);
+      // The richer models' sweeps run beside the base model's, on a second thread (each sweep is
+      // its own; BLAS runs single-threaded and is thread-safe).
       const EigenSolverKind richer_solver =
           wanted.solver == EigenSolverKind::arpack ? EigenSolverKind::dense : wanted.solver;
-      for (Reference& r : refs) {
-        r.sweep = reduced_sweep_applies(*r.model, scene.damping) ? sweep_of(*r.model, count, richer_solver)
-                                                                 : sweep_of(*r.model, count, EigenSolverKind::dense);
+      auto richer_sweeps = std::async(std::launch::async, [&] {
+        for (Reference& r : refs) {
+          r.sweep = reduced_sweep_applies(*r.model, scene.damping) ? sweep_of(*r.model, count, richer_solver)
+                                                                   : sweep_of(*r.model, count, EigenSolverKind::dense);
+        }
+      });
+      std::unique_ptr<SpeedSweep> base;
+      try {
+        base = sweep_of(*model, count, wanted.solver);
+      } catch (...) {
+        richer_sweeps.wait();
+        throw;
       }
+      richer_sweeps.get();
       const auto maps = [&] {
         for (Reference& r : refs) r.map = coordinate_map(*base, *model, *r.sweep, *r.model);
       };
       // Screen at the ends and the middle (the reduced sweeps' samples, where they are exact): a
       // basis that misses there is raised before the whole sweep.
       maps();
-      double screened = 0;
+      double screened = 0, rounding = 0;
       for (double speed : {lo, 0.5 * (lo + hi), hi}) {
         const SpeedModes here = base->at(speed, true);
         std::vector<SpeedModes> richer;
@@ -362,19 +374,31 @@ CampbellWithErrors campbell_with_error_estimate(const Scene& scene, const Campbe
         for (const SpeedModes& m : richer) at.push_back(&m);
         for (int j = 0; j < nt; ++j) {
           if (here.frequency_hz[j] > 0) {
-            screened = std::max(screened, point_budget(here, j, here.shapes.col(j), refs, at, terms).total());
+            const ErrorBudget b = point_budget(here, j, here.shapes.col(j), refs, at, terms);
+            screened = std::max(screened, b.total());
+            rounding = std::max(rounding, b.method);
           }
         }
       }
+      if (rounding > tolerance) throw tolerance_below_rounding(tolerance, rounding);
       if (screened > tolerance) {
         raise(screened);
         continue;
       }
 
       CampbellDiagram diagram;
-      const Tracked t = track(*base, *model, wanted, diagram, progress);
-      std::vector<std::vector<SpeedModes>> richer;
-      for (Reference& r : refs) richer.push_back(r.sweep->solve(speeds));
+      std::vector<std::vector<SpeedModes>> richer(refs.size());
+      auto richer_solved = std::async(std::launch::async, [&] {
+        for (std::size_t r = 0; r < refs.size(); ++r) richer[r] = refs[r].sweep->solve(speeds);
+      });
+      Tracked t;
+      try {
+        t = track(*base, *model, wanted, diagram, progress);
+      } catch (...) {
+        richer_solved.wait();
+        throw;
+      }
+      richer_solved.get();
       maps();
       const int ns = static_cast<int>(speeds.size());
       std::vector<std::vector<ErrorBudget>> budget(nt, std::vector<ErrorBudget>(ns));
@@ -389,6 +413,10 @@ CampbellWithErrors campbell_with_error_estimate(const Scene& scene, const Campbe
       }
       const double worst = worst_total(diagram, budget);
       if (worst > tolerance) {
+        for (const auto& curve : budget) {
+          for (const ErrorBudget& b : curve) rounding = std::max(rounding, b.method);
+        }
+        if (rounding > tolerance) throw tolerance_below_rounding(tolerance, rounding);
         raise(worst);
         continue;
       }

@@ -152,6 +152,12 @@ InputError tolerance_not_met(double tolerance, const ModelSpec& spec, double est
                                 spec.basis == BasisKind::sine ? "use the legendre basis or " : ""));
 }
 
+InputError tolerance_below_rounding(double tolerance, double rounding) {
+  return InputError(fmt::format("--tolerance {}: below the rounding of these frequencies, {:.2g} (the stiffness "
+                                "form of a slender blade's low modes cancels); more terms do not lower it",
+                                tolerance, rounding));
+}
+
 ConvergedModes modes_with_error_estimate(const Scene& scene, int count, EigenSolverKind solver,
                                          std::optional<double> tolerance) {
   if (tolerance) check_tolerance(*tolerance);
@@ -180,6 +186,8 @@ ConvergedModes modes_with_error_estimate(const Scene& scene, int count, EigenSol
     // The whole estimate of every mode (basis + method), as printed, must meet the tolerance.
     const double estimate = result.worst_budget().total();
     if (!tolerance || estimate <= *tolerance) return result;
+    const double rounded = *std::max_element(result.rounding.begin(), result.rounding.end());
+    if (rounded > *tolerance) throw tolerance_below_rounding(*tolerance, rounded);
     const std::optional<int> next = terms_for_tolerance(spec.basis, spec.terms, estimate, *tolerance);
     if (!next) throw tolerance_not_met(*tolerance, spec, estimate);
     spec.terms = *next;
