@@ -282,11 +282,28 @@ TEST_CASE("bad input: campbell options (bad_input)", "[bad_input]") {
   SECTION("no modes to track") {
     expect_rejected(campbell("0:600:10", {"--count", "0"}), {"--count 0", ">= 1"});
   }
+  SECTION("--tolerance 0") {
+    expect_rejected(campbell("0:600:10", {"--tolerance", "0"}), {"--tolerance 0", "(0, 1)"});
+  }
+  SECTION("--tolerance nan") {
+    expect_rejected(campbell("0:600:10", {"--tolerance", "nan"}), {"--tolerance nan", "(0, 1)"});
+  }
+  SECTION("--tolerance below the rounding") {
+    expect_rejected(campbell("0:600:10", {"--tolerance", "1e-13"}), {"--tolerance 1e-13", "1e-12"});
+  }
+  SECTION("--tolerance the sine basis cannot reach") {
+    expect_rejected(campbell("0:600:10", {"--set", "model.basis=sine", "--tolerance", "1e-6"}),
+                    {"--tolerance 1e-06", "not met", "legendre"});
+  }
 }
 
 TEST_CASE("bad input: modes options and command-line parse errors (bad_input)", "[bad_input]") {
   SECTION("--count 0") { expect_rejected(modes({"--count", "0"}), {"--count 0", ">= 1"}); }
   SECTION("--tolerance 2") { expect_rejected(modes({"--tolerance", "2"}), {"--tolerance 2", "(0, 1)"}); }
+  SECTION("--tolerance nan") { expect_rejected(modes({"--tolerance", "nan"}), {"--tolerance nan", "(0, 1)"}); }
+  SECTION("--tolerance below the rounding") {
+    expect_rejected(modes({"--tolerance", "1e-13"}), {"--tolerance 1e-13", "1e-12"});
+  }
   SECTION("--count not a number") { expect_rejected(modes({"--count", "abc"}), {"--count", "abc", "integer"}); }
   SECTION("--format unknown") { expect_rejected(modes({"--format", "xml"}), {"--format", "xml", "json"}); }
   SECTION("unknown option") { expect_rejected(modes({"--bogus"}), {"--bogus", "--help"}); }

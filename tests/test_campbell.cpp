@@ -1,10 +1,15 @@
 // Campbell diagram: mode tracking by shape through crossings, engine-order crossing points.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <complex>
+#include <string>
+#include <vector>
 
 #include "bladestab/campbell.hpp"
 #include "bladestab/damping.hpp"
+#include "bladestab/mode_convergence.hpp"
 #include "support/scenes.hpp"
 
 using namespace bladestab;
@@ -18,6 +23,58 @@ std::vector<double> linspace(double a, double b, int n) {
   for (int i = 0; i < n; ++i) v[i] = a + (b - a) * i / (n - 1);
   return v;
 }
+
+// Every natural frequency [Hz] of a model at one speed, by the dense solve of the whole Ritz
+// model, with its relative rounding. Undamped, each is the Rayleigh functional of its dense
+// eigenvector: the dense eigenvalue itself carries ~eps·ω_max/ω of rounding, where the functional
+// (quadratic in the vector's error) is limited by the stiffness form's own (frequency_rounding).
+struct Reference {
+  std::vector<double> hz, rounding;
+};
+Reference whole_frequencies(const BladeModel& model, const DampingSpec& damping, double speed) {
+  const SecondOrderSystem sys = system_at(model, speed, damping_matrix(model, damping, speed));
+  const ModalSolution sol = solve_modes(model, sys, speed, 0, EigenSolverKind::dense);
+  const Eigen::MatrixXd absolute = sys.K.cwiseAbs();
+  Reference out;
+  for (const Mode& m : sol.modes) {
+    const double k = (m.shape.adjoint() * sys.K * m.shape)(0).real();
+    out.rounding.push_back(frequency_rounding(absolute, m.shape.cwiseAbs(), k));
+    if (damping.model != DampingModel::none) {
+      out.hz.push_back(m.frequency_hz);
+      continue;
+    }
+    // (λ²M + λC + K)q = 0 at λ = iω: k + ω·(i qᴴCq) − ω² m = 0, i qᴴCq real for a skew C.
+    const double c = (std::complex<double>(0, 1) * (m.shape.adjoint() * sys.C * m.shape)(0)).real();
+    const double mass = (m.shape.adjoint() * sys.M * m.shape)(0).real();
+    out.hz.push_back((c + std::sqrt(c * c + 4 * k * mass)) / (2 * mass) / two_pi);
+  }
+  return out;
+}
+
+// Relative distance from f to the nearest reference frequency, less that one's rounding.
+double nearest(const Reference& reference, double f) {
+  double best = 1e300;
+  for (std::size_t k = 0; k < reference.hz.size(); ++k) {
+    best = std::min(best, std::max(0.0, std::abs(f / reference.hz[k] - 1) - reference.rounding[k]));
+  }
+  return best;
+}
+
+// A model converged far beyond the estimates checked against it (Legendre, 36 terms: the 12th
+// mode of the paper blade changes by ~1e-12 from 30 terms on).
+BladeModel converged(const Scene& s) {
+  ModelSpec spec = s.model;
+  spec.basis = BasisKind::legendre;
+  spec.terms = 36;
+  return assemble_model(s.blade, spec);
+}
+
+struct Variant {
+  std::string name;
+  std::vector<std::string> overrides;
+  int count;
+  double tolerance;
+};
 }  // namespace
 
 TEST_CASE("without Coriolis coupling, bending modes cross the first axial mode and tracking follows shapes",
@@ -76,4 +133,155 @@ TEST_CASE("engine-order crossings are refined to where the mode meets the line",
   for (std::size_t i = 1; i < d.crossings.size(); ++i) {
     CHECK(d.crossings[i].speed_rad_s >= d.crossings[i - 1].speed_rad_s);
   }
+}
+
+TEST_CASE("the reduced sweep's frequencies are the whole Ritz model's within their bounds, 0 to 600 rad/s",
+          "[campbell][reduced]") {
+  const std::vector<Variant> variants{
+      {"paper blade", {}, 8, 0},
+      {"paper blade, 12 modes", {}, 12, 0},
+      {"thick blade d = 0.1", {"blade.slenderness=0.1"}, 8, 0},
+      {"sine basis, 10 terms", {"model.basis=sine", "model.terms=10"}, 8, 0},
+      {"Coriolis off (true crossings)", {"model.coriolis=false"}, 8, 0},
+      {"Euler-Bernoulli", {"model.theory=euler-bernoulli"}, 8, 0},
+      {"no axial field", {"model.axial=false"}, 6, 0},
+  };
+  const std::vector<double> speeds = linspace(0, 600, 61);
+  for (const Variant& v : variants) {
+    const Scene s = paper_scene(v.overrides);
+    const BladeModel model = assemble_model(s.blade, s.model);
+    CampbellOptions options{speeds, {}, v.count};
+    options.reduction_tolerance = 1e-8;
+    const CampbellDiagram d = campbell_diagram(model, s.damping, options);
+    INFO(v.name);
+    REQUIRE(d.reduced);
+    double worst = 0, worst_bound = 0;
+    for (std::size_t k = 0; k < speeds.size(); ++k) {
+      const Reference whole = whole_frequencies(model, s.damping, speeds[k]);
+      for (const CampbellCurve& c : d.curves) {
+        INFO("speed " << speeds[k] << ", mode " << c.mode << ", " << c.frequency_hz[k] << " Hz");
+        const double error = nearest(whole, c.frequency_hz[k]);
+        // The bound holds, up to the rounding of both values (the reference's is of the same size).
+        CHECK(error <= c.reduction_bound[k] + 2 * c.rounding[k]);
+        CHECK(c.reduction_bound[k] <= options.reduction_tolerance);  // and meets the wanted one
+        worst = std::max(worst, error);
+        worst_bound = std::max(worst_bound, c.reduction_bound[k]);
+      }
+    }
+    WARN(v.name << ": " << d.basis_vectors << " vectors from " << d.sample_speeds_rad_s.size()
+                << " speeds; largest difference from the whole model " << worst << ", largest bound "
+                << worst_bound);
+  }
+}
+
+TEST_CASE("Campbell error estimates cover the error against a converged model, points and crossings",
+          "[campbell][budget]") {
+  const std::vector<Variant> variants{
+      {"paper blade", {}, 8, 1e-6},
+      {"paper blade, 12 modes", {}, 12, 1e-6},
+      {"thick blade d = 0.1", {"blade.slenderness=0.1"}, 8, 1e-6},
+      {"sine basis, 10 terms", {"model.basis=sine", "model.terms=10"}, 6, 1e-2},
+      {"Coriolis off", {"model.coriolis=false"}, 8, 1e-6},
+      {"loose tolerance, 8 terms", {"model.terms=8"}, 6, 1e-4},
+  };
+  const std::vector<double> speeds = linspace(0, 600, 31);
+  for (const Variant& v : variants) {
+    const Scene s = paper_scene(v.overrides);
+    const CampbellWithErrors r = campbell_with_error_estimate(s, {speeds, {1, 2, 3, 4, 6}, v.count}, v.tolerance);
+    const BladeModel truth = converged(s);
+    INFO(v.name << ", " << r.model.spec.terms << " terms");
+    REQUIRE(r.diagram.reduced);
+    double lowest_ratio = 1e300, highest_ratio = 0;
+    for (std::size_t k = 0; k < speeds.size(); ++k) {
+      const Reference whole = whole_frequencies(r.model, s.damping, speeds[k]);
+      const Reference exact = whole_frequencies(truth, s.damping, speeds[k]);
+      for (std::size_t i = 0; i < r.diagram.curves.size(); ++i) {
+        const double f = r.diagram.curves[i].frequency_hz[k];
+        const ErrorBudget& b = r.budget[i][k];
+        INFO("speed " << speeds[k] << ", mode " << i + 1 << ", " << f << " Hz, estimate " << b.total());
+        CHECK(b.total() <= v.tolerance);                // the terms were raised until it was met
+        CHECK(nearest(whole, f) <= v.tolerance);        // the fast path is the chosen model's to within it
+        const double error = nearest(exact, f);
+        CHECK(error <= b.total());                      // the estimate covers the true error
+        if (error > 1e-11) {
+          lowest_ratio = std::min(lowest_ratio, b.total() / error);
+          highest_ratio = std::max(highest_ratio, b.total() / error);
+        }
+      }
+    }
+    // Crossings: the converged model's own crossing, by secant steps from the reported one.
+    for (std::size_t c = 0; c < r.diagram.crossings.size(); ++c) {
+      const EngineOrderCrossing& x = r.diagram.crossings[c];
+      const double line = x.engine_order / two_pi;
+      const auto g = [&](double speed) {
+        const std::vector<double> f = whole_frequencies(truth, s.damping, speed).hz;
+        const double near = *std::min_element(f.begin(), f.end(), [&](double a, double b) {
+          return std::abs(a - line * speed) < std::abs(b - line * speed);
+        });
+        return near - line * speed;
+      };
+      double a = x.speed_rad_s, b = x.speed_rad_s * (1 + 1e-6), ga = g(a), gb = g(b);
+      for (int iteration = 0; iteration < 6 && gb != ga && std::abs(b - a) > 1e-14 * b; ++iteration) {
+        const double next = b - gb * (b - a) / (gb - ga);
+        a = b, ga = gb, b = next, gb = g(b);
+      }
+      const double error = std::abs(x.speed_rad_s / b - 1);
+      INFO("EO " << x.engine_order << ", mode " << x.mode << " at " << x.speed_rad_s << " rad/s: converged "
+                 << b << ", estimate " << r.crossing_budget[c].total());
+      CHECK(error <= r.crossing_budget[c].total());
+    }
+    WARN(v.name << ": " << r.model.spec.terms << " terms, estimate/true " << lowest_ratio << " to "
+                << highest_ratio << " where the true error exceeds 1e-11; " << r.diagram.crossings.size()
+                << " crossings checked");
+  }
+}
+
+TEST_CASE("damped blades take the dense sweep; their estimates cover the error too", "[campbell][budget]") {
+  const std::vector<Variant> variants{
+      {"modal 2 %", {"damping.model=modal", "damping.ratio=0.02"}, 4, 1e-6},
+      {"Rayleigh 2 %", {"damping.model=rayleigh", "damping.ratio=0.02", "damping.frequencies_hz=[50, 2000]"}, 4,
+       1e-6},
+      {"paper (37) 1 %", {"damping.model=paper", "damping.ratio=0.01"}, 4, 1e-6},
+  };
+  const std::vector<double> speeds = linspace(50, 600, 6);  // the paper's damping is undefined at rest
+  for (const Variant& v : variants) {
+    const Scene s = paper_scene(v.overrides);
+    const CampbellWithErrors r = campbell_with_error_estimate(s, {speeds, {2}, v.count}, v.tolerance);
+    const BladeModel truth = converged(s);
+    INFO(v.name << ", " << r.model.spec.terms << " terms");
+    CHECK_FALSE(r.diagram.reduced);
+    for (std::size_t k = 0; k < speeds.size(); ++k) {
+      const Reference exact = whole_frequencies(truth, s.damping, speeds[k]);
+      for (std::size_t i = 0; i < r.diagram.curves.size(); ++i) {
+        const double f = r.diagram.curves[i].frequency_hz[k];
+        INFO("speed " << speeds[k] << ", mode " << i + 1 << ", " << f << " Hz");
+        CHECK(r.diagram.curves[i].damping_ratio[k] > 0);
+        if (f == 0) continue;  // overdamped (the paper's damping at low speed): 0 Hz, no relative error
+        CHECK(r.budget[i][k].total() <= v.tolerance);
+        CHECK(nearest(exact, f) <= r.budget[i][k].total());
+      }
+    }
+  }
+}
+
+TEST_CASE("campbell --tolerance and modes --tolerance choose the same model and agree", "[campbell][modes]") {
+  Scene at300 = paper_scene({"operation.speed_rad_s=300"});
+  const ConvergedModes m = modes_with_error_estimate(at300, 8, EigenSolverKind::dense, 1e-6);
+  const CampbellWithErrors r = campbell_with_error_estimate(at300, {{300, 310}, {}, 8}, 1e-6);
+  CHECK(r.model.spec.terms == m.model.spec.terms);
+  for (int i = 0; i < 8; ++i) {
+    const double f = r.diagram.curves[i].frequency_hz[0], g = m.solution.modes[i].frequency_hz;
+    INFO("mode " << i + 1 << ": campbell " << f << " Hz, modes " << g << " Hz");
+    CHECK(std::abs(f / g - 1) <= r.budget[i][0].total() + m.budget(i).total());
+  }
+}
+
+TEST_CASE("an unreachable tolerance is an input error naming --tolerance", "[campbell]") {
+  const std::vector<double> speeds = linspace(0, 400, 5);
+  const Scene sine = paper_scene({"model.basis=sine", "model.terms=10"});
+  CHECK_THROWS_WITH(campbell_with_error_estimate(sine, {speeds, {}, 4}, 1e-6),
+                    Catch::Matchers::Contains("--tolerance 1e-06") && Catch::Matchers::Contains("legendre"));
+  const Scene paper = paper_scene();
+  CHECK_THROWS_WITH(campbell_with_error_estimate(paper, {speeds, {}, 4}, 1e-13),
+                    Catch::Matchers::Contains("--tolerance 1e-13"));
 }

@@ -18,60 +18,59 @@ namespace {
 
 constexpr double rpm_per_rad_s = 60 / 6.28318530717958647692;
 
-// Per speed, the error of the `count` lowest modes there (each part the largest over them), from
-// the same richer-basis comparison as `modes`.
-std::vector<ErrorBudget> errors_by_speed(const Scene& scene, const CampbellDiagram& d, int count, EigenSolverKind solver) {
-  std::vector<ErrorBudget> errors;
-  for (double speed : d.speeds_rad_s) {
-    Scene at = scene;
-    at.operation.speed_rad_s = speed;
-    errors.push_back(modes_with_error_estimate(at, count, solver).worst_budget());
-  }
-  return errors;
-}
-
-std::string campbell_json(const Scene& scene, const BladeModel& model, const CampbellDiagram& d,
-                          const std::vector<ErrorBudget>& errors) {
+std::string campbell_json(const Scene& scene, const CampbellWithErrors& r) {
+  const CampbellDiagram& d = r.diagram;
   JsonWriter json;
   json.begin_object()
       .value("title", fmt::format("{} — Campbell diagram", scene_title(scene)))
       .value("scene", scene.source)
-      .value("model", describe_model(model))
+      .value("model", describe_model(r.model))
+      .value("terms", r.model.spec.terms)
+      .numbers("reference_terms", r.reference_terms)
       .value("damping", to_string(scene.damping.model))
       .value("solver", to_string(d.solver))
+      .begin_object("reduction")
+      .value("method", d.reduced ? "reduced basis, every frequency bounded against the whole Ritz model"
+                                 : "none: every speed solved whole")
+      .value("vectors", d.basis_vectors)
+      .numbers("sample_speeds_rad_s", d.sample_speeds_rad_s)
+      .end_object()
+      .value("tolerance", r.tolerance)
       .numbers("speeds_rad_s", d.speeds_rad_s)
       .numbers("engine_orders", d.engine_orders);
-  ErrorBudget worst;  // over the speeds
-  for (const ErrorBudget& e : errors) {
-    worst.basis = std::max(worst.basis, e.basis);
-    worst.method = std::max(worst.method, e.method);
-  }
-  write_error_budget(json, worst);
+  write_error_budget(json, r.worst());
   json.begin_array("error_by_speed");
-  for (std::size_t s = 0; s < errors.size(); ++s) {
+  for (std::size_t s = 0; s < d.speeds_rad_s.size(); ++s) {
     json.begin_object().value("speed_rad_s", d.speeds_rad_s[s]);
-    write_error_budget(json, errors[s]);
+    write_error_budget(json, r.worst_at(s));
     json.end_object();
   }
   json.end_array().begin_array("curves");
-  for (const CampbellCurve& c : d.curves) {
+  for (std::size_t i = 0; i < d.curves.size(); ++i) {
+    const CampbellCurve& c = d.curves[i];
+    std::vector<double> estimate;
+    for (const ErrorBudget& b : r.budget[i]) estimate.push_back(b.total());
     json.begin_object()
         .value("mode", c.mode)
         .value("family", to_string(c.family))
         .numbers("frequency_hz", c.frequency_hz)
         .numbers("damping_ratio", c.damping_ratio)
         .numbers("correlation", c.correlation)
+        .numbers("error_estimate", estimate)
         .end_object();
   }
   json.end_array().begin_array("crossings");
-  for (const EngineOrderCrossing& x : d.crossings) {
+  for (std::size_t k = 0; k < d.crossings.size(); ++k) {
+    const EngineOrderCrossing& x = d.crossings[k];
     json.begin_object()
         .value("engine_order", x.engine_order)
         .value("mode", x.mode)
         .value("speed_rad_s", x.speed_rad_s)
         .value("speed_rpm", x.speed_rad_s * rpm_per_rad_s)
         .value("frequency_hz", x.frequency_hz)
-        .end_object();
+        .value("amplification", x.amplification);
+    write_error_budget(json, r.crossing_budget[k]);
+    json.end_object();
   }
   json.end_array().end_object();
   return json.str();
@@ -98,23 +97,39 @@ std::string crossings_csv(const CampbellDiagram& d) {
   return csv;
 }
 
-void print_table(const Scene& scene, const BladeModel& model, const CampbellDiagram& d,
-                 const std::vector<std::string>& files) {
-  fmt::print("scene     {}\nmodel     {}\nspeeds    {} from {:.6g} to {:.6g} rad/s; damping {}; solver {}\n\n",
-             scene.source, describe_model(model), d.speeds_rad_s.size(), d.speeds_rad_s.front(),
-             d.speeds_rad_s.back(), to_string(scene.damping.model), to_string(d.solver));
-  fmt::print("{:>4}  {:<9} {:>14} {:>14} {:>9}\n", "mode", "family", "f first [Hz]", "f last [Hz]", "min MAC");
-  for (const CampbellCurve& c : d.curves) {
-    double worst = 1;
-    for (double m : c.correlation) worst = std::min(worst, m);
-    fmt::print("{:>4}  {:<9} {:>14.6g} {:>14.6g} {:>9.3f}\n", c.mode, to_string(c.family), c.frequency_hz.front(),
-               c.frequency_hz.back(), worst);
+void print_table(const Scene& scene, const CampbellWithErrors& r, const std::vector<std::string>& files) {
+  const CampbellDiagram& d = r.diagram;
+  const ErrorBudget worst = r.worst();
+  fmt::print("scene     {}\nmodel     {}\nspeeds    {} from {:.6g} to {:.6g} rad/s; damping {}; solver {}\n", scene.source,
+             describe_model(r.model), d.speeds_rad_s.size(), d.speeds_rad_s.front(), d.speeds_rad_s.back(),
+             to_string(scene.damping.model), to_string(d.solver));
+  if (d.reduced) {
+    fmt::print("reduction {} vectors from the modes at {} speeds, each frequency bounded against the whole model\n",
+               d.basis_vectors, d.sample_speeds_rad_s.size());
+  }
+  fmt::print("error     {} relative, largest over the points and crossings (tolerance {:g}; basis against {}-term "
+             "models)\n\n",
+             describe_error_budget(worst), r.tolerance, fmt::join(r.reference_terms, "- and "));
+  fmt::print("{:>4}  {:<9} {:>16} {:>16} {:>9} {:>9}\n", "mode", "family", "f first [Hz]", "f last [Hz]", "min MAC",
+             "error");
+  for (std::size_t i = 0; i < d.curves.size(); ++i) {
+    const CampbellCurve& c = d.curves[i];
+    double lowest = 1, error = 0;
+    for (double m : c.correlation) lowest = std::min(lowest, m);
+    for (const ErrorBudget& b : r.budget[i]) error = std::max(error, b.total());
+    const int digits = significant_digits(error);
+    fmt::print("{:>4}  {:<9} {:>#16.{}g} {:>#16.{}g} {:>9.3f} {:>9.1e}\n", c.mode, to_string(c.family),
+               c.frequency_hz.front(), digits, c.frequency_hz.back(), digits, lowest, error);
   }
   fmt::print("\nengine-order crossings ({}):\n", d.crossings.size());
-  fmt::print("{:>4} {:>5} {:>14} {:>12} {:>14}\n", "EO", "mode", "speed [rad/s]", "speed [rpm]", "frequency [Hz]");
-  for (const EngineOrderCrossing& x : d.crossings) {
-    fmt::print("{:>4} {:>5} {:>14.8g} {:>12.7g} {:>14.8g}\n", x.engine_order, x.mode, x.speed_rad_s,
-               x.speed_rad_s * rpm_per_rad_s, x.frequency_hz);
+  fmt::print("{:>4} {:>5} {:>16} {:>14} {:>16} {:>9}\n", "EO", "mode", "speed [rad/s]", "speed [rpm]", "frequency [Hz]",
+             "error");
+  for (std::size_t k = 0; k < d.crossings.size(); ++k) {
+    const EngineOrderCrossing& x = d.crossings[k];
+    const double error = r.crossing_budget[k].total();
+    const int digits = significant_digits(error);
+    fmt::print("{:>4} {:>5} {:>#16.{}g} {:>#14.{}g} {:>#16.{}g} {:>9.1e}\n", x.engine_order, x.mode, x.speed_rad_s,
+               digits, x.speed_rad_s * rpm_per_rad_s, digits, x.frequency_hz, digits, error);
   }
   if (!files.empty()) fmt::print("\nwritten: {}\n", fmt::join(files, ", "));
 }
@@ -129,11 +144,14 @@ Command register_campbell(CLI::App& app) {
   auto count = std::make_shared<int>(8);
   auto out = std::make_shared<std::string>(".");
   auto chart = std::make_shared<std::string>("png");
+  auto tolerance = std::make_shared<double>(1e-6);
   add_scene_options(*command, *options);
   command->add_option("--speeds", *speeds, "rotor speeds in rad/s as start:stop:count, e.g. 0:600:61")->required();
   command->add_option("--engine-orders", *orders, "engine orders k of the lines f = kΩ/2π (default 1,2,3,4)")
       ->delimiter(',');
   command->add_option("--count", *count, "modes to track, lowest first (default 8)");
+  command->add_option("--tolerance", *tolerance,
+                      "wanted relative error of every frequency; the terms are raised until it is met (default 1e-6)");
   add_chart_options(*command, *out, *chart, "directory for campbell.csv, campbell_crossings.csv, campbell.json and the chart");
   return [=] {
     const std::vector<double> speed_list = parse_range("--speeds", *speeds);
@@ -142,22 +160,21 @@ Command register_campbell(CLI::App& app) {
     for (int k : *orders) {
       if (k < 1) throw InputError(fmt::format("--engine-orders: {} is not allowed; engine orders are integers >= 1", k));
     }
+    check_tolerance(*tolerance);
     const Scene scene = options->load();
-    const BladeModel model = assemble_model(scene.blade, scene.model);
     CampbellOptions campbell{speed_list, *orders, *count, options->eigen_solver()};
     const bool for_people = options->output_format() == OutputFormat::table;
-    const CampbellDiagram diagram =
-        campbell_diagram(model, scene.damping, campbell, progress_reporter("campbell: speeds", for_people));
-
-    const std::string json =
-        campbell_json(scene, model, diagram, errors_by_speed(scene, diagram, *count, options->eigen_solver()));
+    const CampbellWithErrors result =
+        campbell_with_error_estimate(scene, campbell, *tolerance, progress_reporter("campbell: speeds", for_people));
+    const CampbellDiagram& diagram = result.diagram;
+    const std::string json = campbell_json(scene, result);
     const std::vector<std::string> files =
         write_outputs(*out, "campbell", {{"campbell.csv", curves_csv(diagram)}, {"campbell_crossings.csv", crossings_csv(diagram)}},
                       json, "campbell", *chart);
     switch (options->output_format()) {
       case OutputFormat::json: fmt::print("{}", json); break;
       case OutputFormat::csv: fmt::print("{}", curves_csv(diagram)); break;
-      case OutputFormat::table: print_table(scene, model, diagram, files); break;
+      case OutputFormat::table: print_table(scene, result, files); break;
     }
   };
 }
