@@ -111,8 +111,9 @@ def chart_points(points, path):
     for ax, p in zip(axes[0], points):
         ref = p.get("reference_rho") if p.get("reference_rho") is not None else p.get("reduced_rho")
         for c in p["configs"]:
-            if c["status"] != "ok" or ref is None or (c["reduction"], c["method"]) == ("none", "auto"):
-                continue  # (the whole model's monodromy is the reference)
+            reference_config = ("none" if p.get("reference_rho") is not None else "auto", "auto")
+            if c["status"] != "ok" or ref is None or (c["reduction"], c["method"]) == reference_config:
+                continue  # (the reference itself)
             rho = answer(c)[0]
             color = "C0" if c["reduction"] == "auto" else "C1"
             ax.plot(max(abs(rho - ref), FLOOR), c["median_s"], markers[c["method"]], color=color,
@@ -357,7 +358,8 @@ def write(results, folder):
                       f"{c2['status']}: {c2.get('message', '')} | | |")
                     continue
                 rho, est = answer(c2)
-                is_ref = (c2["reduction"], c2["method"]) == ("none", "auto")
+                is_ref = (c2["reduction"], c2["method"]) == (
+                    "none" if p.get("reference_rho") is not None else "auto", "auto")
                 w(f"| bladestab {c2['method']} | {c2['reduction']} | {s(c2['median_s'])} | {len(c2['times_s'])} | {rho:.12f} "
                   f"| {'(the reference)' if is_ref else e(abs(rho - ref)) if ref is not None else '—'} | {e(est)} |")
             for x in p["scipy"]:
