@@ -13,11 +13,15 @@
 
 #include "bladestab/boundaries.hpp"
 #include "bladestab/input_error.hpp"
+#include "bladestab/mode_convergence.hpp"
+#include "bladestab/reduction.hpp"
 
 namespace bladestab {
 namespace {
 
 constexpr double two_pi = 6.28318530717958647692;
+// The most harmonics per family the curves are raised to.
+constexpr int max_curve_approximation = 20;
 
 // The scene at one map point: speed Ω, pulse frequency θ, load F̄.
 Scene scene_at(Scene scene, double speed, double theta, double fbar) {
@@ -27,10 +31,81 @@ Scene scene_at(Scene scene, double speed, double theta, double fbar) {
   return scene;
 }
 
-// The boundary equations are eigenproblems, not time integrations: the whole Ritz model, in a
-// basis that does not depend on the load they solve for. The shading integrates the reduced one.
+// The shading integrates the scene's automatic reduced model at each point.
 PeriodicSystem system_for(const BladeModel& model, const Scene& scene, ReductionKind reduction) {
   return periodic_system(model, scene, load_series(scene), {reduction, 0, 0});
+}
+
+// One model of the boundary equations: a Ritz model, its reduction, K harmonics per family.
+struct CurveModel {
+  const BladeModel* model = nullptr;
+  ReductionSpec reduction;
+  int approximation = 4;
+};
+
+// Where the boundary curves are traced: each trace value is a line of the plane (F̄ = const in the
+// θ plane, Ω = const in the speed plane) on which the boundary equations give every boundary at
+// once (SPEC §4, (B.15)–(B.23)).
+struct CurveWindow {
+  bool theta_plane = true;
+  double speed = 0, fcr = 0;
+  int engine_order = 1;
+  double x_lo = 0, x_hi = 0, y_hi = 0;
+  int max_order = 4;  // orders n (θ ≈ 2ω/n) drawn
+
+  // The boundaries on line `line` of `m`. In the θ plane the system carries the line's load; in
+  // the speed plane it carries the window's top load F̄ = y_hi, so the reduced basis (the modes at
+  // F = 0 and at the most compressive load) spans every load the line crosses.
+  std::vector<Boundary> on_line(const Scene& scene, const CurveModel& m, double line) const {
+    if (theta_plane) {
+      if (line <= 0) return {};
+      const Scene at = scene_at(scene, speed, two_pi, line);  // θ is the unknown; any value will do
+      return boundary_frequencies(periodic_system(*m.model, at, load_series(at), m.reduction), line * fcr,
+                                  m.approximation);
+    }
+    if (y_hi <= 0) return {};
+    const double theta = engine_order * line;
+    const Scene at = scene_at(scene, line, theta, y_hi);
+    return boundary_loads(periodic_system(*m.model, at, load_series(at), m.reduction), y_hi * fcr, theta,
+                          m.approximation);
+  }
+  // The boundary's coordinate along the line: θ, or F̄.
+  double along(const Boundary& b) const { return theta_plane ? b.theta_rad_s : b.peak_force_n / fcr; }
+  // In the window, of order ≤ max_order, and of an order the K-th approximation resolves: beyond
+  // the first, its highest harmonics (2K − 1 and 2K) are dropped as truncation artefacts
+  // (boundaries.hpp), so orders up to 2K − 2. The checks against K + 2 compare these orders only.
+  bool shown(const Boundary& b, int approximation) const {
+    const double v = along(b);
+    const int resolved = approximation == 1 ? 2 : 2 * approximation - 2;
+    return b.order <= std::min(max_order, resolved) && (theta_plane ? v >= x_lo && v <= x_hi : v <= y_hi);
+  }
+  // The measure of the curves' error; a window of one line has none, and its value serves.
+  double span() const {
+    const double s = theta_plane ? x_hi - x_lo : y_hi;
+    return s > 0 ? s : std::max(1.0, std::abs(theta_plane ? x_hi : y_hi));
+  }
+};
+
+// The largest distance along the line, over the window's span, from a boundary of `a` or `b`
+// shown at the approximation to the nearest boundary of the same family (±1) in the other; one
+// with none counts as the whole span. Nearest, not matched by mode and order: at high loads the
+// dominant harmonic of a boundary's eigenvector, which names its mode and order, changes with the
+// approximation (measured on the paper blade at Ω = 142 rad/s, F̄ ≈ 7.9: "mode 1, order 6" at
+// K = 4 is "mode 2, order 8" at K = 6).
+double curve_distance(const CurveWindow& w, int approximation, const std::vector<Boundary>& a,
+                      const std::vector<Boundary>& b) {
+  double worst = 0;
+  for (const auto& [base, other] : {std::pair{&a, &b}, std::pair{&b, &a}}) {
+    for (const Boundary& x : *base) {
+      if (!w.shown(x, approximation)) continue;
+      double nearest = w.span();
+      for (const Boundary& y : *other) {
+        if (y.multiplier == x.multiplier) nearest = std::min(nearest, std::abs(w.along(x) - w.along(y)));
+      }
+      worst = std::max(worst, nearest / w.span());
+    }
+  }
+  return worst;
 }
 
 // task(k) for k = 0..count − 1 on `threads` threads; the first exception stops the others at
@@ -102,6 +177,76 @@ private:
   std::vector<BoundaryCurve> curves_;
 };
 
+// Reduced-basis vectors per load level for the boundary equations: enough unloaded modes (at the
+// window's lowest speed, where they are lowest) to hold every tongue drawn. A tongue of order
+// n ≤ max_order sits near θ = 2ω/n, so modes up to ω = max_order·θ_max/2 are drawn; twice that
+// is kept (the load lowers the frequencies it couples), and never fewer than the default.
+int curve_vectors(const BladeModel& model, const Scene& scene, const CurveWindow& w) {
+  const double slowest = w.theta_plane ? w.speed : w.x_lo;
+  const double theta_max = w.theta_plane ? w.x_hi : w.engine_order * w.x_hi;
+  const Scene at = scene_at(scene, slowest, theta_max, 0);
+  const Eigen::VectorXd omega = periodic_system(model, at, load_series(at), {ReductionKind::none, 0, 0}).modal_frequencies;
+  const int drawn = static_cast<int>((omega.array() < w.max_order * theta_max).count());
+  return std::max(default_reduction_vectors, drawn);
+}
+
+// The curves' error on three lines of the trace (at 1/6, 1/2 and 5/6 of it), as distances
+// over the window's span (curve_distance), each against a model that differs in one part only:
+//   reduction  the whole Ritz model — the check that shares nothing with the reduction — at
+//              min(K, 4) harmonics (its boundary equations grow like dofs·K; the reduction's error
+//              hardly depends on K), and twice the change to twice the vectors at K
+//   basis      the reduced model of the richer basis reference_terms(basis, N) (sine: times
+//              basis_tail_factor)
+//   method     K + 2 harmonics, twice the change (the tail of a convergence at least geometric
+//              with ratio 1/2, as for `boundaries`)
+//   load       0 for the cosine approximation (42), the scene's load; a longer series is not
+//              compared (named in `unbounded`)
+CurveFidelity check_curves(const Scene& scene, const CurveWindow& w, const CurveModel& m, const MapOptions& o) {
+  CurveFidelity f;
+  f.reduction = m.reduction;
+  f.approximation = m.approximation;
+  const std::size_t n = o.trace.size();
+  std::vector<std::size_t> lines{n / 6, n / 2, 5 * n / 6};
+  lines.erase(std::unique(lines.begin(), lines.end()), lines.end());
+  ModelSpec richer_spec = scene.model;
+  richer_spec.terms = reference_terms(richer_spec.basis, richer_spec.terms);
+  const BladeModel richer = assemble_model(scene.blade, richer_spec);
+  const bool reduced = m.reduction.kind == ReductionKind::automatic;
+  const int whole_k = std::min(m.approximation, 4);
+  // Pairs (model compared, the answer's model at the same K, factor, part).
+  struct Variant {
+    CurveModel other, same;
+    double factor;
+    double ErrorBudget::*part;
+  };
+  std::vector<Variant> variants{
+      {{&richer, m.reduction, m.approximation}, m, basis_tail_factor(scene.model.basis), &ErrorBudget::basis},
+      {{m.model, m.reduction, m.approximation + 2}, m, 2, &ErrorBudget::method}};
+  if (reduced) {
+    variants.push_back({{m.model, {ReductionKind::none, 0, 0}, whole_k}, {m.model, m.reduction, whole_k}, 1,
+                        &ErrorBudget::reduction});
+    variants.push_back({{m.model, {ReductionKind::automatic, 2 * m.reduction.vectors, 0}, m.approximation}, m, 2,
+                        &ErrorBudget::reduction});
+  }
+  std::vector<double> distance(variants.size() * lines.size(), 0);
+  parallel_for(distance.size(), o.threads, [&](std::size_t k) {
+    const Variant& v = variants[k % variants.size()];
+    const double line = o.trace[lines[k / variants.size()]];
+    distance[k] = v.factor * curve_distance(w, v.same.approximation, w.on_line(scene, v.same, line),
+                                            w.on_line(scene, v.other, line));
+  });
+  for (std::size_t k = 0; k < distance.size(); ++k) {
+    double& part = f.budget.*(variants[k % variants.size()].part);
+    part = std::max(part, distance[k]);
+  }
+  for (std::size_t line : lines) f.checked_at.push_back(o.trace[line]);
+  if (!load_series(scene).cosine_approximation) {
+    f.budget.unbounded.push_back("load: the series' tail is not compared for the curves");
+  }
+  f.tolerance_met = f.budget.total() <= o.tolerance;
+  return f;
+}
+
 }  // namespace
 
 StabilityMap stability_map(const Scene& scene, const MapOptions& o, const std::function<void(int, int)>& progress) {
@@ -131,32 +276,40 @@ StabilityMap stability_map(const Scene& scene, const MapOptions& o, const std::f
   map.grid_fbar = o.grid_fbar;
   map.max_abs_multiplier = Eigen::MatrixXd::Constant(ny, nx, std::nan(""));
 
-  // Boundary curves, traced within the plotted window.
-  const double x_lo = o.grid_x.front(), x_hi = o.grid_x.back(), y_hi = o.grid_fbar.back();
-  // The boundary equations of each parameter value in parallel, then joined in order.
-  std::vector<std::vector<Boundary>> found(o.trace.size());
-  std::vector<std::vector<double>> found_value(o.trace.size());
-  parallel_for(o.trace.size(), o.threads, [&](std::size_t i) {
-    if (theta_plane) {
-      const double fbar = o.trace[i];
-      if (fbar > 0) {
-        const Scene at = scene_at(scene, speed, two_pi, fbar);  // θ is the unknown; any value will do
-        for (const Boundary& b : boundary_frequencies(system_for(model, at, ReductionKind::none), fbar * fcr, o.approximation)) {
-          if (b.theta_rad_s >= x_lo && b.theta_rad_s <= x_hi) found[i].push_back(b), found_value[i].push_back(b.theta_rad_s);
-        }
-      }
+  // Boundary curves, traced within the plotted window on a reduced model. Its fidelity is chosen
+  // on a few lines (check_curves), raising what misses the tolerance; then every line is traced.
+  const CurveWindow window{theta_plane,      speed,           fcr, o.engine_order, o.grid_x.front(), o.grid_x.back(),
+                           o.grid_fbar.back(), o.max_order};
+  CurveModel curve_model{&model, {ReductionKind::automatic, curve_vectors(model, scene, window), 0},
+                         o.approximation};
+  while (true) {
+    map.curve_fidelity = check_curves(scene, window, curve_model, o);
+    const ErrorBudget& b = map.curve_fidelity.budget;
+    if (map.curve_fidelity.tolerance_met) break;
+    const bool reducible = curve_model.reduction.kind == ReductionKind::automatic;
+    if (reducible && b.reduction >= std::max(b.method, b.basis)) {
+      const int doubled = 2 * curve_model.reduction.vectors;
+      curve_model.reduction = 3 * doubled < model.layout.size() ? ReductionSpec{ReductionKind::automatic, doubled, 0}
+                                                                : ReductionSpec{ReductionKind::none, 0, 0};
+    } else if (b.method >= b.basis && curve_model.approximation + 2 <= max_curve_approximation) {
+      curve_model.approximation += 2;
     } else {
-      const double W = o.trace[i], theta = o.engine_order * W;
-      const Scene at = scene_at(scene, W, theta, 1.0);
-      for (const Boundary& b : boundary_loads(system_for(model, at, ReductionKind::none), fcr, theta, o.approximation)) {
-        if (b.peak_force_n / fcr <= y_hi) found[i].push_back(b), found_value[i].push_back(b.peak_force_n / fcr);
-      }
+      break;  // the basis is the scene's (model.terms): reported, not raised
     }
+  }
+  std::vector<std::vector<Boundary>> found(o.trace.size());
+  parallel_for(o.trace.size(), o.threads, [&](std::size_t i) {
+    found[i] = window.on_line(scene, curve_model, o.trace[i]);
     tick();
   });
-  Tracer tracer(0.05 * (theta_plane ? x_hi - x_lo : y_hi));
+  Tracer tracer(0.05 * window.span());
   for (std::size_t i = 0; i < o.trace.size(); ++i) {
-    tracer.add(static_cast<int>(i), found[i], found_value[i], o.trace[i], theta_plane);
+    std::vector<Boundary> shown;
+    std::vector<double> along;
+    for (const Boundary& b : found[i]) {
+      if (window.shown(b, curve_model.approximation)) shown.push_back(b), along.push_back(window.along(b));
+    }
+    tracer.add(static_cast<int>(i), shown, along, o.trace[i], theta_plane);
   }
   map.curves = tracer.curves();
   map.curves.erase(std::remove_if(map.curves.begin(), map.curves.end(), [](const BoundaryCurve& c) { return c.x.size() < 2; }),

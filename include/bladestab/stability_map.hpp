@@ -2,7 +2,8 @@
 // Stability maps (SPEC §4 "Charts"): regions of dynamic instability in the (θ, F̄_max) plane at
 // the scene's speed (Ince–Strutt) or in the (Ω, F̄_max) plane with θ = k Ω (an engine order).
 // The ±1 boundaries are traced as curves from the boundary eigenproblems — along F̄ in the θ
-// plane (all θ at once), along Ω in the speed plane (all F̄ at once) — and Floquet max|ρ| shades
+// plane (all θ at once), along Ω in the speed plane (all F̄ at once), on a reduced model checked
+// against the whole Ritz model, a richer basis and more harmonics — and Floquet max|ρ| shades
 // the regions, which also reveals combination resonances. The shading starts on the given grid
 // and splits, like a quadtree, every cell whose corners disagree about stability or that holds a
 // traced boundary point, until the cells reach the requested resolution.
@@ -11,6 +12,7 @@
 
 #include <Eigen/Dense>
 
+#include "bladestab/error_budget.hpp"
 #include "bladestab/floquet.hpp"
 #include "bladestab/scene.hpp"
 
@@ -23,8 +25,9 @@ struct MapOptions {
   std::vector<double> grid_x, grid_fbar;  // shading grid: θ or Ω [rad/s], F̄
   std::vector<double> trace;              // curve parameter: F̄ values (θ plane) or Ω values (speed plane)
   int engine_order = 1;                   // speed plane: θ = k Ω
-  int approximation = 4;                  // harmonics per family in the boundary equations
-  double tolerance = 1e-3;                // on max|ρ| of the shading
+  int approximation = 4;                  // harmonics per family in the boundary equations (at least)
+  int max_order = 4;                      // boundary curves of orders n ≤ max_order (θ ≈ 2ω/n)
+  double tolerance = 1e-3;                // on max|ρ| of the shading and on the curves (CurveFidelity)
   int resolution_x = 400, resolution_y = 200;  // effective cells of the refined shading (at least)
   int threads = 2;
 };
@@ -46,6 +49,17 @@ struct BoundaryCurve {
   std::vector<double> x, fbar;  // θ or Ω, F̄
 };
 
+// The model the boundary curves were traced on and their error, measured on a few trace lines
+// as distances along the line over the window's span (θ_max − θ_min in the θ plane, F̄_max of
+// the window in the speed plane); a missing or extra boundary counts as the whole span.
+struct CurveFidelity {
+  ReductionSpec reduction;        // automatic (with its vectors per load level) or none
+  int approximation = 0;          // harmonics per family
+  std::vector<double> checked_at; // the trace values (F̄ or Ω) of the lines checked
+  ErrorBudget budget;
+  bool tolerance_met = false;     // budget.total() ≤ the map's tolerance
+};
+
 struct StabilityMap {
   MapPlane plane = MapPlane::theta_fmax;
   std::vector<double> grid_x, grid_fbar;
@@ -55,6 +69,7 @@ struct StabilityMap {
   std::vector<MapCell> cells;          // the refinement's leaves, covering the window
   double max_error_estimate = 0;
   std::vector<BoundaryCurve> curves;
+  CurveFidelity curve_fidelity;
 };
 
 // `progress(done, total)` counts shading points and traced parameter values.

@@ -10,6 +10,7 @@
 #include "bladestab/modes.hpp"
 #include "bladestab/stability_map.hpp"
 #include "chart.hpp"
+#include "error_output.hpp"
 #include "commands.hpp"
 #include "json_writer.hpp"
 #include "options.hpp"
@@ -48,7 +49,8 @@ std::string map_json(const Scene& scene, const BladeModel& model, const MapOptio
       .value("model", describe_model(model))
       .value("x_label", theta ? "pulse frequency θ [rad/s]" : "rotor speed Ω [rad/s]")
       .value("y_label", "F̄_max = F_max / F_cr")
-      .value("approximation", o.approximation)
+      .value("approximation", m.curve_fidelity.approximation)
+      .value("max_order", o.max_order)
       .value("shading_method", "Floquet multipliers, method auto")
       .value("shading_max_relative_error", m.max_error_estimate)
       // Within the shading's accuracy, max|ρ| this close to 1 cannot be told from stable.
@@ -73,7 +75,18 @@ std::string map_json(const Scene& scene, const BladeModel& model, const MapOptio
     }
     json.end_object();
   }
-  json.end_array().begin_array("curves");
+  json.end_array();
+  const CurveFidelity& f = m.curve_fidelity;
+  json.begin_object("curve_fidelity")
+      .value("reduction", to_string(f.reduction.kind))
+      .value("reduction_vectors", f.reduction.vectors)
+      .value("approximation", f.approximation)
+      .numbers("checked_at", f.checked_at)
+      .value("tolerance_met", f.tolerance_met)
+      .value("error_measure", m.plane == MapPlane::theta_fmax ? "distance in θ over the window's θ span"
+                                                               : "distance in F̄ over the window's F̄ span");
+  write_error_budget(json, f.budget);
+  json.end_object().begin_array("curves");
   for (const BoundaryCurve& c : m.curves) {
     json.begin_object()
         .value("multiplier", c.multiplier)
@@ -133,6 +146,7 @@ Command register_map(CLI::App& app) {
   auto trace = std::make_shared<int>(201);
   auto order = std::make_shared<int>(0);
   auto approximation = std::make_shared<int>(4);
+  auto max_order = std::make_shared<int>(4);
   auto tolerance = std::make_shared<double>(1e-3);
   auto out = std::make_shared<std::string>(".");
   auto chart = std::make_shared<std::string>("png");
@@ -146,6 +160,9 @@ Command register_map(CLI::App& app) {
   command->add_option("--trace", *trace, "parameter values for tracing the boundary curves (default 201)");
   command->add_option("--engine-order", *order, "k in θ = kΩ (default: load.pulses_per_rev)");
   command->add_option("--approximation", *approximation, "harmonics per family in the boundary equations (default 4)");
+  command->add_option("--max-order", *max_order,
+                      "boundary curves of orders n <= this (theta ~ 2 omega / n; default 4); harmonics are raised to "
+                      "converge them");
   command->add_option("--tolerance", *tolerance, "accuracy of max|ρ| in the shading (default 1e-3)");
   auto resolution = std::make_shared<std::string>("400x200");
   command->add_option("--resolution", *resolution,
@@ -167,6 +184,10 @@ Command register_map(CLI::App& app) {
     o.engine_order = *order > 0 ? *order : scene.load.pulses_per_rev;
     if (*order < 0) throw InputError(fmt::format("--engine-order {}: must be an integer >= 1", *order));
     o.approximation = *approximation;
+    if (*max_order < 1 || *max_order > 40) {
+      throw InputError(fmt::format("--max-order {}: must be an integer in [1, 40]", *max_order));
+    }
+    o.max_order = *max_order;
     o.tolerance = *tolerance;
     {
       int rx = 0, ry = 0;
@@ -218,7 +239,13 @@ Command register_map(CLI::App& app) {
         fmt::print("scene     {}\nmodel     {}\nplane     {}{}\n", scene.source, describe_model(model), *plane,
                    theta_plane ? fmt::format(" at Ω = {:g} rad/s", scene.operation.speed_rad_s)
                                : fmt::format(", θ = {}·Ω", o.engine_order));
-        fmt::print("curves    {} boundary curves ({} harmonics per family)\n", m.curves.size(), o.approximation);
+        const CurveFidelity& f = m.curve_fidelity;
+        fmt::print("curves    {} boundary curves ({} harmonics per family, {} model{}); error over the window's "
+                   "span {}{}\n",
+                   m.curves.size(), f.approximation, to_string(f.reduction.kind),
+                   f.reduction.kind == ReductionKind::automatic ? fmt::format(", {} vectors per load level", f.reduction.vectors)
+                                                                : "",
+                   describe_error_budget(f.budget), f.tolerance_met ? "" : fmt::format(" — above --tolerance {}", o.tolerance));
         fmt::print("shading   {} of {} grid points unstable; refined to {} × {} cells with {} Floquet points; "
                    "max|ρ| relative error ≤ {:.1e}\n",
                    unstable, points, m.cells_x, m.cells_y, m.samples.size(), m.max_error_estimate);
