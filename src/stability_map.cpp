@@ -11,8 +11,11 @@
 #include <tuple>
 #include <unordered_map>
 
+#include <fmt/format.h>
+
 #include "bladestab/boundaries.hpp"
 #include "bladestab/input_error.hpp"
+#include "bladestab/numerical_error.hpp"
 #include "bladestab/mode_convergence.hpp"
 #include "bladestab/reduction.hpp"
 
@@ -31,9 +34,9 @@ Scene scene_at(Scene scene, double speed, double theta, double fbar) {
   return scene;
 }
 
-// The shading integrates the scene's automatic reduced model at each point.
-PeriodicSystem system_for(const BladeModel& model, const Scene& scene, ReductionKind reduction) {
-  return periodic_system(model, scene, load_series(scene), {reduction, 0, 0});
+// The shading integrates the automatic reduced model with the map's vectors at each point.
+PeriodicSystem system_for(const BladeModel& model, const Scene& scene, int vectors) {
+  return periodic_system(model, scene, load_series(scene), {ReductionKind::automatic, vectors, 0});
 }
 
 // One model of the boundary equations: a Ritz model, its reduction, K harmonics per family.
@@ -177,17 +180,18 @@ private:
   std::vector<BoundaryCurve> curves_;
 };
 
-// Reduced-basis vectors per load level for the boundary equations: enough unloaded modes (at the
-// window's lowest speed, where they are lowest) to hold every tongue drawn. A tongue of order
-// n ≤ max_order sits near θ = 2ω/n, so modes up to ω = max_order·θ_max/2 are drawn; twice that
-// is kept (the load lowers the frequencies it couples), and never fewer than the default.
-int curve_vectors(const BladeModel& model, const Scene& scene, const CurveWindow& w) {
+// Reduced-basis vectors per load level for the map: enough unloaded modes (at the window's lowest
+// speed, where they are lowest) to hold every tongue drawn. A tongue of order n ≤ max_order sits
+// near θ = 2ω/n, so modes up to ω = max_order·θ_max/2 are drawn; twice that is kept (the load
+// lowers the frequencies it couples), and never fewer than two. Each use checks its choice
+// (check_curves, check_shading) and raises it where the check fails.
+int window_vectors(const BladeModel& model, const Scene& scene, const CurveWindow& w) {
   const double slowest = w.theta_plane ? w.speed : w.x_lo;
   const double theta_max = w.theta_plane ? w.x_hi : w.engine_order * w.x_hi;
   const Scene at = scene_at(scene, slowest, theta_max, 0);
   const Eigen::VectorXd omega = periodic_system(model, at, load_series(at), {ReductionKind::none, 0, 0}).modal_frequencies;
   const int drawn = static_cast<int>((omega.array() < w.max_order * theta_max).count());
-  return std::max(default_reduction_vectors, drawn);
+  return std::max(2, drawn);
 }
 
 // The curves' error on three lines of the trace (at 1/6, 1/2 and 5/6 of it), as distances
@@ -201,16 +205,36 @@ int curve_vectors(const BladeModel& model, const Scene& scene, const CurveWindow
 //              with ratio 1/2, as for `boundaries`)
 //   load       0 for the cosine approximation (42), the scene's load; a longer series is not
 //              compared (named in `unbounded`)
-CurveFidelity check_curves(const Scene& scene, const CurveWindow& w, const CurveModel& m, const MapOptions& o) {
+// Boundaries of the check lines, kept across the fidelity's iterations: most models compared
+// (the whole one at min(K, 4) harmonics, the costliest) recur when only K or the vectors change.
+class LineCache {
+public:
+  std::vector<Boundary> on_line(const CurveWindow& w, const Scene& scene, const CurveModel& m, double line) {
+    const Key key{m.model, static_cast<int>(m.reduction.kind), m.reduction.vectors, m.approximation, line};
+    {
+      std::lock_guard<std::mutex> hold(lock_);
+      const auto it = cache_.find(key);
+      if (it != cache_.end()) return it->second;
+    }
+    std::vector<Boundary> found = w.on_line(scene, m, line);
+    std::lock_guard<std::mutex> hold(lock_);
+    return cache_.emplace(key, std::move(found)).first->second;
+  }
+
+private:
+  using Key = std::tuple<const BladeModel*, int, int, int, double>;
+  std::mutex lock_;
+  std::map<Key, std::vector<Boundary>> cache_;
+};
+
+CurveFidelity check_curves(const Scene& scene, const CurveWindow& w, const CurveModel& m, const BladeModel& richer,
+                           const MapOptions& o, LineCache& cache) {
   CurveFidelity f;
   f.reduction = m.reduction;
   f.approximation = m.approximation;
   const std::size_t n = o.trace.size();
   std::vector<std::size_t> lines{n / 6, n / 2, 5 * n / 6};
   lines.erase(std::unique(lines.begin(), lines.end()), lines.end());
-  ModelSpec richer_spec = scene.model;
-  richer_spec.terms = reference_terms(richer_spec.basis, richer_spec.terms);
-  const BladeModel richer = assemble_model(scene.blade, richer_spec);
   const bool reduced = m.reduction.kind == ReductionKind::automatic;
   const int whole_k = std::min(m.approximation, 4);
   // Pairs (model compared, the answer's model at the same K, factor, part).
@@ -232,8 +256,8 @@ CurveFidelity check_curves(const Scene& scene, const CurveWindow& w, const Curve
   parallel_for(distance.size(), o.threads, [&](std::size_t k) {
     const Variant& v = variants[k % variants.size()];
     const double line = o.trace[lines[k / variants.size()]];
-    distance[k] = v.factor * curve_distance(w, v.same.approximation, w.on_line(scene, v.same, line),
-                                            w.on_line(scene, v.other, line));
+    distance[k] = v.factor * curve_distance(w, v.same.approximation, cache.on_line(w, scene, v.same, line),
+                                            cache.on_line(w, scene, v.other, line));
   });
   for (std::size_t k = 0; k < distance.size(); ++k) {
     double& part = f.budget.*(variants[k % variants.size()].part);
@@ -244,6 +268,37 @@ CurveFidelity check_curves(const Scene& scene, const CurveWindow& w, const Curve
     f.budget.unbounded.push_back("load: the series' tail is not compared for the curves");
   }
   f.tolerance_met = f.budget.total() <= o.tolerance;
+  return f;
+}
+
+// The shading's reduction checked on up to 12 points of the grid, spread over it: max|ρ| with the
+// map's vectors against twice as many, each to a quarter of the tolerance; the part is twice the
+// difference (Galerkin projections do not converge monotonically in max|ρ|, as in `stability`)
+// plus both method errors, relative to max(1, max|ρ|).
+ShadingFidelity check_shading(const BladeModel& model, const MapOptions& o, int vectors,
+                              const std::function<Scene(double, double)>& scene_at_point) {
+  ShadingFidelity f;
+  f.reduction_vectors = vectors;
+  const std::size_t nx = o.grid_x.size(), ny = o.grid_fbar.size(), count = nx * ny;
+  std::vector<std::pair<double, double>> points;
+  for (std::size_t k = 0; k < 12 && k < count; ++k) {
+    const std::size_t at = (2 * k + 1) * count / 24;  // the middles of 12 equal runs of the grid
+    if (o.grid_x[at % nx] > 0) points.emplace_back(o.grid_x[at % nx], o.grid_fbar[at / nx]);
+  }
+  std::vector<double> part(points.size(), 0);
+  parallel_for(points.size(), o.threads, [&](std::size_t k) {
+    const Scene at = scene_at_point(points[k].first, points[k].second);
+    const FloquetOptions options{FloquetMethod::automatic, 0, o.tolerance / 4, false};
+    const FloquetResult r = floquet_multipliers(system_for(model, at, vectors), options);
+    const FloquetResult richer = floquet_multipliers(system_for(model, at, 2 * vectors), options);
+    part[k] = (2 * std::abs(r.max_abs_multiplier - richer.max_abs_multiplier) + r.error_estimate + richer.error_estimate) /
+              std::max(1.0, r.max_abs_multiplier);
+  });
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    f.checked.push_back({points[k].first, points[k].second, part[k]});
+    f.reduction_error = std::max(f.reduction_error, part[k]);
+  }
+  f.tolerance_met = f.reduction_error <= o.tolerance;
   return f;
 }
 
@@ -280,10 +335,14 @@ StabilityMap stability_map(const Scene& scene, const MapOptions& o, const std::f
   // on a few lines (check_curves), raising what misses the tolerance; then every line is traced.
   const CurveWindow window{theta_plane,      speed,           fcr, o.engine_order, o.grid_x.front(), o.grid_x.back(),
                            o.grid_fbar.back(), o.max_order};
-  CurveModel curve_model{&model, {ReductionKind::automatic, curve_vectors(model, scene, window), 0},
+  CurveModel curve_model{&model, {ReductionKind::automatic, window_vectors(model, scene, window), 0},
                          o.approximation};
+  ModelSpec richer_spec = scene.model;
+  richer_spec.terms = reference_terms(richer_spec.basis, richer_spec.terms);
+  const BladeModel richer = assemble_model(scene.blade, richer_spec);
+  LineCache cache;
   while (true) {
-    map.curve_fidelity = check_curves(scene, window, curve_model, o);
+    map.curve_fidelity = check_curves(scene, window, curve_model, richer, o, cache);
     const ErrorBudget& b = map.curve_fidelity.budget;
     if (map.curve_fidelity.tolerance_met) break;
     const bool reducible = curve_model.reduction.kind == ReductionKind::automatic;
@@ -315,6 +374,23 @@ StabilityMap stability_map(const Scene& scene, const MapOptions& o, const std::f
   map.curves.erase(std::remove_if(map.curves.begin(), map.curves.end(), [](const BoundaryCurve& c) { return c.x.size() < 2; }),
                    map.curves.end());
 
+  // The shading's reduction: the window's vectors, doubled while the check on the grid fails.
+  const auto scene_at_point = [&](double x, double fbar) {
+    return theta_plane ? scene_at(scene, speed, x, fbar) : scene_at(scene, x, o.engine_order * x, fbar);
+  };
+  for (int vectors = window_vectors(model, scene, window);; vectors *= 2) {
+    map.shading_fidelity = check_shading(model, o, vectors, scene_at_point);
+    if (map.shading_fidelity.tolerance_met) break;
+    if (6 * vectors >= model.layout.size()) {  // the check's richer model would no longer be reduced
+      const ShadingCheck& worst = *std::max_element(
+          map.shading_fidelity.checked.begin(), map.shading_fidelity.checked.end(),
+          [](const ShadingCheck& a, const ShadingCheck& b) { return a.relative_error < b.relative_error; });
+      throw NumericalError(fmt::format("map: the shading's reduced model ({} vectors per load level) differs from a "
+                                       "richer one by {:.2g} (relative) at ({:g}, F̄ = {:g}), above --tolerance {:g}",
+                                       vectors, worst.relative_error, worst.x, worst.fbar, o.tolerance));
+    }
+  }
+
   // Shading on the fine lattice: the grid's cells split 2^k times in each direction.
   const auto levels = [](int coarse_cells, int wanted) {
     int k = 0;
@@ -345,8 +421,8 @@ StabilityMap stability_map(const Scene& scene, const MapOptions& o, const std::f
     parallel_for(points.size(), o.threads, [&](std::size_t k) {
       const double x = lattice_x(points[k].first), fbar = lattice_y(points[k].second);
       if (x > 0) {
-        const Scene at = theta_plane ? scene_at(scene, speed, x, fbar) : scene_at(scene, x, o.engine_order * x, fbar);
-        const FloquetResult r = floquet_multipliers(system_for(model, at, ReductionKind::automatic),
+        const Scene at = scene_at_point(x, fbar);
+        const FloquetResult r = floquet_multipliers(system_for(model, at, map.shading_fidelity.reduction_vectors),
                                                     {FloquetMethod::automatic, 0, o.tolerance, false});
         result[k] = r.max_abs_multiplier;
         std::lock_guard<std::mutex> lock(error_lock);

@@ -60,6 +60,17 @@ struct CurveFidelity {
   bool tolerance_met = false;     // budget.total() ≤ the map's tolerance
 };
 
+// The shading's reduced model and its check on points of the grid against twice the vectors.
+struct ShadingCheck {
+  double x = 0, fbar = 0, relative_error = 0;
+};
+struct ShadingFidelity {
+  int reduction_vectors = 0;          // automatic reduction, vectors per load level
+  std::vector<ShadingCheck> checked;  // the grid points checked and each one's reduction part
+  double reduction_error = 0;         // the largest, relative to max(1, max|ρ|)
+  bool tolerance_met = false;
+};
+
 struct StabilityMap {
   MapPlane plane = MapPlane::theta_fmax;
   std::vector<double> grid_x, grid_fbar;
@@ -70,6 +81,7 @@ struct StabilityMap {
   double max_error_estimate = 0;
   std::vector<BoundaryCurve> curves;
   CurveFidelity curve_fidelity;
+  ShadingFidelity shading_fidelity;
 };
 
 // `progress(done, total)` counts shading points and traced parameter values.

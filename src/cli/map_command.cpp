@@ -53,6 +53,8 @@ std::string map_json(const Scene& scene, const BladeModel& model, const MapOptio
       .value("max_order", o.max_order)
       .value("shading_method", "Floquet multipliers, method auto")
       .value("shading_max_relative_error", m.max_error_estimate)
+      .value("shading_reduction_vectors", m.shading_fidelity.reduction_vectors)
+      .value("shading_reduction_error", m.shading_fidelity.reduction_error)
       // Within the shading's accuracy, max|ρ| this close to 1 cannot be told from stable.
       .value("stable_below", 1 + std::max(o.tolerance, m.max_error_estimate))
       .begin_object("grid")
@@ -247,8 +249,11 @@ Command register_map(CLI::App& app) {
                                                                 : "",
                    describe_error_budget(f.budget), f.tolerance_met ? "" : fmt::format(" — above --tolerance {}", o.tolerance));
         fmt::print("shading   {} of {} grid points unstable; refined to {} × {} cells with {} Floquet points; "
-                   "max|ρ| relative error ≤ {:.1e}\n",
-                   unstable, points, m.cells_x, m.cells_y, m.samples.size(), m.max_error_estimate);
+                   "max|ρ| relative error ≤ {:.1e} (method, every point) + {:.1e} (reduction to {} vectors per load "
+                   "level, {} grid points checked against twice as many)\n",
+                   unstable, points, m.cells_x, m.cells_y, m.samples.size(), m.max_error_estimate,
+                   m.shading_fidelity.reduction_error, m.shading_fidelity.reduction_vectors,
+                   m.shading_fidelity.checked.size());
         fmt::print("written   {}\n", fmt::join(files, ", "));
       }
     }
