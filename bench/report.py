@@ -424,7 +424,7 @@ def write(results, folder):
             w(f"| {n} | {3 * n} | {cells[0]} | {cells[1]} |")
         w("")
         if mp:
-            w("The map of the acceptance item: `map SCENE --plane speed-fmax --speeds 50:600:400 --fmax 0:10:200 --chart none` "
+            w("The map of the acceptance item: `map SCENE --plane speed-fmax --speeds 50:600:26 --fmax 0:10:26 --resolution 400x200 --chart none` (a 26 × 26 grid refined to effective 400 × 200 where stability changes or a boundary curve passes) "
               f"(given up after {mp['full_cap_s']} s if not done). SciPy per map point at the map's tolerance "
               "(rtol 1e-3): " + ", ".join(f"{x['method']} {s(x.get('median_s'))} on the reduced matrices of the map point "
                                           f"({x['states']} states)" for x in mp["scipy_per_point"] if not x.get("capped"))
