@@ -3,11 +3,14 @@
 // automatic k, and the multiplier check.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 
 #include "bladestab/boundaries.hpp"
 #include "bladestab/damping.hpp"
+#include "bladestab/instability_regions.hpp"
+#include "bladestab/stability_analysis.hpp"
 #include "reference/mathieu.hpp"
 #include "support/scenes.hpp"
 
@@ -170,4 +173,44 @@ TEST_CASE("boundaries: the multiplier check tells a boundary from a point inside
   Boundary inside = edges[0];
   inside.theta_rad_s = 0.5 * (edges[0].theta_rad_s + edges[1].theta_rad_s);
   CHECK(multiplier_gap(sys, peak, inside, 1e-10) > 0.1);
+}
+
+TEST_CASE("boundaries: regions at the scene's load hold the paper point, and the Floquet verdict flips at their ends",
+          "[boundaries][regions]") {
+  const Scene s = paper_scene({"model.terms=8"});  // θ = Ω = 300 rad/s, F̄ = 5
+  const BoundaryRequest r;
+  const BoundaryAnalysis a = boundaries_with_error_estimate(s, r);
+  const std::vector<InstabilityRegion> regions = instability_regions(s, r, a);
+  REQUIRE(!regions.empty());
+  // The scene's own point: the +1 region of mode 1, order 2, between 258.9 and 329.4 rad/s (README).
+  const auto holds = std::find_if(regions.begin(), regions.end(), [](const InstabilityRegion& g) {
+    return g.lower < 300 && g.upper > 300 && g.multiplier == 1 && g.mode == 1 && g.order == 2;
+  });
+  REQUIRE(holds != regions.end());
+  CHECK(holds->lower == Approx(258.9).epsilon(1e-3));
+  CHECK(holds->upper == Approx(329.4).epsilon(1e-3));
+  // Independently of the middle check: Floquet multipliers (the whole budget at 1e-6) just inside
+  // each closed end are unstable, with the family's real multiplier, and inside every region.
+  const auto dominant_at = [&](double theta) {
+    Scene at = s;
+    at.load.pulse_frequency_hz = theta / 6.28318530717958647692;
+    const StabilityAnswer answer = analyse_stability(at, {FloquetMethod::automatic, 0, 1e-6});
+    return std::make_pair(answer.stable, answer.floquet.multipliers(0));
+  };
+  for (const InstabilityRegion& g : regions) {
+    INFO("region " << g.lower << " … " << g.upper << ", multiplier " << g.multiplier << ", mode " << g.mode
+                   << ", order " << g.order);
+    for (double f : {0.001, 0.25, 0.5, 0.75, 0.999}) {
+      if ((f < 0.01 && g.lower_open) || (f > 0.99 && g.upper_open)) continue;
+      const auto [stable, rho] = dominant_at(g.lower + f * (g.upper - g.lower));
+      CHECK(!stable);
+      CHECK(rho.real() * g.multiplier > 1);
+    }
+  }
+  // Just outside the scene's region, on both sides, the +1 instability is gone.
+  for (double theta : {holds->lower * (1 - 1e-3), holds->upper * (1 + 1e-3)}) {
+    const auto [stable, rho] = dominant_at(theta);
+    INFO("θ = " << theta << ": dominant ρ = " << rho);
+    CHECK((stable || rho.real() < 0 || std::abs(rho.imag()) > 1e-6 * std::abs(rho)));
+  }
 }

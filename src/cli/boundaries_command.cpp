@@ -8,6 +8,7 @@
 
 #include "bladestab/boundaries.hpp"
 #include "bladestab/input_error.hpp"
+#include "bladestab/instability_regions.hpp"
 #include "commands.hpp"
 #include "error_output.hpp"
 #include "json_writer.hpp"
@@ -17,7 +18,7 @@ namespace bladestab::cli {
 namespace {
 
 void print(const SceneOptions& options, const Scene& scene, const BladeModel& model, const BoundaryRequest& request,
-           const BoundaryAnalysis& result) {
+           const BoundaryAnalysis& result, const std::vector<InstabilityRegion>& regions) {
   const double fcr = model.blade.critical_load();
   const bool in_load = request.theta_rad_s.has_value();
   const double unit = in_load ? fcr : 1.0;  // the window in θ [rad/s] or F̄_max
@@ -60,6 +61,19 @@ void print(const SceneOptions& options, const Scene& scene, const BladeModel& mo
             .value("approximation", e.approximation);
         write_error_budget(json, e.budget);
         json.end_object();
+      }
+      json.end_array().begin_array("regions");
+      for (const InstabilityRegion& r : regions) {
+        json.begin_object()
+            .value("lower", r.lower / unit)
+            .value("upper", r.upper / unit)
+            .value("lower_at_window", r.lower_open)
+            .value("upper_at_window", r.upper_open)
+            .value("multiplier", r.multiplier)
+            .value("mode", r.mode)
+            .value("order", r.order)
+            .value("middle_max_abs_multiplier", r.middle_max_abs_multiplier)
+            .end_object();
       }
       json.end_array().end_object();
       fmt::print("{}", json.str());
@@ -107,6 +121,14 @@ void print(const SceneOptions& options, const Scene& scene, const BladeModel& mo
                    e.budget.total());
       }
       if (result.boundaries.empty()) fmt::print("(none of order <= {} in the window)\n", request.max_order);
+      fmt::print("\nregions in {} (each checked unstable at its middle by the Floquet multipliers)\n",
+                 in_load ? "F̄_max" : "θ [rad/s]");
+      for (const InstabilityRegion& r : regions) {
+        fmt::print("  {}{:.6g} … {:.6g}{}  multiplier {}  mode {}  order {}  (max|ρ| = {:.4g} at the middle)\n",
+                   r.lower_open ? "(window) " : "", r.lower / unit, r.upper / unit, r.upper_open ? " (window)" : "",
+                   r.multiplier > 0 ? "+1" : "-1", r.mode, r.order, r.middle_max_abs_multiplier);
+      }
+      if (regions.empty()) fmt::print("  (none in the window)\n");
       fmt::print("\nCombination resonances are not boundaries of this kind: check them with `bladestab stability` or `map`.\n");
       break;
   }
@@ -160,7 +182,8 @@ Command register_boundaries(CLI::App& app) {
       const double unit = in_load ? model.blade.critical_load() : 1.0;  // F̄_max → N
       request->window = std::make_pair(lo * unit, hi * unit);
     }
-    print(*options, scene, model, *request, boundaries_with_error_estimate(scene, *request));
+    const BoundaryAnalysis analysis = boundaries_with_error_estimate(scene, *request);
+    print(*options, scene, model, *request, analysis, instability_regions(scene, *request, analysis));
   };
 }
 
