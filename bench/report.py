@@ -221,8 +221,8 @@ def write(results, folder):
       "and the eigenvalues in a running interpreter (Python's start and the file reading not counted), with NumPy's "
       "OpenBLAS on one thread as bladestab's (two threads made SciPy 2–4× slower here). CPU times (user + system) "
       "are given beside the wall times where both sides are single-threaded: on shared cores they move less. Ratios are "
-      "between numbers of this run, except the Campbell baseline, which is the issue's. **These numbers will be "
-      "measured again after the speed work merges; read them as ratios on this machine, not as absolute claims.**\n")
+      "between numbers of this run, except the Campbell baseline, which is the issue's. **This VM's speed drifts by up to 2× "
+      "between minutes: read the numbers as ratios within this run, not as absolute claims.**\n")
     if m.get("quick"):
         w("> This is a `--quick` run: fewer points, tolerances and repeats; the acceptance numbers need the full run.\n")
 
