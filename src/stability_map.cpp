@@ -66,9 +66,12 @@ struct CurveWindow {
       return boundary_frequencies(periodic_system(*m.model, at, load_series(at), m.reduction), line * fcr,
                                   m.approximation);
     }
+    return along_fbar(scene, m, line, engine_order * line);
+  }
+  // Every boundary F_max at speed Ω and pulse frequency θ (the speed plane's lines).
+  std::vector<Boundary> along_fbar(const Scene& scene, const CurveModel& m, double omega, double theta) const {
     if (y_hi <= 0) return {};
-    const double theta = engine_order * line;
-    const Scene at = scene_at(scene, line, theta, y_hi);
+    const Scene at = scene_at(scene, omega, theta, y_hi);
     return boundary_loads(periodic_system(*m.model, at, load_series(at), m.reduction), y_hi * fcr, theta,
                           m.approximation);
   }
@@ -389,6 +392,31 @@ StabilityMap stability_map(const Scene& scene, const MapOptions& o, const std::f
                                        "richer one by {:.2g} (relative) at ({:g}, F̄ = {:g}), above --tolerance {:g}",
                                        vectors, worst.relative_error, worst.x, worst.fbar, o.tolerance));
     }
+  }
+
+  // The scene's own point, where the window holds it: its max|ρ| on the shading's model and the
+  // nearest drawn boundary along F̄ (the margin a designer reads off the map).
+  const double scene_theta = load_series(scene).angular_frequency;
+  const double scene_x = theta_plane ? scene_theta : speed;
+  const bool scene_in_plane = theta_plane || std::abs(scene_theta - o.engine_order * speed) <= 1e-9 * scene_theta;
+  const double scene_fbar = scene.load.fmax_over_fcr;
+  if (scene_in_plane && scene_x >= window.x_lo && scene_x <= window.x_hi && scene_fbar >= o.grid_fbar.front() &&
+      scene_fbar <= window.y_hi && scene_theta > 0) {
+    MapPoint p;
+    p.x = scene_x;
+    p.fbar = scene_fbar;
+    const FloquetResult r = floquet_multipliers(system_for(model, scene_at_point(scene_x, scene_fbar),
+                                                           map.shading_fidelity.reduction_vectors),
+                                                {FloquetMethod::automatic, 0, o.tolerance, false});
+    p.max_abs_multiplier = r.max_abs_multiplier;
+    for (const Boundary& b : window.along_fbar(scene, curve_model, speed, scene_theta)) {
+      const double f = b.peak_force_n / fcr;
+      if (b.order > window.max_order || f > window.y_hi) continue;
+      if (!p.nearest_boundary || std::abs(f - scene_fbar) < std::abs(p.nearest_boundary->fbar - scene_fbar)) {
+        p.nearest_boundary = MapPoint::Nearest{f, b.multiplier, b.mode, b.order};
+      }
+    }
+    map.scene_point = p;
   }
 
   // Shading on the fine lattice: the grid's cells split 2^k times in each direction.

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "bladestab/boundaries.hpp"
 #include "bladestab/damping.hpp"
 #include "bladestab/stability_map.hpp"
 #include "support/scenes.hpp"
@@ -128,4 +129,36 @@ TEST_CASE("refined shading: leaves tile the lattice, agree at their corners, and
     ++compared;
   }
   CHECK(compared >= 20);
+}
+
+TEST_CASE("map marks the scene's point with its max|rho| and the nearest boundary along F-bar", "[map][scene-point]") {
+  const Scene s = paper_scene({"model.terms=8"});  // θ = Ω = 300 rad/s, F̄ = 5
+  MapOptions o;
+  o.plane = MapPlane::theta_fmax;
+  o.grid_x = linspace(200, 400, 3);
+  o.grid_fbar = linspace(0, 8, 3);
+  o.trace = linspace(0, 8, 9);
+  o.resolution_x = 2;
+  o.resolution_y = 2;
+  const StabilityMap map = stability_map(s, o);
+  REQUIRE(map.scene_point);
+  const MapPoint& p = *map.scene_point;
+  CHECK(p.x == Approx(300));
+  CHECK(p.fbar == 5);
+  // The monodromy of the whole N = 8 model (README: 2.1992274) to the map's tolerance.
+  CHECK(p.max_abs_multiplier == Approx(2.1992274).epsilon(o.tolerance));
+  // Independently: every boundary F̄ at θ = 300 from the `boundaries --at-theta` analysis (k raised
+  // to 1e-6, checked by RKF45); the nearest to F̄ = 5 within the curves' tolerance of the window.
+  BoundaryRequest r;
+  r.theta_rad_s = 300;
+  r.window = std::make_pair(0.0, 8 * assemble_model(s.blade, s.model).blade.critical_load());
+  const BoundaryAnalysis a = boundaries_with_error_estimate(s, r);
+  const double fcr = assemble_model(s.blade, s.model).blade.critical_load();
+  double nearest = 1e300;
+  for (const EstimatedBoundary& e : a.boundaries) {
+    if (std::abs(e.boundary.peak_force_n / fcr - 5) < std::abs(nearest - 5)) nearest = e.boundary.peak_force_n / fcr;
+  }
+  REQUIRE(p.nearest_boundary);
+  INFO("map: " << p.nearest_boundary->fbar << ", boundaries: " << nearest);
+  CHECK(std::abs(p.nearest_boundary->fbar - nearest) <= o.tolerance * 8);
 }

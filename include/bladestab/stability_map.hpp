@@ -8,6 +8,7 @@
 // and splits, like a quadtree, every cell whose corners disagree about stability or that holds a
 // traced boundary point, until the cells reach the requested resolution.
 #include <functional>
+#include <optional>
 #include <vector>
 
 #include <Eigen/Dense>
@@ -71,6 +72,17 @@ struct ShadingFidelity {
   bool tolerance_met = false;
 };
 
+// The scene's own point on the map: its max|ρ| (on the shading's model, at the map's tolerance)
+// and the nearest boundary drawn along F̄ at its θ or Ω.
+struct MapPoint {
+  double x = 0, fbar = 0, max_abs_multiplier = 0;
+  struct Nearest {
+    double fbar = 0;
+    int multiplier = 0, mode = 0, order = 0;
+  };
+  std::optional<Nearest> nearest_boundary;
+};
+
 struct StabilityMap {
   MapPlane plane = MapPlane::theta_fmax;
   std::vector<double> grid_x, grid_fbar;
@@ -82,6 +94,7 @@ struct StabilityMap {
   std::vector<BoundaryCurve> curves;
   CurveFidelity curve_fidelity;
   ShadingFidelity shading_fidelity;
+  std::optional<MapPoint> scene_point;  // where the window holds the scene's (θ or Ω, F̄)
 };
 
 // `progress(done, total)` counts shading points and traced parameter values.

@@ -99,16 +99,30 @@ std::string map_json(const Scene& scene, const BladeModel& model, const MapOptio
         .end_object();
   }
   json.end_array();
-  if (theta && scene.operation.speed_rad_s > 0) {  // where the scene itself sits
-    const double theta_scene = scene.load.pulse_frequency_hz ? 6.28318530717958647692 * *scene.load.pulse_frequency_hz
-                                                             : scene.load.pulses_per_rev * scene.operation.speed_rad_s;
+  if (m.scene_point) {  // where the scene itself sits
+    const MapPoint& p = *m.scene_point;
+    std::string label = fmt::format("scene: max|ρ| = {:.4g}", p.max_abs_multiplier);
+    if (p.nearest_boundary) {
+      label += fmt::format("\nnearest boundary ({:+d}) at F̄ = {:.4g}, ΔF̄ = {:+.3g}", p.nearest_boundary->multiplier,
+                           p.nearest_boundary->fbar, p.nearest_boundary->fbar - p.fbar);
+    }
     json.begin_array("markers")
         .begin_object()
-        .value("x", theta_scene)
-        .value("y", scene.load.fmax_over_fcr)
-        .value("label", "scene")
+        .value("x", p.x)
+        .value("y", p.fbar)
+        .value("label", label)
         .end_object()
         .end_array();
+    json.begin_object("scene_point").value("x", p.x).value("y", p.fbar).value("max_abs_multiplier", p.max_abs_multiplier);
+    if (p.nearest_boundary) {
+      json.value("nearest_boundary_fbar", p.nearest_boundary->fbar)
+          .value("nearest_boundary_multiplier", p.nearest_boundary->multiplier)
+          .value("nearest_boundary_mode", p.nearest_boundary->mode)
+          .value("nearest_boundary_order", p.nearest_boundary->order);
+    } else {
+      json.null_value("nearest_boundary_fbar");
+    }
+    json.end_object();
   }
   json.end_object();
   return json.str();
@@ -254,6 +268,16 @@ Command register_map(CLI::App& app) {
                    unstable, points, m.cells_x, m.cells_y, m.samples.size(), m.max_error_estimate,
                    m.shading_fidelity.reduction_error, m.shading_fidelity.reduction_vectors,
                    m.shading_fidelity.checked.size());
+        if (m.scene_point) {
+          const MapPoint& p = *m.scene_point;
+          fmt::print("scene     ({:g}, F̄ = {:g}): max|ρ| = {:.6g}{}\n", p.x, p.fbar, p.max_abs_multiplier,
+                     p.nearest_boundary ? fmt::format("; nearest boundary along F̄ at {:.6g} ({:+d}, mode {}, order {}), "
+                                                      "ΔF̄ = {:+.3g}",
+                                                      p.nearest_boundary->fbar, p.nearest_boundary->multiplier,
+                                                      p.nearest_boundary->mode, p.nearest_boundary->order,
+                                                      p.nearest_boundary->fbar - p.fbar)
+                                        : "; no boundary along F̄ in the window");
+        }
         fmt::print("written   {}\n", fmt::join(files, ", "));
       }
     }
