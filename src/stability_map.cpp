@@ -389,7 +389,7 @@ StabilityMap stability_map(const Scene& scene, const MapOptions& o, const std::f
           map.shading_fidelity.checked.begin(), map.shading_fidelity.checked.end(),
           [](const ShadingCheck& a, const ShadingCheck& b) { return a.relative_error < b.relative_error; });
       throw NumericalError(fmt::format("map: the shading's reduced model ({} vectors per load level) differs from a "
-                                       "richer one by {:.2g} (relative) at ({:g}, F̄ = {:g}), above --tolerance {:g}",
+                                       "richer one by {:.2g} (relative) at ({:g}, F̄ = {:g}), above the map's tolerance {:g}",
                                        vectors, worst.relative_error, worst.x, worst.fbar, o.tolerance));
     }
   }

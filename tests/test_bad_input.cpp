@@ -376,6 +376,14 @@ TEST_CASE("bad input: stability, boundaries and map options (bad_input)", "[bad_
     expect_rejected(with({"map", "--plane", "theta-fmax", "--theta", "-100:100:3", "--chart", "none"}),
                     {"--theta -100:100:3", "> 0"});
   }
+  SECTION("map --threads 0") {
+    expect_rejected(with({"map", "--plane", "theta-fmax", "--threads", "0", "--chart", "none"}),
+                    {"--threads 0", "[1, 256]"});
+  }
+  SECTION("map --max-order 0") {
+    expect_rejected(with({"map", "--plane", "theta-fmax", "--max-order", "0", "--chart", "none"}),
+                    {"--max-order 0", "[1, 40]"});
+  }
 }
 
 TEST_CASE("bad input: transient and crosscheck options (bad_input)", "[bad_input]") {

@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <thread>
 
 #include <fmt/format.h>
 
@@ -180,6 +181,8 @@ Command register_map(CLI::App& app) {
                       "boundary curves of orders n <= this (theta ~ 2 omega / n; default 4); harmonics are raised to "
                       "converge them");
   command->add_option("--tolerance", *tolerance, "accuracy of max|ρ| in the shading (default 1e-3)");
+  auto threads = std::make_shared<int>(std::max(1u, std::thread::hardware_concurrency()));
+  command->add_option("--threads", *threads, "worker threads (default: the machine's cores)");
   auto resolution = std::make_shared<std::string>("400x200");
   command->add_option("--resolution", *resolution,
                       "effective cells NXxNY of the refined shading (default 400x200; the grid's cells are split "
@@ -216,6 +219,10 @@ Command register_map(CLI::App& app) {
       o.resolution_x = rx;
       o.resolution_y = ry;
     }
+    if (*threads < 1 || *threads > 256) {
+      throw InputError(fmt::format("--threads {}: must be an integer in [1, 256]", *threads));
+    }
+    o.threads = *threads;
     const BladeModel model = assemble_model(scene.blade, scene.model);
     if (theta_plane) {
       if (scene.operation.speed_rad_s <= 0 && scene.damping.model == DampingModel::paper) {
