@@ -162,3 +162,37 @@ TEST_CASE("map marks the scene's point with its max|rho| and the nearest boundar
   INFO("map: " << p.nearest_boundary->fbar << ", boundaries: " << nearest);
   CHECK(std::abs(p.nearest_boundary->fbar - nearest) <= o.tolerance * 8);
 }
+
+TEST_CASE("50 random refined samples of each plane's map match the whole model's monodromy to the map's tolerance",
+          "[map][samples]") {
+  const Scene s = paper_scene({"model.terms=8"});  // the main job's model
+  const bool theta_plane = GENERATE(true, false);
+  MapOptions o;
+  o.plane = theta_plane ? MapPlane::theta_fmax : MapPlane::speed_fmax;
+  o.grid_x = theta_plane ? linspace(100, 1000, 14) : linspace(50, 600, 14);
+  o.grid_fbar = linspace(0, 10, 14);
+  o.trace = theta_plane ? linspace(0, 10, 27) : linspace(50, 600, 27);
+  o.resolution_x = 100;
+  o.resolution_y = 50;
+  const StabilityMap map = stability_map(s, o);
+  REQUIRE(map.samples.size() >= 200);
+  const BladeModel model = assemble_model(s.blade, s.model);
+  // A fixed pseudo-random draw (Knuth's multiplicative hash of the index) of 50 evaluated points.
+  int checked = 0;
+  for (std::size_t k = 0; checked < 50; ++k) {
+    const MapSample& p = map.samples[(k * 2654435761u) % map.samples.size()];
+    if (std::isnan(p.max_abs_multiplier)) continue;
+    Scene at = s;
+    if (!theta_plane) at.operation.speed_rad_s = p.x;
+    at.load.pulse_frequency_hz = p.x / (2 * 3.14159265358979323846);
+    at.load.fmax_over_fcr = p.fbar;
+    // Independent: the whole Ritz model (no reduction) by the Magnus monodromy at a tenth of the tolerance.
+    const PeriodicSystem whole = periodic_system(model, at, load_series(at), {ReductionKind::none, 0, 0});
+    const FloquetResult ref = floquet_multipliers(whole, {FloquetMethod::monodromy, 0, o.tolerance / 10, false});
+    INFO((theta_plane ? "θ = " : "Ω = ") << p.x << ", F̄ = " << p.fbar << ": map " << p.max_abs_multiplier
+                                         << ", whole model " << ref.max_abs_multiplier << " ± " << ref.error_estimate);
+    CHECK(std::abs(p.max_abs_multiplier - ref.max_abs_multiplier) <=
+          o.tolerance * std::max(1.0, ref.max_abs_multiplier) + ref.error_estimate);
+    ++checked;
+  }
+}
