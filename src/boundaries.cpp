@@ -340,6 +340,9 @@ BoundaryAnalysis boundaries_with_error_estimate(const Scene& scene_in, const Bou
   const bool in_load = r.theta_rad_s.has_value();
   Scene scene = scene_in;
   if (in_load && scene.load.fmax_over_fcr == 0) scene.load.fmax_over_fcr = 1;  // only the load's shape matters
+  // The pulses come at the θ asked for: a pulse series (not the cosine approximation) depends on it
+  // through the duty t_c/T.
+  if (in_load) scene.load.pulse_frequency_hz = *r.theta_rad_s / two_pi;
   const BladeModel model = assemble_model(scene.blade, scene.model);
   const double peak = scene.load.fmax_over_fcr * model.blade.critical_load();
   const LoadSeries load = load_series(scene);

@@ -214,3 +214,26 @@ TEST_CASE("boundaries: regions at the scene's load hold the paper point, and the
     CHECK((stable || rho.real() < 0 || std::abs(rho.imag()) > 1e-6 * std::abs(rho)));
   }
 }
+
+TEST_CASE("boundaries --at-theta with a pulse series: the pulses come at the theta asked for", "[boundaries][series]") {
+  // A long pulse (t_c = 0.3 rev) as its own Fourier series: the duty t_c/T, so every F_m, depends on θ.
+  const Scene s = paper_scene({"model.terms=8", "load.approximation=\"fourier\"", "load.contact_time_rev=0.3"});
+  BoundaryRequest r;
+  r.theta_rad_s = 400;  // the scene's own θ is 300
+  const double fcr = assemble_model(s.blade, s.model).blade.critical_load();
+  r.window = std::make_pair(0.0, 3 * fcr);
+  const BoundaryAnalysis a = boundaries_with_error_estimate(s, r);
+  REQUIRE(!a.boundaries.empty());
+  const double first = a.boundaries.front().boundary.peak_force_n / fcr;
+  // Independently: the Floquet verdict of the scene with its pulses at 400 rad/s flips there.
+  const auto stable_at = [&](double fbar) {
+    Scene at = s;
+    at.load.pulse_frequency_hz = 400 / 6.28318530717958647692;
+    at.load.fmax_over_fcr = fbar;
+    return analyse_stability(at, {FloquetMethod::automatic, 0, 1e-6}).stable;
+  };
+  INFO("first boundary F̄ = " << first);
+  CHECK(first == Approx(1.927735).epsilon(1e-5));
+  CHECK(stable_at(first * (1 - 1e-3)));
+  CHECK_FALSE(stable_at(first * (1 + 1e-3)));
+}

@@ -59,6 +59,7 @@ struct CurveFidelity {
   std::vector<double> checked_at; // the trace values (F̄ or Ω) of the lines checked
   ErrorBudget budget;
   bool tolerance_met = false;     // budget.total() ≤ the map's tolerance
+  bool drawn = true;              // false for a pulse's own series: no curves (stability_map.cpp)
 };
 
 // The shading's reduced model and its check on points of the grid against twice the vectors.

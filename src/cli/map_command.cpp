@@ -86,6 +86,7 @@ std::string map_json(const Scene& scene, const BladeModel& model, const MapOptio
       .value("approximation", f.approximation)
       .numbers("checked_at", f.checked_at)
       .value("tolerance_met", f.tolerance_met)
+      .value("drawn", f.drawn)
       .value("error_measure", m.plane == MapPlane::theta_fmax ? "distance in θ over the window's θ span"
                                                                : "distance in F̄ over the window's F̄ span");
   write_error_budget(json, f.budget);
@@ -263,12 +264,17 @@ Command register_map(CLI::App& app) {
                    theta_plane ? fmt::format(" at Ω = {:g} rad/s", scene.operation.speed_rad_s)
                                : fmt::format(", θ = {}·Ω", o.engine_order));
         const CurveFidelity& f = m.curve_fidelity;
-        fmt::print("curves    {} boundary curves ({} harmonics per family, {} model{}); error over the window's "
-                   "span {}{}\n",
-                   m.curves.size(), f.approximation, to_string(f.reduction.kind),
-                   f.reduction.kind == ReductionKind::automatic ? fmt::format(", {} vectors per load level", f.reduction.vectors)
-                                                                : "",
-                   describe_error_budget(f.budget), f.tolerance_met ? "" : fmt::format(" — above --tolerance {}", o.tolerance));
+        if (!f.drawn) {
+          fmt::print("curves    none: a pulse's own series needs many more harmonics in the boundary equations, not "
+                     "monotonically; the shading (Floquet) shows the regions\n");
+        } else {
+          fmt::print("curves    {} boundary curves ({} harmonics per family, {} model{}); error over the window's "
+                     "span {}{}\n",
+                     m.curves.size(), f.approximation, to_string(f.reduction.kind),
+                     f.reduction.kind == ReductionKind::automatic ? fmt::format(", {} vectors per load level", f.reduction.vectors)
+                                                                  : "",
+                     describe_error_budget(f.budget), f.tolerance_met ? "" : fmt::format(" — above --tolerance {}", o.tolerance));
+        }
         fmt::print("shading   {} of {} grid points unstable; refined to {} × {} cells with {} Floquet points; "
                    "max|ρ| relative error ≤ {:.1e} (method, every point) + {:.1e} (reduction to {} vectors per load "
                    "level, {} grid points checked against twice as many)\n",
