@@ -197,17 +197,6 @@ int window_vectors(const BladeModel& model, const Scene& scene, const CurveWindo
   return std::max(2, drawn);
 }
 
-// The curves' error on three lines of the trace (at 1/6, 1/2 and 5/6 of it), as distances
-// over the window's span (curve_distance), each against a model that differs in one part only:
-//   reduction  the whole Ritz model — the check that shares nothing with the reduction — at
-//              min(K, 4) harmonics (its boundary equations grow like dofs·K; the reduction's error
-//              hardly depends on K), and twice the change to twice the vectors at K
-//   basis      the reduced model of the richer basis reference_terms(basis, N) (sine: times
-//              basis_tail_factor)
-//   method     K + 2 harmonics, twice the change (the tail of a convergence at least geometric
-//              with ratio 1/2, as for `boundaries`)
-//   load       0 for the cosine approximation (42), the scene's load; a longer series is not
-//              compared (named in `unbounded`)
 // Boundaries of the check lines, kept across the fidelity's iterations: most models compared
 // (the whole one at min(K, 4) harmonics, the costliest) recur when only K or the vectors change.
 class LineCache {
@@ -230,6 +219,17 @@ private:
   std::map<Key, std::vector<Boundary>> cache_;
 };
 
+// The curves' error on three lines of the trace (at 1/6, 1/2 and 5/6 of it), as distances
+// over the window's span (curve_distance), each against a model that differs in one part only:
+//   reduction  the whole Ritz model — the check that shares nothing with the reduction — at
+//              min(K, 4) harmonics (its boundary equations grow like dofs·K; the reduction's error
+//              hardly depends on K), and twice the change to twice the vectors at K
+//   basis      the reduced model of the richer basis reference_terms(basis, N) (sine: times
+//              basis_tail_factor)
+//   method     K + 2 harmonics, twice the change (the tail of a convergence at least geometric
+//              with ratio 1/2, as for `boundaries`)
+//   load       0 for the cosine approximation (42), the scene's load; a longer series is not
+//              compared (named in `unbounded`)
 CurveFidelity check_curves(const Scene& scene, const CurveWindow& w, const CurveModel& m, const BladeModel& richer,
                            const MapOptions& o, LineCache& cache) {
   CurveFidelity f;
@@ -284,9 +284,11 @@ ShadingFidelity check_shading(const BladeModel& model, const MapOptions& o, int 
   f.reduction_vectors = vectors;
   const std::size_t nx = o.grid_x.size(), ny = o.grid_fbar.size(), count = nx * ny;
   std::vector<std::pair<double, double>> points;
-  for (std::size_t k = 0; k < 12 && k < count; ++k) {
+  std::size_t previous = count;
+  for (std::size_t k = 0; k < 12; ++k) {
     const std::size_t at = (2 * k + 1) * count / 24;  // the middles of 12 equal runs of the grid
-    if (o.grid_x[at % nx] > 0) points.emplace_back(o.grid_x[at % nx], o.grid_fbar[at / nx]);
+    if (at != previous && o.grid_x[at % nx] > 0) points.emplace_back(o.grid_x[at % nx], o.grid_fbar[at / nx]);
+    previous = at;
   }
   std::vector<double> part(points.size(), 0);
   parallel_for(points.size(), o.threads, [&](std::size_t k) {
