@@ -5,6 +5,7 @@
 #include <complex>
 #include <map>
 
+#include "bladestab/blade_properties.hpp"
 #include "bladestab/stability_analysis.hpp"
 
 namespace bladestab {
@@ -17,7 +18,7 @@ constexpr double two_pi = 6.28318530717958647692;
 std::vector<InstabilityRegion> instability_regions(const Scene& scene, const BoundaryRequest& request,
                                                    const BoundaryAnalysis& analysis, double tolerance) {
   const bool in_load = request.theta_rad_s.has_value();
-  const double fcr = assemble_model(scene.blade, scene.model).blade.critical_load();
+  const double fcr = BladeProperties(scene.blade).critical_load();
   const auto value = [in_load](const Boundary& b) { return in_load ? b.peak_force_n : b.theta_rad_s; };
   // The boundaries of each family, in order along the line.
   std::map<int, std::vector<Boundary>> families;

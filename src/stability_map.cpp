@@ -228,8 +228,7 @@ private:
 //              basis_tail_factor)
 //   method     K + 2 harmonics, twice the change (the tail of a convergence at least geometric
 //              with ratio 1/2, as for `boundaries`)
-//   load       0 for the cosine approximation (42), the scene's load; a longer series is not
-//              compared (named in `unbounded`)
+//   load       0: curves are drawn for the cosine approximation (42) only, the scene's load
 CurveFidelity check_curves(const Scene& scene, const CurveWindow& w, const CurveModel& m, const BladeModel& richer,
                            const MapOptions& o, LineCache& cache) {
   CurveFidelity f;
@@ -267,9 +266,6 @@ CurveFidelity check_curves(const Scene& scene, const CurveWindow& w, const Curve
     part = std::max(part, distance[k]);
   }
   for (std::size_t line : lines) f.checked_at.push_back(o.trace[line]);
-  if (!load_series(scene).cosine_approximation) {
-    f.budget.unbounded.push_back("load: the series' tail is not compared for the curves");
-  }
   f.tolerance_met = f.budget.total() <= o.tolerance;
   return f;
 }
@@ -317,7 +313,8 @@ StabilityMap stability_map(const Scene& scene, const MapOptions& o, const std::f
   if (!theta_plane && o.grid_x.front() <= 0) {
     throw InputError("map: the speed plane needs speeds > 0 (θ = kΩ must be a pulse frequency)");
   }
-  if (load_series(scene).exact_pulse) {
+  const LoadSeries scene_load = load_series(scene);
+  if (scene_load.exact_pulse) {
     // The shading takes the load's Fourier series; the true train (integrated through each
     // contact) is not mapped yet, and its series would be the mean alone.
     throw InputError("load.approximation = \"exact\": maps need the load as a series; use \"fourier\" (the "
@@ -357,7 +354,7 @@ StabilityMap stability_map(const Scene& scene, const MapOptions& o, const std::f
   // rev, the +1 boundary at θ = 400 rad/s, F̄ = 1.93 is absent at k = 4 and 6 and appears by k = 12,
   // which a k-against-k + 2 check on a few lines cannot see. Its θ-plane lines are also not
   // eigenproblems in θ (the duty t_c/T changes with θ). Such maps are shaded, without curves.
-  map.curve_fidelity.drawn = load_series(scene).cosine_approximation;
+  map.curve_fidelity.drawn = scene_load.cosine_approximation;
   while (map.curve_fidelity.drawn) {
     map.curve_fidelity = check_curves(scene, window, curve_model, richer, o, cache);
     const ErrorBudget& b = map.curve_fidelity.budget;
@@ -410,7 +407,7 @@ StabilityMap stability_map(const Scene& scene, const MapOptions& o, const std::f
 
   // The scene's own point, where the window holds it: its max|ρ| on the shading's model and the
   // nearest drawn boundary along F̄ (the margin a designer reads off the map).
-  const double scene_theta = load_series(scene).angular_frequency;
+  const double scene_theta = scene_load.angular_frequency;
   const double scene_x = theta_plane ? scene_theta : speed;
   const bool scene_in_plane = theta_plane || std::abs(scene_theta - o.engine_order * speed) <= 1e-9 * scene_theta;
   const double scene_fbar = scene.load.fmax_over_fcr;
