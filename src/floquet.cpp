@@ -185,8 +185,10 @@ Eigen::MatrixXd rkf45_propagate(const PeriodicSystem& sys, const LoadVariation& 
     dy.resize(y.size());
     const auto Y = Eigen::Map<const Eigen::MatrixXd>(y.data(), n, columns);
     auto D = Eigen::Map<Eigen::MatrixXd>(dy.data(), n, columns);
-    D.noalias() = sys.A0 * Y;
-    D.noalias() += load.phi(t) * (sys.B * Y);
+    // A few columns: Eigen's coefficient-wise product; its blocked GEMM would spend more time packing
+    // the n×n operand than multiplying.
+    D.noalias() = sys.A0.lazyProduct(Y);
+    D.noalias() += load.phi(t) * sys.B.lazyProduct(Y);
   };
   Eigen::VectorXd x = X0.reshaped();
   StepControl control;
@@ -204,7 +206,16 @@ double dominant_residual(const Eigen::MatrixXd& phi, const PeriodicSystem& sys, 
   Eigen::Index k = 0;
   eig.eigenvalues().cwiseAbs().maxCoeff(&k);
   const cplx rho = eig.eigenvalues()(k);
-  const Eigen::VectorXcd v = eig.eigenvectors().col(k).normalized();
+  Eigen::VectorXcd v = eig.eigenvectors().col(k).normalized();
+  if (rho.imag() == 0) {
+    // A real multiplier has a real eigenvector up to a phase: one column to integrate, not two.
+    Eigen::Index largest = 0;
+    v.cwiseAbs().maxCoeff(&largest);
+    v *= std::conj(v(largest)) / std::abs(v(largest));
+    const Eigen::VectorXd x = v.real();
+    const Eigen::VectorXd xT = rkf45_propagate(sys, load, x, rtol, rtol * 1e-3);
+    return ((xT - rho.real() * x).norm() + v.imag().norm() * (1 + std::abs(rho))) / std::abs(rho);
+  }
   Eigen::MatrixXd X(sys.state_size(), 2);
   X << v.real(), v.imag();
   const Eigen::MatrixXd XT = rkf45_propagate(sys, load, X, rtol, rtol * 1e-3);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <future>
+#include <limits>
 #include <optional>
 
 #include <fmt/format.h>
@@ -45,23 +46,29 @@ struct VariantRho {
   double rho = 0, error = 0;
 };
 
-// A variant of a Magnus answer (N steps) is integrated with N/4 and N/2 steps, and N if those
-// two differ by more than `tol`: the variant's value at the finer count and its difference to the
-// coarser one. The answer's coarser levels were within the ladder's Δ_N of its level N, and
-// both systems carry nearly the same discretization error, which the budget's `method` part
-// counts once; the variant's own difference bounds what differs. A variant stiffer than the
-// ladder would start at (a richer unreduced basis), Hill answers and the exact train take the
-// variant's own ladder to `tol`.
-VariantRho variant_max_rho(const Scene& scene, const Fidelity& f, const FloquetResult& answer, double tol) {
+// max|ρ| of a variant of the scene's system and its error: Magnus levels from 1/16 of the count
+// where h‖A‖ ≤ 2 (minimum_magnus_steps), doubled until two levels agree within `tol` while the
+// differences contract at least 4× per level (or the level reaches that count): the difference is
+// then a bound on the finer level's error, and two levels that agree by chance after a larger
+// jump do not pass. A variant independent of the answer runs beside it; the budget's `method`
+// part counts the answer's own discretization once. Where the ladder does not settle within four
+// levels, and for the exact train, the variant takes the monodromy's own refinement to `tol`.
+VariantRho variant_max_rho(const Scene& scene, const Fidelity& f, double tol) {
   const PeriodicSystem sys = system_at(scene, f);
-  const int coarsest = answer.steps / 4;
-  if (coarsest >= 8 && 64 * coarsest >= minimum_magnus_steps(sys) && !f.load.exact_pulse) {
+  if (!f.load.exact_pulse) {
+    const int safe = minimum_magnus_steps(sys), first = std::max(8, safe / 16);
     std::optional<double> previous;
-    for (int steps = coarsest; steps <= answer.steps; steps *= 2) {
+    double previous_difference = std::numeric_limits<double>::infinity();
+    for (int steps = first; steps <= 8 * first; steps *= 2) {
       const Eigen::MatrixXd phi = magnus_monodromy(sys, steps);
       if (!phi.allFinite()) break;
       const double rho = phi.eigenvalues().cwiseAbs().maxCoeff();
-      if (previous && std::abs(rho - *previous) <= tol * std::max(1.0, rho)) return {rho, std::abs(rho - *previous)};
+      if (previous) {
+        const double difference = std::abs(rho - *previous);
+        const bool contracting = 4 * difference <= previous_difference || steps >= safe;
+        if (difference <= tol * std::max(1.0, rho) && contracting) return {rho, difference};
+        previous_difference = difference;
+      }
       previous = rho;
     }
   }
@@ -69,42 +76,58 @@ VariantRho variant_max_rho(const Scene& scene, const Fidelity& f, const FloquetR
   return {r.max_abs_multiplier, r.error_estimate};
 }
 
-// Each part of the budget from a variant that differs from `f` in that part only.
-ErrorBudget budget_of(const Scene& scene, const Fidelity& f, const FloquetResult& r, double tol) {
-  ErrorBudget b;
-  const double rho = r.max_abs_multiplier, variant_tol = tol / 8;
-  b.method = r.error_estimate;
-  // factor · |ρ − ρ_variant| plus the variant's own error.
-  const auto part = [&](const Fidelity& variant, double factor) {
-    const VariantRho v = variant_max_rho(scene, variant, r, variant_tol);
-    return factor * std::abs(rho - v.rho) + v.error;
-  };
+// The variants of the budget, each differing from `f` in one part only, started on their own
+// threads: they do not depend on the answer, and each costs about as much as the answer.
+struct BudgetVariants {
+  std::future<VariantRho> basis, reduction, load;
+  double basis_factor = 1, reduction_factor = 1;
+};
 
-  // The variants are independent: the richer basis on a second thread while this one does the
-  // reduction's (the machine has two cores; each variant is a third of a `stability` run).
+BudgetVariants start_variants(const Scene& scene, const Fidelity& f, double tol) {
+  const double variant_tol = tol / 8;
+  const auto run = [&scene, variant_tol](Fidelity variant) {
+    return std::async(std::launch::async, [&scene, variant_tol, variant] {
+      return variant_max_rho(scene, variant, variant_tol);
+    });
+  };
+  BudgetVariants v;
   Fidelity richer_basis = f;
   richer_basis.model.terms = reference_terms(f.model.basis, f.model.terms);
   // Algebraic convergence (sine basis): the difference to 2N understates the error up to 2×.
-  std::future<double> basis = std::async(std::launch::async, part, richer_basis, f.model.basis == BasisKind::sine ? 2 : 1);
-
+  v.basis_factor = f.model.basis == BasisKind::sine ? 2 : 1;
+  v.basis = run(richer_basis);
   if (f.reduction.kind == ReductionKind::automatic) {
     Fidelity richer = f;
     richer.reduction.vectors = 2 * f.reduction.vectors;
     // Galerkin projections do not converge monotonically in max|ρ|: a factor 2 of safety.
-    b.reduction = part(richer, 2);
+    v.reduction_factor = 2;
+    v.reduction = run(richer);
   } else if (f.reduction.kind == ReductionKind::modal && f.reduction.cutoff_hz > 0) {
     Fidelity reduced = f;
     reduced.reduction = {ReductionKind::automatic, 2 * default_reduction_vectors, 0};
-    b.reduction = part(reduced, 1);
+    v.reduction = run(reduced);
   }
-  b.basis = basis.get();
-
   if (!f.load.cosine_approximation && !f.load.exact_pulse) {
     // The truncated series against the true pulse train it stands for.
     Fidelity exact = f;
     exact.load = exact_pulse_mean(pulse_train(scene));
-    b.load = part(exact, 1);
+    v.load = run(exact);
   }
+  return v;
+}
+
+// Each part: factor · |ρ − ρ_variant| plus the variant's own error.
+ErrorBudget budget_of(const FloquetResult& r, BudgetVariants& v) {
+  const auto part = [rho = r.max_abs_multiplier](std::future<VariantRho>& variant, double factor) {
+    if (!variant.valid()) return 0.0;
+    const VariantRho x = variant.get();
+    return factor * std::abs(rho - x.rho) + x.error;
+  };
+  ErrorBudget b;
+  b.method = r.error_estimate;
+  b.basis = part(v.basis, v.basis_factor);
+  b.reduction = part(v.reduction, v.reduction_factor);
+  b.load = part(v.load, 1);
   return b;
 }
 
@@ -131,9 +154,10 @@ StabilityAnswer analyse_stability(const Scene& scene, const StabilityRequest& re
   const double tol = request.tolerance;
   StabilityAnswer a;
   while (true) {
+    BudgetVariants variants = start_variants(scene, f, tol);
     const PeriodicSystem sys = system_at(scene, f);
     a.floquet = floquet_of(scene, f, sys, {request.method, request.harmonics, tol / 4, true});
-    a.budget = budget_of(scene, f, a.floquet, tol);
+    a.budget = budget_of(a.floquet, variants);
     a.reduced_size = sys.kept_modes;
     a.full_size = sys.all_modes;
     a.theta_rad_s = sys.angular_frequency;

@@ -6,7 +6,8 @@
 //     pulse train on the whole Ritz model where its contacts are short against its stiffest period
 //     (it is integrated only through them, and its narrow tongues need the high modes);
 //  2. Floquet multipliers by the requested method, with its own checks (floquet.hpp);
-//  3. the error budget on max|ρ|, each part from a second computation that differs in that part only:
+//  3. the error budget on max|ρ|, each part from a second computation that differs in that part only
+//     (each on its own thread, started with the answer: none depends on it):
 //       basis      the same at the richer Ritz basis of mode_convergence.hpp (sine: ×2, its
 //                  algebraic convergence makes the difference understate the error up to 2×);
 //       reduction  the reduced model against one with twice the vectors (×2: projections do not
