@@ -2,7 +2,11 @@
 //   "<file>: <section>.<key> = <value>: <what is allowed>"
 #include "bladestab/scene.hpp"
 
+#include <sys/stat.h>
+
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <fstream>
 #include <functional>
 #include <map>
@@ -13,20 +17,61 @@
 #include <toml++/toml.h>
 
 #include "bladestab/input_error.hpp"
+#include "bladestab/message_text.hpp"
+#include "bladestab/scene_limits.hpp"
 
 namespace bladestab {
 namespace {
 
-std::string show(const toml::node& node) {
-  std::ostringstream out;
-  if (auto s = node.as_string()) {
-    out << '"' << s->get() << '"';
-  } else if (auto d = node.as_floating_point()) {
-    out << fmt::format("{}", d->get());
+namespace limits = scene_limits;
+
+// Paths are echoed longer than values: the directory is part of what the user needs to see.
+constexpr std::size_t max_path_shown = 240;
+
+// Appends `node` in TOML-like form, arrays and inline tables on one line, stopping once `out`
+// passes `limit` characters (an array may have a million elements).
+void append_shown(const toml::node& node, std::string& out, std::size_t limit) {
+  if (const auto* text = node.as_string()) {
+    out += '"' + text->get() + '"';
+  } else if (const auto* number = node.as_floating_point()) {
+    out += fmt::format("{}", number->get());
+  } else if (const auto* array = node.as_array()) {
+    out += '[';
+    for (std::size_t i = 0; i < array->size(); ++i) {
+      if (out.size() > limit) {
+        out += fmt::format("… ({} elements)", array->size());
+        break;
+      }
+      out += i == 0 ? "" : ", ";
+      append_shown(*array->get(i), out, limit);
+    }
+    out += ']';
+  } else if (const auto* table = node.as_table()) {
+    out += '{';
+    bool first = true;
+    for (const auto& [key, value] : *table) {
+      if (out.size() > limit) {
+        out += "…";
+        break;
+      }
+      out += (first ? "" : ", ") + std::string(key.str()) + " = ";
+      first = false;
+      append_shown(value, out, limit);
+    }
+    out += '}';
   } else {
-    node.visit([&out](auto&& v) { out << v; });
+    std::ostringstream other;  // integers, booleans, dates
+    node.visit([&other](auto&& v) { other << v; });
+    out += other.str();
   }
-  return out.str();
+}
+
+// A value as messages echo it: on one line and short.
+std::string show(const toml::node& node) {
+  constexpr std::size_t limit = 60;
+  std::string out;
+  append_shown(node, out, limit);
+  return echoed(out, 2 * limit);
 }
 
 // Reads the keys of one [section], remembering which were used so the rest can be reported as
@@ -43,23 +88,21 @@ public:
 
   bool has(const std::string& key) const { return table_->contains(key); }
 
-  double number(const std::string& key, const std::function<bool(double)>& allowed,
-                const std::string& allowed_text) {
+  // A number in `allowed`; `meaning` names the quantity and its unit for the message.
+  double number(const std::string& key, const AllowedRange& allowed, const std::string& meaning) {
     const toml::node& node = require(key);
+    const std::string what = fmt::format("must be a finite number in {} ({})", allowed.text(), meaning);
     std::optional<double> value;
     if (node.is_floating_point()) value = node.as_floating_point()->get();
     if (node.is_integer()) value = static_cast<double>(node.as_integer()->get());
-    if (!value) fail(key, node, "must be a number");
-    if (!std::isfinite(*value)) fail(key, node, "must be a finite number");
-    if (!allowed(*value)) fail(key, node, allowed_text);
+    if (!value || !std::isfinite(*value) || !allowed.contains(*value)) fail(key, node, what);
     return *value;
   }
 
-  std::optional<double> optional_number(const std::string& key,
-                                        const std::function<bool(double)>& allowed,
-                                        const std::string& allowed_text) {
+  std::optional<double> optional_number(const std::string& key, const AllowedRange& allowed,
+                                        const std::string& meaning) {
     if (!has(key)) return std::nullopt;
-    return number(key, allowed, allowed_text);
+    return number(key, allowed, meaning);
   }
 
   int integer(const std::string& key, long lo, long hi) {
@@ -87,19 +130,19 @@ public:
     return it->second;
   }
 
-  std::vector<double> number_list(const std::string& key, std::size_t count,
-                                  const std::function<bool(double)>& allowed,
-                                  const std::string& allowed_text) {
+  std::vector<double> number_list(const std::string& key, std::size_t count, const AllowedRange& allowed,
+                                  const std::string& meaning) {
     const toml::node& node = require(key);
     const toml::array* array = node.as_array();
-    const std::string what = fmt::format("must be a list of {} numbers, each {}", count, allowed_text);
+    const std::string what = fmt::format("must be a list of {} finite numbers, each in {} ({})", count,
+                                         allowed.text(), meaning);
     if (array == nullptr || array->size() != count) fail(key, node, what);
     std::vector<double> values;
     for (const toml::node& item : *array) {
       std::optional<double> v;
       if (item.is_floating_point()) v = item.as_floating_point()->get();
       if (item.is_integer()) v = static_cast<double>(item.as_integer()->get());
-      if (!v || !std::isfinite(*v) || !allowed(*v)) fail(key, node, what);
+      if (!v || !std::isfinite(*v) || !allowed.contains(*v)) fail(key, node, what);
       values.push_back(*v);
     }
     return values;
@@ -116,7 +159,7 @@ public:
       if (used_.count(name) == 0) {
         std::string allowed;
         for (const auto& k : known_) allowed += (allowed.empty() ? "" : ", ") + k;
-        fail_plain(fmt::format("{}.{} = {}: unknown key (known in [{}]: {})", section_, name,
+        fail_plain(fmt::format("{}.{} = {}: unknown key (known in [{}]: {})", section_, echoed(name),
                                show(node), section_, allowed));
       }
     }
@@ -132,6 +175,10 @@ public:
   [[noreturn]] void fail_both(const std::string& a, const std::string& b, const std::string& what) const {
     fail_plain(fmt::format("{0}.{1} = {2} and {0}.{3} = {4}: {5}", section_, a, show(*table_->get(a)), b,
                            show(*table_->get(b)), what));
+  }
+  // A value that is in range by itself but not in what it gives with the others.
+  [[noreturn]] void fail_derived(const std::string& key, const std::string& what) const {
+    fail(key, *table_->get(key), what);
   }
   [[noreturn]] void fail_missing(const std::string& key, const std::string& what) const {
     fail_plain(fmt::format("{}.{}: missing; {}", section_, key, what));
@@ -157,20 +204,18 @@ private:
   std::set<std::string> known_;
 };
 
-const auto positive = [](double x) { return x > 0; };
-const auto non_negative = [](double x) { return x >= 0; };
-
 void apply_override(toml::table& root, const std::string& assignment, const std::string& source) {
+  const std::string shown = echoed(assignment);
   const auto eq = assignment.find('=');
   const auto dot = assignment.find('.');
   if (eq == std::string::npos || dot == std::string::npos || dot > eq || dot == 0 || dot + 1 == eq) {
-    throw InputError(fmt::format("{}: --set {}: must have the form section.key=value", source, assignment));
+    throw InputError(fmt::format("{}: --set {}: must have the form section.key=value", source, shown));
   }
   const std::string section = assignment.substr(0, dot);
   const std::string key = assignment.substr(dot + 1, eq - dot - 1);
   const std::string text = assignment.substr(eq + 1);
   if (text.empty()) {
-    throw InputError(fmt::format("{}: --set {}: the value is empty", source, assignment));
+    throw InputError(fmt::format("{}: --set {}: the value is empty", source, shown));
   }
   toml::table parsed;
   try {
@@ -184,27 +229,28 @@ void apply_override(toml::table& root, const std::string& assignment, const std:
     node = root.get(section);
   }
   toml::table* table = node->as_table();
-  if (table == nullptr) throw InputError(fmt::format("{}: --set {}: {} is not a table", source, assignment, section));
+  if (table == nullptr) throw InputError(fmt::format("{}: --set {}: {} is not a table", source, shown, echoed(section)));
   table->insert_or_assign(key, *parsed.get("value"));
 }
 
-Scene read_scene(const toml::table& root, const std::string& source) {
+// `source` is the scene's name as messages show it.
+Scene read_scene(const toml::table& root, const std::string& source_name, const std::string& source) {
   Scene scene;
-  scene.source = source;
+  scene.source = source_name;
   for (const auto& [key, node] : root) {
     static const std::set<std::string> sections{"blade", "model", "operation", "damping", "load"};
     if (sections.count(std::string(key.str())) == 0) {
       throw InputError(fmt::format("{}: [{}]: unknown section (known: blade, model, operation, damping, load)",
-                                   source, key.str()));
+                                   source, echoed(key.str())));
     }
   }
 
   SectionReader blade(root, "blade", source);
   blade.known({"slenderness", "inertia"});
   BladeSpec& b = scene.blade;
-  b.length = blade.number("length", positive, "must be > 0 (span L in m)");
-  b.hub_radius = blade.number("hub_radius", non_negative, "must be >= 0 (hub radius r in m)");
-  b.area = blade.number("area", positive, "must be > 0 (cross-section area in m^2)");
+  b.length = blade.number("length", limits::length_m, "span L in m");
+  b.hub_radius = blade.number("hub_radius", limits::hub_radius_m, "hub radius r in m");
+  b.area = blade.number("area", limits::area_m2, "cross-section area in m^2");
   if (!blade.has("slenderness") && !blade.has("inertia")) {
     blade.fail_missing("slenderness", "give exactly one of blade.slenderness (d̄) and blade.inertia (I in m^4)");
   }
@@ -212,20 +258,22 @@ Scene read_scene(const toml::table& root, const std::string& source) {
     blade.fail_both("slenderness", "inertia", "give exactly one of them (I = d̄² A L²)");
   }
   if (blade.has("slenderness")) {
-    const double d = blade.number("slenderness", [](double x) { return x > 0 && x < 1; },
-                                  "must be in (0, 1) (d̄ = sqrt(I/(A L²)))");
+    const double d = blade.number("slenderness", limits::slenderness, "d̄ = sqrt(I/(A L²))");
     b.inertia = d * d * b.area * b.length * b.length;  // SPEC §3: d̄ = sqrt(I/(A L²))
   } else {
-    b.inertia = blade.number("inertia", positive, "must be > 0 (second moment of area in m^4)");
+    // I is checked through the slenderness it gives: the same blades either way.
+    b.inertia = blade.number("inertia", AllowedRange::above(0, 1e300), "second moment of area in m^4");
+    const double d = std::sqrt(b.inertia / (b.area * b.length * b.length));
+    if (!limits::slenderness.contains(d)) {
+      blade.fail_derived("inertia", fmt::format("gives d̄ = sqrt(I/(A L²)) = {:.3g}; must give d̄ in {}", d,
+                                                limits::slenderness.text()));
+    }
   }
-  b.youngs_modulus = blade.number("youngs_modulus", positive, "must be > 0 (Young's modulus E in Pa)");
-  b.density = blade.number("density", positive, "must be > 0 (density in kg/m^3)");
-  b.poisson = blade.number("poisson", [](double x) { return x > -1 && x < 0.5; },
-                           "must be in (-1, 0.5) (Poisson's ratio)");
-  b.shear_coefficient = blade.number("shear_coefficient", [](double x) { return x > 0 && x <= 1; },
-                                     "must be in (0, 1] (Timoshenko shear coefficient κ)");
-  b.stagger_deg = blade.number("stagger_deg", [](double x) { return x >= -90 && x <= 90; },
-                               "must be in [-90, 90] (stagger angle β in degrees)");
+  b.youngs_modulus = blade.number("youngs_modulus", limits::youngs_modulus_pa, "Young's modulus E in Pa");
+  b.density = blade.number("density", limits::density_kg_m3, "density in kg/m^3");
+  b.poisson = blade.number("poisson", limits::poisson, "Poisson's ratio");
+  b.shear_coefficient = blade.number("shear_coefficient", limits::shear_coefficient, "Timoshenko shear coefficient κ");
+  b.stagger_deg = blade.number("stagger_deg", limits::stagger_deg, "stagger angle β in degrees");
   blade.reject_unknown();
 
   SectionReader model(root, "model", source);
@@ -242,7 +290,7 @@ Scene read_scene(const toml::table& root, const std::string& source) {
         "reduction", {{"auto", ReductionKind::automatic}, {"modal", ReductionKind::modal}, {"none", ReductionKind::none}});
   }
   if (model.has("reduction_vectors")) m.reduction.vectors = model.integer("reduction_vectors", 1, 200);
-  m.reduction.cutoff_hz = model.optional_number("cutoff_hz", positive, "must be > 0 (modal cut-off in Hz)").value_or(0);
+  m.reduction.cutoff_hz = model.optional_number("cutoff_hz", limits::cutoff_hz, "modal cut-off in Hz").value_or(0);
   if (m.reduction.kind != ReductionKind::modal && m.reduction.cutoff_hz > 0) {
     throw InputError(fmt::format("{}: model.cutoff_hz = {}: not used with model.reduction = \"{}\" (it needs \"modal\")",
                                  source, m.reduction.cutoff_hz, to_string(m.reduction.kind)));
@@ -250,7 +298,7 @@ Scene read_scene(const toml::table& root, const std::string& source) {
   model.reject_unknown();
 
   SectionReader operation(root, "operation", source);
-  scene.operation.speed_rad_s = operation.number("speed_rad_s", non_negative, "must be >= 0 (rotor speed Ω in rad/s)");
+  scene.operation.speed_rad_s = operation.number("speed_rad_s", limits::speed_rad_s, "rotor speed Ω in rad/s");
   operation.reject_unknown();
 
   SectionReader damping(root, "damping", source);
@@ -261,11 +309,10 @@ Scene read_scene(const toml::table& root, const std::string& source) {
                                                     {"paper", DampingModel::paper}});
   damping.known({"ratio", "frequencies_hz"});
   if (d.model != DampingModel::none) {
-    d.ratio = damping.number("ratio", [](double x) { return x >= 0 && x < 1; },
-                             "must be in [0, 1) (damping ratio ζ)");
+    d.ratio = damping.number("ratio", limits::damping_ratio, "damping ratio ζ");
   }
   if (d.model == DampingModel::rayleigh) {
-    d.frequencies_hz = damping.number_list("frequencies_hz", 2, positive, "> 0 Hz");
+    d.frequencies_hz = damping.number_list("frequencies_hz", 2, limits::damping_frequency_hz, "Hz");
     if (d.frequencies_hz[0] == d.frequencies_hz[1]) {
       throw InputError(fmt::format("{}: damping.frequencies_hz = [{}, {}]: the two frequencies must differ",
                                    source, d.frequencies_hz[0], d.frequencies_hz[1]));
@@ -285,9 +332,9 @@ Scene read_scene(const toml::table& root, const std::string& source) {
                                                      {"saw-tooth", PulseProfile::sawtooth},
                                                      {"rectangular", PulseProfile::rectangular},
                                                      {"impulse", PulseProfile::impulse}});
-  l.fmax_over_fcr = load.number("fmax_over_fcr", non_negative, "must be >= 0 (peak tip load F_max / F_cr)");
-  l.contact_time_rev = load.number("contact_time_rev", [](double x) { return x > 0 && x <= 1; },
-                                   "must be in (0, 1] (contact time as a fraction of a revolution)");
+  l.fmax_over_fcr = load.number("fmax_over_fcr", limits::fmax_over_fcr, "peak tip load F_max / F_cr");
+  l.contact_time_rev = load.number("contact_time_rev", limits::contact_time_rev,
+                                   "contact time as a fraction of a revolution");
   l.pulses_per_rev = load.integer("pulses_per_rev", 1, 1000);
   l.pulse_count = load.integer("pulse_count", 0, 1000000000);
   l.approximation = load.choice<LoadApproximation>(
@@ -295,15 +342,25 @@ Scene read_scene(const toml::table& root, const std::string& source) {
                         {"fourier", LoadApproximation::fourier},
                         {"exact", LoadApproximation::exact}});
   l.mode = load.choice<LoadMode>("mode", {{"force", LoadMode::force}, {"clearance", LoadMode::clearance}});
-  l.friction = load.number("friction", [](double x) { return x >= 0 && x <= 2; },
-                           "must be in [0, 2] (Coulomb friction coefficient μ)");
-  l.clearance = load.number("clearance", non_negative, "must be >= 0 (running clearance in m)");
-  l.pulse_frequency_hz = load.optional_number("pulse_frequency_hz", positive, "must be > 0 (pulse frequency in Hz)");
+  l.friction = load.number("friction", limits::friction, "Coulomb friction coefficient μ");
+  l.clearance = load.number("clearance", limits::clearance_m, "running clearance in m");
+  l.pulse_frequency_hz = load.optional_number("pulse_frequency_hz", limits::pulse_frequency_hz, "pulse frequency in Hz");
+  if (l.pulse_frequency_hz && scene.operation.speed_rad_s > 0) {
+    // t̄_c is a fraction of a revolution; the pulses come at their own frequency (pulse_train).
+    const double contact_s = l.contact_time_rev * 6.28318530717958647692 / scene.operation.speed_rad_s;
+    if (contact_s * *l.pulse_frequency_hz > 1 + 1e-12) {
+      load.fail_both("pulse_frequency_hz", "contact_time_rev",
+                     fmt::format("the contact ({:.3g} s at operation.speed_rad_s = {}) outlasts the pulse period "
+                                 "({:.3g} s); lower either", contact_s, scene.operation.speed_rad_s,
+                                 1 / *l.pulse_frequency_hz));
+    }
+  }
   load.known({"intrusion", "contact_stiffness"});
   if (l.mode == LoadMode::clearance) {
-    l.intrusion = load.number("intrusion", non_negative,
-                              "must be >= 0 (depth of the casing distortion in m; contact needs more than load.clearance)");
-    l.contact_stiffness = load.optional_number("contact_stiffness", positive, "must be > 0 (penalty stiffness of the casing in N/m)");
+    l.intrusion = load.number("intrusion", limits::intrusion_m,
+                              "depth of the casing distortion in m; contact needs more than load.clearance");
+    l.contact_stiffness = load.optional_number("contact_stiffness", limits::contact_stiffness_n_m,
+                                               "penalty stiffness of the casing in N/m");
     if (l.profile == PulseProfile::impulse) {
       throw InputError(fmt::format("{}: load.profile = \"impulse\": has no shape for the casing distortion in "
                                    "load.mode = \"clearance\"; use half-sine, cosine, triangular, saw-tooth or rectangular",
@@ -322,24 +379,51 @@ Scene read_scene(const toml::table& root, const std::string& source) {
 
 Scene parse_scene(const std::string& toml_text, const std::string& source_name,
                   const std::vector<std::string>& overrides) {
+  const std::string source = echoed(source_name, max_path_shown);
   toml::table root;
   try {
     root = toml::parse(toml_text, source_name);
   } catch (const toml::parse_error& e) {
     const auto& where = e.source().begin;
-    throw InputError(fmt::format("{}:{}:{}: not valid TOML: {}", source_name, where.line, where.column,
-                                 e.description()));
+    throw InputError(fmt::format("{}:{}:{}: not valid TOML: {}", source, where.line, where.column,
+                                 echoed(e.description(), 200)));
   }
-  for (const std::string& assignment : overrides) apply_override(root, assignment, source_name);
-  return read_scene(root, source_name);
+  for (const std::string& assignment : overrides) apply_override(root, assignment, source);
+  return read_scene(root, source_name, source);
 }
 
 Scene load_scene(const std::string& path, const std::vector<std::string>& overrides) {
-  std::ifstream in(path);
-  if (!in) throw InputError(fmt::format("{}: cannot read the scene file", path));
-  std::stringstream text;
-  text << in.rdbuf();
-  return parse_scene(text.str(), path, overrides);
+  return parse_scene(read_scene_file(path), path, overrides);
+}
+
+std::string read_scene_file(const std::string& path) {
+  const std::string shown = echoed(path, max_path_shown);
+  const auto refuse = [&shown](const std::string& why) {
+    throw InputError(fmt::format("{}: cannot read the scene file: {}", shown, why));
+  };
+  // Only a regular file: /dev/zero would be read without end, a FIFO without a writer waits forever.
+  struct stat info {};
+  if (::stat(path.c_str(), &info) != 0) refuse(std::strerror(errno));
+  if (S_ISDIR(info.st_mode)) refuse("it is a directory");
+  if (!S_ISREG(info.st_mode)) {
+    refuse(fmt::format("it is not a regular file but {}", S_ISFIFO(info.st_mode)   ? "a FIFO"
+                                                          : S_ISCHR(info.st_mode) ? "a character device"
+                                                          : S_ISBLK(info.st_mode) ? "a block device"
+                                                          : S_ISSOCK(info.st_mode) ? "a socket"
+                                                                                   : "a special file"));
+  }
+  if (static_cast<std::uintmax_t>(info.st_size) > max_scene_bytes) {
+    refuse(fmt::format("it has {} bytes; a scene has at most {}", info.st_size, max_scene_bytes));
+  }
+  std::ifstream in(path, std::ios::binary);
+  if (!in) refuse(std::strerror(errno));
+  // At most one byte past the limit: the file may have grown since stat.
+  std::string text(max_scene_bytes + 1, '\0');
+  in.read(text.data(), static_cast<std::streamsize>(text.size()));
+  if (in.bad()) refuse(std::strerror(errno));
+  text.resize(static_cast<std::size_t>(in.gcount()));
+  if (text.size() > max_scene_bytes) refuse(fmt::format("it has more than {} bytes", max_scene_bytes));
+  return text;
 }
 
 const char* to_string(BasisKind k) { return k == BasisKind::sine ? "sine" : "legendre"; }

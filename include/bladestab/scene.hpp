@@ -2,6 +2,7 @@
 // A scene: one TOML file describing a blade, how it is modelled, how it runs and how it is loaded.
 // All values are SI. `load_scene` reads and validates it; every key can be overridden with
 // "section.key=value" strings (the CLI's --set).
+#include <cstddef>
 #include <optional>
 #include <string>
 #include <vector>
@@ -87,6 +88,10 @@ struct Scene {
 // Reads `path`, applies `overrides` ("section.key=value", value in TOML syntax or a bare word),
 // validates everything. Throws InputError with a one-line message on any problem.
 Scene load_scene(const std::string& path, const std::vector<std::string>& overrides = {});
+
+// The text of a scene file: a regular file of at most max_scene_bytes; InputError saying why not.
+inline constexpr std::size_t max_scene_bytes = 1 << 20;
+std::string read_scene_file(const std::string& path);
 
 // Same, from TOML text (used by tests and by scenes built in code).
 Scene parse_scene(const std::string& toml_text, const std::string& source_name,

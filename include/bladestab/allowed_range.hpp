@@ -1,0 +1,25 @@
+#pragma once
+// An interval of allowed values and how messages state it. Scene keys and command-line options
+// check their numbers with it, so a limit reads the same wherever the same quantity is given.
+#include <string>
+
+namespace bladestab {
+
+struct AllowedRange {
+  double lo = 0, hi = 0;
+  bool lo_open = false, hi_open = false;
+
+  static AllowedRange closed(double lo, double hi) { return {lo, hi, false, false}; }
+  static AllowedRange open(double lo, double hi) { return {lo, hi, true, true}; }
+  static AllowedRange above(double lo, double hi) { return {lo, hi, true, false}; }  // (lo, hi]
+  static AllowedRange below(double lo, double hi) { return {lo, hi, false, true}; }  // [lo, hi)
+
+  bool contains(double x) const;  // false for NaN
+  std::string text() const;       // "[100000, 1e13]", "(0, 1]"
+};
+
+// A limit as messages print it: the shortest form that reads back as the same double (1e+13 →
+// "1e13", 0.5 → "0.5").
+std::string limit_text(double x);
+
+}  // namespace bladestab
