@@ -11,6 +11,7 @@
 
 #include "bladestab/floquet.hpp"
 #include "bladestab/mode_convergence.hpp"
+#include "bladestab/numerical_error.hpp"
 
 namespace bladestab {
 namespace {
@@ -90,6 +91,11 @@ struct RealMatrixEigenpairs {
 };
 
 RealMatrixEigenpairs real_eigenpairs(Eigen::MatrixXd a) {
+  // dgeev on NaN or infinity may not return at all (the fuzzer found crashes and hangs there).
+  if (!a.allFinite()) {
+    throw NumericalError("the boundary equations are not finite: the scene's load, speed or pulse frequency put "
+                         "them beyond the double range (load.fmax_over_fcr, operation.speed_rad_s, --at-theta)");
+  }
   const lapack_int n = static_cast<lapack_int>(a.rows());
   Eigen::VectorXd re(n), im(n);
   Eigen::MatrixXd v(n, n);

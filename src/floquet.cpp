@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "bladestab/input_error.hpp"
 #include "bladestab/magnus.hpp"
 #include "bladestab/numerical_error.hpp"
 #include "bladestab/pulse_monodromy.hpp"
@@ -331,6 +332,11 @@ double liouville_error(const Eigen::MatrixXd& phi, const PeriodicSystem& sys) {
 }
 
 Eigen::MatrixXcd hill_matrix(const PeriodicSystem& sys, int q) {
+  // The eigensolvers and LU after it may not return on NaN or infinity.
+  if (!sys.A0.allFinite() || !sys.B.allFinite() || !std::isfinite(sys.angular_frequency)) {
+    throw NumericalError("the periodic system is not finite (check operation.speed_rad_s, load.fmax_over_fcr and "
+                         "the damping)");
+  }
   const int n = sys.state_size(), blocks = 2 * q + 1;
   const int M = static_cast<int>(sys.load.size()) - 1;
   Eigen::MatrixXcd H = Eigen::MatrixXcd::Zero(n * blocks, n * blocks);
@@ -398,6 +404,14 @@ FloquetResult floquet_multipliers(const PeriodicSystem& sys, const FloquetOption
     case FloquetMethod::koopman_hill: {
       const auto method = options.method == FloquetMethod::hill ? hill_multipliers : koopman_hill_multipliers;
       if (q > 0) {
+        // A given q is held to the refinement's own limit: the dense Hill matrix's eigensolve grows
+        // like rows³ (q = 60 on the paper blade's 24 states: 2904 rows, most of an hour).
+        const int rows = sys.state_size() * (2 * q + 1);
+        if (rows > max_hill_rows) {
+          throw InputError(fmt::format("--harmonics {}: the Hill matrix would have {} rows ({} states × {} harmonics), "
+                                       "beyond the {} its methods are held to; use fewer harmonics or --method monodromy",
+                                       q, rows, sys.state_size(), 2 * q + 1, max_hill_rows));
+        }
         const Eigen::VectorXcd current = method(sys, q), coarser = method(sys, std::max(1, q - 2));
         attempt = {current, multiplier_set_distance(current, coarser), q, 0, {}};
       } else if (!refine_harmonics(sys, method, 2, max_q, max_hill_rows, tol, attempt)) {

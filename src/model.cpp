@@ -5,7 +5,10 @@
 
 #include <cmath>
 
+#include <fmt/format.h>
+
 #include "bladestab/basis.hpp"
+#include "bladestab/numerical_error.hpp"
 #include "bladestab/quadrature.hpp"
 
 namespace bladestab {
@@ -19,7 +22,31 @@ Eigen::MatrixXd gram(const Eigen::VectorXd& weighted_coefficient, const Eigen::M
 
 Eigen::MatrixXd symmetrized(const Eigen::MatrixXd& m) { return 0.5 * (m + m.transpose()); }
 
+// Every matrix finite and the mass positive definite, or a NumericalError that names what the
+// scene gave: within the scene's limits (scene_limits.hpp) this does not happen, and if it does the
+// message says which numbers to look at rather than which factorization failed later.
+void check_model(const BladeModel& model, const BladeSpec& blade) {
+  const bool finite = model.M.allFinite() && model.K_S.allFinite() && model.K_C1.allFinite() &&
+                      model.C_G1.allFinite() && model.G.allFinite() && model.P_cf1.allFinite();
+  const bool positive_mass = finite && Eigen::LLT<Eigen::MatrixXd>(model.M).info() == Eigen::Success;
+  if (positive_mass) return;
+  throw NumericalError(fmt::format(
+      "the Ritz model's {} (blade.length = {:g}, blade.area = {:g}, I = {:g} m^4 from blade.slenderness or "
+      "blade.inertia, blade.youngs_modulus = {:g}, blade.density = {:g}, model.basis = \"{}\", model.terms = {}); "
+      "fewer model.terms or the legendre basis condition it better",
+      finite ? "mass matrix is not positive definite" : "matrices are not finite", blade.length, blade.area,
+      blade.inertia, blade.youngs_modulus, blade.density, to_string(model.spec.basis), model.spec.terms));
+}
+
 }  // namespace
+
+DofLayout dof_layout(const ModelSpec& spec) {
+  DofLayout layout;
+  layout.theta_count = spec.theory == BeamTheory::timoshenko ? spec.terms : 0;
+  layout.lateral_count = spec.terms;
+  layout.axial_count = spec.axial ? spec.terms : 0;
+  return layout;
+}
 
 BladeModel assemble_model(const BladeSpec& blade_spec, const ModelSpec& spec) {
   BladeModel model{BladeProperties(blade_spec), spec, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}};
@@ -27,10 +54,7 @@ BladeModel assemble_model(const BladeSpec& blade_spec, const ModelSpec& spec) {
   const bool timoshenko = spec.theory == BeamTheory::timoshenko;
   const int N = spec.terms;
 
-  DofLayout& layout = model.layout;
-  layout.theta_count = timoshenko ? N : 0;
-  layout.lateral_count = N;
-  layout.axial_count = spec.axial ? N : 0;
+  const DofLayout& layout = model.layout = dof_layout(spec);
   const int n = layout.size();
   const int th = layout.theta_offset(), lv = layout.lateral_offset(), ax = layout.axial_offset();
 
@@ -105,6 +129,7 @@ BladeModel assemble_model(const BladeSpec& blade_spec, const ModelSpec& spec) {
   model.K_S = symmetrized(model.K_S);
   model.K_C1 = symmetrized(model.K_C1);
   model.G = symmetrized(model.G);
+  check_model(model, blade_spec);
   return model;
 }
 

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "bladestab/damping.hpp"
+#include "bladestab/numerical_error.hpp"
 
 namespace bladestab {
 
@@ -28,7 +29,10 @@ Eigen::MatrixXcd PeriodicSystem::harmonic(int m) const {
 
 PeriodicSystem periodic_system(const ReducedSystem& reduced, const LoadSeries& load) {
   Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> modes(reduced.K);  // M = I in the reduced coordinates
-  if (modes.info() != Eigen::Success) throw std::runtime_error("modal decomposition failed");
+  if (modes.info() != Eigen::Success) {
+    throw NumericalError("the modes of the reduced model did not converge: its stiffness is not finite (check "
+                         "operation.speed_rad_s and load.fmax_over_fcr)");
+  }
   const Eigen::VectorXd omega2 = modes.eigenvalues();
   const int n = reduced.size();
   const Eigen::MatrixXd& Phi = modes.eigenvectors();

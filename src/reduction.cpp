@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "bladestab/input_error.hpp"
+#include "bladestab/numerical_error.hpp"
 
 namespace bladestab {
 namespace {
@@ -16,7 +17,11 @@ constexpr double two_pi = 6.28318530717958647692;
 Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> loaded_modes(const BladeModel& model, double speed,
                                                                       double force) {
   Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> modes(model.stiffness(speed, force), model.M);
-  if (modes.info() != Eigen::Success) throw std::runtime_error("modal decomposition failed");
+  if (modes.info() != Eigen::Success) {
+    throw NumericalError(fmt::format("the modes of the loaded blade did not converge at operation.speed_rad_s = {:g} "
+                                     "with a tip load of {:.6g} N (load.fmax_over_fcr); the stiffness K(Ω) + F G is "
+                                     "not finite or not symmetric there", speed, force));
+  }
   return modes;
 }
 

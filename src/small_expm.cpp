@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "bladestab/numerical_error.hpp"
+
 namespace bladestab {
 namespace {
 
@@ -35,6 +37,8 @@ SmallExpm::SmallExpm(Eigen::Index n)
 
 void SmallExpm::compute(const Eigen::MatrixXd& X, Eigen::MatrixXd& result) {
   const double norm = X.cwiseAbs().colwise().sum().maxCoeff();
+  // A non-finite X would take the squaring count out of int's range; its exponential has no value.
+  if (!std::isfinite(norm)) throw NumericalError("the exponential of a non-finite matrix was asked for");
   const int squarings = norm > theta18 ? static_cast<int>(std::ceil(std::log2(norm / theta18))) : 0;
   x1_ = std::ldexp(1.0, -squarings) * X;
   x2_.noalias() = x1_ * x1_;

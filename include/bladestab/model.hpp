@@ -21,6 +21,9 @@ struct DofLayout {
   int size() const { return theta_count + lateral_count + axial_count; }
 };
 
+// The layout of a model of this spec, known before (and without) assembling it.
+DofLayout dof_layout(const ModelSpec& spec);
+
 struct BladeModel {
   BladeProperties blade;
   ModelSpec spec;
@@ -42,6 +45,8 @@ struct BladeModel {
   Eigen::MatrixXd gyroscopic(double speed_rad_s) const { return speed_rad_s * C_G1; }
 };
 
+// Throws NumericalError naming the scene's keys when the matrices come out non-finite or the mass
+// is not positive definite (the model would have no modes).
 BladeModel assemble_model(const BladeSpec& blade, const ModelSpec& spec);
 
 }  // namespace bladestab
