@@ -15,7 +15,10 @@ ExportedArrays matrix_market_files(const std::string& stem) {
 }
 
 ExportedArrays write_matrix_market(const PeriodicSystem& sys, const std::string& stem) {
-  const ExportedArrays files = matrix_market_files(stem);
+  return write_matrix_market(sys, matrix_market_files(stem));
+}
+
+ExportedArrays write_matrix_market(const PeriodicSystem& sys, const ExportedArrays& files) {
   const auto check = [](bool written, const std::string& file) {
     if (!written) throw InputError(fmt::format("{}: cannot write this file", file));
   };

@@ -42,6 +42,15 @@ FixedStep choose_fixed_step(const Eigen::MatrixXd& K, const Eigen::MatrixXd& M, 
   return fixed;
 }
 
+FixedStep transient_step(const BladeModel& model, const Scene& scene, const TransientOptions& o, double duration_s) {
+  Eigen::MatrixXd K_stiffest = model.stiffness(scene.operation.speed_rad_s);
+  // In clearance mode the stiffest mode is the one with the casing in contact.
+  if (scene.load.mode == LoadMode::clearance) {
+    K_stiffest += casing_contact(model, scene).stiffness_n_m * model.tip_axial.transpose() * model.tip_axial;
+  }
+  return choose_fixed_step(K_stiffest, model.M, duration_s, o.adaptive ? 0 : o.steps_per_period);
+}
+
 TransientResult run_transient(const BladeModel& model, const Scene& scene, const TransientOptions& o) {
   const double speed = scene.operation.speed_rad_s;
   const int n = model.layout.size();
@@ -139,10 +148,7 @@ TransientResult run_transient(const BladeModel& model, const Scene& scene, const
   control.rtol = o.tolerance;
   // Absolute floor: a millionth of the tolerance on the scale of the static stretch (≈ mm).
   control.atol = o.tolerance * 1e-6;
-  // In clearance mode the stiffest mode is the one with the casing in contact.
-  Eigen::MatrixXd K_stiffest = K;
-  if (casing) K_stiffest += casing->stiffness_n_m * model.tip_axial.transpose() * model.tip_axial;
-  result.fixed = choose_fixed_step(K_stiffest, model.M, t_end, o.adaptive ? 0 : o.steps_per_period);
+  result.fixed = transient_step(model, scene, o, t_end);
   // Adaptive steps never exceed that step. The error control alone cannot keep RKF45 stable on the
   // undamped stiff modes: it measures the error relative to |x|, so once a mode amplified by
   // |R(iωh)| > 1 dominates a component it sets its own allowance, and at rtol 1e-2 it was accepted

@@ -166,8 +166,8 @@ void run_set_cases(const std::vector<SetCase>& cases) {
 
 TEST_CASE("bad input: out-of-range and non-finite scene numbers (bad_input)", "[bad_input]") {
   run_set_cases({
-      {"blade.youngs_modulus=-1", {"blade.youngs_modulus = -1", "must be > 0"}},
-      {"blade.youngs_modulus=0", {"blade.youngs_modulus = 0", "must be > 0"}},
+      {"blade.youngs_modulus=-1", {"blade.youngs_modulus = -1", "[1e5, 1e13]"}},
+      {"blade.youngs_modulus=0", {"blade.youngs_modulus = 0", "[1e5, 1e13]"}},
       {"blade.youngs_modulus=nan", {"blade.youngs_modulus = nan", "finite"}},
       {"blade.density=inf", {"blade.density = inf", "finite"}},
       {"blade.poisson=0.5", {"blade.poisson = 0.5", "(-1, 0.5)"}},
@@ -177,8 +177,8 @@ TEST_CASE("bad input: out-of-range and non-finite scene numbers (bad_input)", "[
       {"blade.shear_coefficient=0", {"blade.shear_coefficient = 0", "(0, 1]"}},
       {"blade.stagger_deg=91", {"blade.stagger_deg = 91", "[-90, 90]"}},
       {"model.terms=0", {"model.terms = 0", "[1, 200]"}},
-      {"operation.speed_rad_s=-5", {"operation.speed_rad_s = -5", ">= 0"}},
-      {"load.contact_time_rev=0", {"load.contact_time_rev = 0", "(0, 1]"}},
+      {"operation.speed_rad_s=-5", {"operation.speed_rad_s = -5", "[0, 1e5]"}},
+      {"load.contact_time_rev=0", {"load.contact_time_rev = 0", "[1e-6, 1]"}},
       {"load.friction=-0.1", {"load.friction = -0.1", "[0, 2]"}},
   });
 }
@@ -273,11 +273,11 @@ TEST_CASE("bad input: campbell options (bad_input)", "[bad_input]") {
   SECTION("reversed speed range") {
     expect_rejected(campbell("600:0:10"), {"--speeds 600:0:10", "start < stop"});
   }
-  SECTION("a single speed") { expect_rejected(campbell("0:600:1"), {"--speeds 0:600:1", "count >= 2"}); }
+  SECTION("a single speed") { expect_rejected(campbell("0:600:1"), {"--speeds 0:600:1", "count in [2, "}); }
   SECTION("speeds not a range") { expect_rejected(campbell("abc"), {"--speeds abc", "start:stop:count"}); }
-  SECTION("negative speeds") { expect_rejected(campbell("-10:600:10"), {"--speeds -10:600:10", ">= 0"}); }
+  SECTION("negative speeds") { expect_rejected(campbell("-10:600:10"), {"--speeds -10:600:10", "[0, 1e5]"}); }
   SECTION("engine order 0") {
-    expect_rejected(campbell("0:600:10", {"--engine-orders", "0"}), {"--engine-orders", " 0 ", ">= 1"});
+    expect_rejected(campbell("0:600:10", {"--engine-orders", "0"}), {"--engine-orders", " 0 ", "[1, 1000]"});
   }
   SECTION("no modes to track") {
     expect_rejected(campbell("0:600:10", {"--count", "0"}), {"--count 0", ">= 1"});
@@ -362,7 +362,7 @@ TEST_CASE("bad input: stability, boundaries and map options (bad_input)", "[bad_
     expect_rejected(with({"boundaries", "--range", "9:3"}), {"--range 9:3", "0 <= LO < HI"});
   }
   SECTION("boundaries --at-theta -5") {
-    expect_rejected(with({"boundaries", "--at-theta", "-5"}), {"--at-theta -5", "> 0"});
+    expect_rejected(with({"boundaries", "--at-theta", "-5"}), {"--at-theta -5", "(0, 1e9]"});
   }
   SECTION("map without a plane") { expect_rejected(with({"map"}), {"--plane", "required"}); }
   SECTION("map speed plane without speeds") {
@@ -374,7 +374,7 @@ TEST_CASE("bad input: stability, boundaries and map options (bad_input)", "[bad_
   }
   SECTION("map negative pulse frequency") {
     expect_rejected(with({"map", "--plane", "theta-fmax", "--theta", "-100:100:3", "--chart", "none"}),
-                    {"--theta -100:100:3", "> 0"});
+                    {"--theta -100:100:3", "(0, 1e9]"});
   }
   SECTION("map of the exact pulse train") {
     expect_rejected(with({"map", "--plane", "theta-fmax", "--set", "load.approximation=exact", "--chart", "none"}),
@@ -396,7 +396,7 @@ TEST_CASE("bad input: transient and crosscheck options (bad_input)", "[bad_input
     return args;
   };
   SECTION("transient --revolutions 0") {
-    expect_rejected(with({"transient", "--revolutions", "0", "--chart", "none"}), {"--revolutions 0", "(0, 100000]"});
+    expect_rejected(with({"transient", "--revolutions", "0", "--chart", "none"}), {"--revolutions 0", "(0, 1e5]"});
   }
   SECTION("transient --step unknown") {
     expect_rejected(with({"transient", "--step", "implicit"}), {"--step", "implicit", "adaptive"});
@@ -406,13 +406,13 @@ TEST_CASE("bad input: transient and crosscheck options (bad_input)", "[bad_input
   }
   SECTION("transient --steps-per-period below the paper's 8") {
     expect_rejected(with({"transient", "--step", "fixed", "--steps-per-period", "4", "--chart", "none"}),
-                    {"--steps-per-period 4", "[8, 100000]", "--step fixed"});
+                    {"--steps-per-period 4", "[8, 100000]"});
   }
   SECTION("transient --steps-per-period without --step fixed") {
     expect_rejected(with({"transient", "--steps-per-period", "16", "--chart", "none"}), {"--steps-per-period 16", "--step fixed"});
   }
   SECTION("transient --name with a slash") {
-    expect_rejected(with({"transient", "--name", "a/b", "--revolutions", "0.1", "--chart", "none"}), {"--name a/b", "without '/'"});
+    expect_rejected(with({"transient", "--name", "a/b", "--revolutions", "0.1", "--chart", "none"}), {"--name a/b", "no '/'"});
   }
   SECTION("clearance mode without the casing's intrusion") {
     expect_rejected(with({"transient", "--set", "load.mode=clearance", "--revolutions", "0.1", "--chart", "none"}),
@@ -420,7 +420,7 @@ TEST_CASE("bad input: transient and crosscheck options (bad_input)", "[bad_input
   }
   SECTION("clearance mode with a negative intrusion") {
     expect_rejected(with({"transient", "--set", "load.mode=clearance", "--set", "load.intrusion=-1e-3", "--chart", "none"}),
-                    {"load.intrusion = -0.001", ">= 0"});
+                    {"load.intrusion = -0.001", "[0, 10]"});
   }
   SECTION("clearance mode with an impulse for the casing's shape") {
     expect_rejected(with({"transient", "--set", "load.mode=clearance", "--set", "load.intrusion=1e-3", "--set",
@@ -434,7 +434,7 @@ TEST_CASE("bad input: transient and crosscheck options (bad_input)", "[bad_input
   SECTION("a zero contact stiffness") {
     expect_rejected(with({"transient", "--set", "load.mode=clearance", "--set", "load.intrusion=1e-3", "--set",
                           "load.contact_stiffness=0", "--chart", "none"}),
-                    {"load.contact_stiffness = 0", "> 0"});
+                    {"load.contact_stiffness = 0", "[0.001, 1e15]"});
   }
   SECTION("crosscheck --points negative") {
     expect_rejected(with({"crosscheck", "--points", "1,-2"}), {"--points", "-2", "[0, 1000]"});

@@ -25,6 +25,8 @@ ExportedArrays matrix_market_files(const std::string& stem);
 
 // Writes the three files; InputError naming the file if one cannot be written.
 ExportedArrays write_matrix_market(const PeriodicSystem& sys, const std::string& stem);
+// The same into the given files (the program's temporaries, renamed into place with a manifest).
+ExportedArrays write_matrix_market(const PeriodicSystem& sys, const ExportedArrays& files);
 
 // Reads them back into A0, B and the load coefficients (the rest of the system is left empty);
 // std::runtime_error if a file is missing or malformed.

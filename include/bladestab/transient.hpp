@@ -92,6 +92,12 @@ Eigen::VectorXd rotating_equilibrium(const BladeModel& model, double speed_rad_s
 FixedStep choose_fixed_step(const Eigen::MatrixXd& K, const Eigen::MatrixXd& M, double duration_s,
                             int steps_per_period = 0);
 
+// The step of a run of `duration_s` as run_transient takes it: choose_fixed_step on the model's
+// stiffest mode, with the casing's penalty wall in contact in clearance mode; the cap of the
+// adaptive steps (options.adaptive) or the fixed step. Known before the run, for its cost.
+FixedStep transient_step(const BladeModel& model, const Scene& scene, const TransientOptions& options,
+                         double duration_s);
+
 TransientResult run_transient(const BladeModel& model, const Scene& scene, const TransientOptions& options);
 
 }  // namespace bladestab

@@ -1,18 +1,26 @@
 // bladestab boundaries SCENE: boundary pulse frequencies at the scene's (Ω, F_max), or boundary
 // loads at a given θ (--at-theta), each with an estimate of its whole error; k is raised until the
 // boundaries converge to --tolerance.
-#include <cstdio>
+#include <optional>
 #include <string>
+#include <utility>
 
 #include <fmt/format.h>
 
 #include "bladestab/boundaries.hpp"
 #include "bladestab/input_error.hpp"
 #include "bladestab/instability_regions.hpp"
+#include "bladestab/message_text.hpp"
+#include "bladestab/mode_convergence.hpp"
+#include "bladestab/periodic_load.hpp"
+#include "bladestab/periodic_system.hpp"
+#include "bladestab/scene_limits.hpp"
 #include "commands.hpp"
 #include "error_output.hpp"
 #include "json_writer.hpp"
+#include "number_options.hpp"
 #include "options.hpp"
+#include "work_limits.hpp"
 
 namespace bladestab::cli {
 namespace {
@@ -134,6 +142,52 @@ void print(const SceneOptions& options, const Scene& scene, const BladeModel& mo
   }
 }
 
+// The boundary eigenproblems' cost before they start: the real balance has H·n unknowns (H
+// harmonics: 2k for the −1 family, 2k + 1 for +1; n modes), linearized to twice that in θ. Every
+// run solves both families at k and k + 2 on the scene's model and at k on the richer basis: a
+// lower bound of the work, with dgeev's ~26 N³ flops and its matrices (~32 N² bytes) for each.
+void check_boundary_work(const Scene& scene, const BladeModel& model, const BoundaryRequest& request) {
+  const PeriodicSystem sys =
+      periodic_system(model, scene, load_series(scene), {ReductionKind::modal, 0, request.cutoff_hz});
+  const double richer = static_cast<double>(reference_terms(scene.model.basis, scene.model.terms)) / scene.model.terms;
+  const double linearized = request.theta_rad_s ? 1 : 2;
+  double flops = 0, bytes = 0;
+  for (const auto& [k, modes] : {std::pair{request.first_approximation, 1.0}, {request.first_approximation + 2, 1.0},
+                                 {request.first_approximation, richer}}) {
+    for (const int harmonics : {2 * k, 2 * k + 1}) {
+      const double unknowns = linearized * harmonics * modes * sys.kept_modes;
+      flops += 26 * unknowns * unknowns * unknowns;
+      bytes = std::max(bytes, 32 * unknowns * unknowns);
+    }
+  }
+  check_work(fmt::format("--approximation {}", request.first_approximation),
+             fmt::format("the boundary equations of {} modes", sys.kept_modes), flops / dense_flops_per_second, bytes);
+}
+
+// --at-theta θ puts the pulses at θ (boundaries.hpp); the scene's contact, t̄_c of a revolution at
+// its speed, must fit in their period 2π/θ, so θ ≤ Ω/t̄_c. (At rest t̄_c is a fraction of the pulse
+// period itself, which the scene has checked.)
+void check_pulse_fits(const Scene& scene, double theta) {
+  const double speed = scene.operation.speed_rad_s, highest = speed / scene.load.contact_time_rev;
+  if (speed > 0 && theta > highest * (1 + 1e-12)) {
+    throw InputError(fmt::format("--at-theta {:g}: the pulses would be shorter apart than their contact, "
+                                 "load.contact_time_rev = {:g} of a revolution at operation.speed_rad_s = {:g}; "
+                                 "must be at most Ω/t̄_c = {:.6g} rad/s",
+                                 theta, scene.load.contact_time_rev, speed, highest));
+  }
+}
+
+// --range LO:HI: two plain numbers (number_options.hpp) with 0 <= LO < HI.
+std::pair<double, double> parse_window(const std::string& text) {
+  const std::size_t colon = text.find(':');
+  const std::optional<double> lo = colon == std::string::npos ? std::nullopt : read_decimal(text.substr(0, colon));
+  const std::optional<double> hi = colon == std::string::npos ? std::nullopt : read_decimal(text.substr(colon + 1));
+  if (!lo || !hi || !(*lo >= 0 && *hi > *lo)) {
+    throw InputError(fmt::format("--range {}: must be LO:HI with 0 <= LO < HI", echoed(text)));
+  }
+  return {*lo, *hi};
+}
+
 }  // namespace
 
 Command register_boundaries(CLI::App& app) {
@@ -143,45 +197,32 @@ Command register_boundaries(CLI::App& app) {
   auto at_theta = std::make_shared<double>(0);
   auto range = std::make_shared<std::string>();
   add_scene_options(*command, *options);
-  command->add_option("--approximation", request->first_approximation,
-                      "harmonics k per family to start from (1 = Bolotin's first; default 2); raised by 2 until converged");
-  command->add_option("--tolerance", request->tolerance,
-                      "relative change of every boundary from k to k + 2 harmonics that ends the raising (default 1e-6)");
-  command->add_option("--at-theta", *at_theta, "instead: all boundary F̄_max at this pulse frequency θ [rad/s]");
-  command->add_option("--cutoff-hz", request->cutoff_hz, "keep only the modes below this frequency (default: all)");
-  command->add_option("--max-order", request->max_order,
-                      "highest order n (θ ≈ 2ω/n) reported and converged (default 4)");
+  add_integer_option(*command, "--approximation", request->first_approximation, 1, request->max_approximation - 4,
+                     "harmonics k per family to start from (1 = Bolotin's first; default 2); raised by 2 until converged");
+  add_number_option(*command, "--tolerance", request->tolerance, AllowedRange::open(0, 1),
+                    "relative change of every boundary from k to k + 2 harmonics that ends the raising (default 1e-6)");
+  add_number_option(*command, "--at-theta", *at_theta, scene_limits::pulse_angular_frequency_rad_s,
+                    "instead: all boundary F̄_max at this pulse frequency θ [rad/s]");
+  add_number_option(*command, "--cutoff-hz", request->cutoff_hz, AllowedRange::closed(0, scene_limits::cutoff_hz.hi),
+                    "keep only the modes below this frequency (default 0: all)");
+  add_integer_option(*command, "--max-order", request->max_order, 0, 2 * request->max_approximation - 3,
+                     "highest order n (θ ≈ 2ω/n) reported and converged (default 4)");
   command->add_option("--range", *range,
                       "LO:HI, the θ window [rad/s] (F̄_max with --at-theta) reported and converged "
                       "(default θ/2:2θ of the scene; 0:2F̄_max)");
   return [=] {
-    if (request->first_approximation < 1 || request->first_approximation > request->max_approximation - 4) {
-      throw InputError(fmt::format("--approximation {}: must be an integer in [1, {}]", request->first_approximation,
-                                   request->max_approximation - 4));
-    }
-    if (!(request->tolerance > 0 && request->tolerance < 1)) {
-      throw InputError(fmt::format("--tolerance {}: must be in (0, 1)", request->tolerance));
-    }
-    if (request->max_order < 0 || request->max_order > 2 * request->max_approximation - 3) {
-      throw InputError(fmt::format("--max-order {}: must be an integer in [0, {}]", request->max_order,
-                                   2 * request->max_approximation - 3));
-    }
-    if (!(request->cutoff_hz >= 0)) throw InputError(fmt::format("--cutoff-hz {}: must be >= 0 Hz", request->cutoff_hz));
     const bool in_load = command->count("--at-theta") > 0;
-    if (in_load && !(*at_theta > 0)) throw InputError(fmt::format("--at-theta {}: must be > 0 rad/s", *at_theta));
     if (in_load) request->theta_rad_s = *at_theta;
+    const std::optional<std::pair<double, double>> window =
+        range->empty() ? std::nullopt : std::optional(parse_window(*range));
     const Scene scene = options->load();
+    if (in_load) check_pulse_fits(scene, *at_theta);
     const BladeModel model = assemble_model(scene.blade, scene.model);
-    if (!range->empty()) {
-      double lo = 0, hi = 0;
-      char colon = 0, extra = 0;
-      if (std::sscanf(range->c_str(), "%lf %c %lf %c", &lo, &colon, &hi, &extra) != 3 || colon != ':' ||
-          !(lo >= 0 && hi > lo)) {
-        throw InputError(fmt::format("--range {}: must be LO:HI with 0 <= LO < HI", *range));
-      }
+    if (window) {
       const double unit = in_load ? model.blade.critical_load() : 1.0;  // F̄_max → N
-      request->window = std::make_pair(lo * unit, hi * unit);
+      request->window = std::make_pair(window->first * unit, window->second * unit);
     }
+    check_boundary_work(scene, model, *request);
     const BoundaryAnalysis analysis = boundaries_with_error_estimate(scene, *request);
     print(*options, scene, model, *request, analysis, instability_regions(scene, *request, analysis));
   };

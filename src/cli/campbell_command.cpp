@@ -6,12 +6,16 @@
 #include "bladestab/campbell.hpp"
 #include "bladestab/input_error.hpp"
 #include "bladestab/mode_convergence.hpp"
+#include "bladestab/scene_limits.hpp"
 #include "chart.hpp"
 #include "commands.hpp"
 #include "error_output.hpp"
 #include "json_writer.hpp"
+#include "number_options.hpp"
 #include "options.hpp"
+#include "output_files.hpp"
 #include "progress.hpp"
+#include "work_limits.hpp"
 
 namespace bladestab::cli {
 namespace {
@@ -134,6 +138,24 @@ void print_table(const Scene& scene, const CampbellWithErrors& r, const std::vec
   if (!files.empty()) fmt::print("\nwritten: {}\n", fmt::join(files, ", "));
 }
 
+// The whole-model eigensolves a diagram cannot do without, before they start: the scene's model and
+// its richer reference, at the three sample speeds of the reduced sweep (undamped, automatic
+// solver) or at every speed (the dense sweep); ~25 (2n)³ flops each for the 2n states.
+void check_campbell_work(const Scene& scene, std::size_t speeds, EigenSolverKind solver) {
+  const bool reduced = scene.damping.model == DampingModel::none && solver == EigenSolverKind::automatic;
+  const double solves = reduced ? std::min<double>(3, speeds) : speeds;
+  ModelSpec richer = scene.model;
+  richer.terms = reference_terms(scene.model.basis, scene.model.terms);
+  double flops = 0, bytes = 0;
+  for (const ModelSpec& spec : {scene.model, richer}) {
+    const double states = 2.0 * dof_layout(spec).size();
+    flops += solves * 25 * states * states * states;
+    bytes = std::max(bytes, 6 * 8 * states * states);
+  }
+  check_work(fmt::format("--speeds with model.terms = {}", scene.model.terms),
+             fmt::format("{:g} whole eigensolves", 2 * solves), flops / dense_flops_per_second, bytes);
+}
+
 }  // namespace
 
 Command register_campbell(CLI::App& app) {
@@ -147,21 +169,18 @@ Command register_campbell(CLI::App& app) {
   auto tolerance = std::make_shared<double>(1e-6);
   add_scene_options(*command, *options);
   command->add_option("--speeds", *speeds, "rotor speeds in rad/s as start:stop:count, e.g. 0:600:61")->required();
-  command->add_option("--engine-orders", *orders, "engine orders k of the lines f = kΩ/2π (default 1,2,3,4)")
-      ->delimiter(',');
-  command->add_option("--count", *count, "modes to track, lowest first (default 8)");
-  command->add_option("--tolerance", *tolerance,
-                      "wanted relative error of every frequency; the terms are raised until it is met (default 1e-6)");
+  add_integer_list_option(*command, "--engine-orders", *orders, 1, 1000,
+                          "engine orders k of the lines f = kΩ/2π (default 1,2,3,4)");
+  add_integer_option(*command, "--count", *count, 1, max_int, "modes to track, lowest first (default 8)");
+  add_number_option(*command, "--tolerance", *tolerance, AllowedRange::open(0, 1),
+                    "wanted relative error of every frequency; the terms are raised until it is met (default 1e-6)");
   add_chart_options(*command, *out, *chart, "directory for campbell.csv, campbell_crossings.csv, campbell.json and the chart");
   return [=] {
-    const std::vector<double> speed_list = parse_range("--speeds", *speeds);
-    if (speed_list.front() < 0) throw InputError(fmt::format("--speeds {}: speeds must be >= 0 rad/s", *speeds));
-    if (*count < 1) throw InputError(fmt::format("--count {}: must be an integer >= 1", *count));
-    for (int k : *orders) {
-      if (k < 1) throw InputError(fmt::format("--engine-orders: {} is not allowed; engine orders are integers >= 1", k));
-    }
+    const std::vector<double> speed_list = parse_range("--speeds", *speeds, scene_limits::speed_rad_s);
     check_tolerance(*tolerance);
+    check_output_directory("--out", *out);
     const Scene scene = options->load();
+    check_campbell_work(scene, speed_list.size(), options->eigen_solver());
     CampbellOptions campbell{speed_list, *orders, *count, options->eigen_solver()};
     const bool for_people = options->output_format() == OutputFormat::table;
     const CampbellWithErrors result =

@@ -9,6 +9,7 @@
 
 #include "chart_script.hpp"
 #include "options.hpp"
+#include "output_files.hpp"
 
 namespace bladestab::cli {
 
@@ -46,19 +47,14 @@ std::vector<std::string> write_outputs(const std::string& dir, const std::string
                                        const std::string& json, const std::string& chart_kind,
                                        const std::string& chart_format) {
   const std::filesystem::path folder(dir);
-  std::vector<std::string> written;
-  for (const auto& [name, text] : data) {
-    written.push_back((folder / name).string());
-    write_file(written.back(), text);
-  }
-  const std::string json_path = (folder / (stem + ".json")).string();
-  write_file(json_path, json);
-  written.push_back(json_path);
+  OutputFiles output;
+  for (const auto& [name, text] : data) output.write((folder / name).string(), text);
+  const std::string json_temporary = output.write((folder / (stem + ".json")).string(), json);
   if (chart_format != "none") {
-    written.push_back((folder / (stem + "." + chart_format)).string());
-    draw_chart(chart_kind, json_path, written.back());
+    // Drawn from the JSON's temporary into its own: a failed drawing leaves no files at all.
+    draw_chart(chart_kind, json_temporary, output.reserve((folder / (stem + "." + chart_format)).string()));
   }
-  return written;
+  return output.commit();
 }
 
 }  // namespace bladestab::cli

@@ -3,12 +3,31 @@
 
 #include "bladestab/crosscheck.hpp"
 #include "bladestab/input_error.hpp"
+#include "bladestab/scene_limits.hpp"
+#include "bladestab/transient.hpp"
 #include "commands.hpp"
 #include "json_writer.hpp"
+#include "number_options.hpp"
 #include "options.hpp"
 #include "progress.hpp"
+#include "work_limits.hpp"
 
 namespace bladestab::cli {
+namespace {
+
+// Two transients per point (the cosine load and the true pulse, adaptive RKF45 at 1e-8) dominate:
+// their steps never exceed the stiffest mode's cap (transient.hpp).
+void check_crosscheck_work(const Scene& scene, std::size_t points, double revolutions) {
+  const BladeModel model = assemble_model(scene.blade, scene.model);
+  TransientOptions o;
+  const double duration = revolutions * 6.28318530717958647692 / scene.operation.speed_rad_s;
+  const double steps = 2 * points * duration / transient_step(model, scene, o, duration).step_s;
+  check_work(fmt::format("--points with {} values and --revolutions {:g}", points, revolutions),
+             fmt::format("{:.3g} RKF45 steps of a {}-dof model", steps, model.layout.size()),
+             rkf45_seconds(steps, model.layout.size()), 0);
+}
+
+}  // namespace
 
 Command register_crosscheck(CLI::App& app) {
   auto* command = app.add_subcommand("crosscheck", "Floquet multipliers against transients; cosine approximation against the true pulse");
@@ -16,17 +35,15 @@ Command register_crosscheck(CLI::App& app) {
   auto points = std::make_shared<std::vector<double>>(std::vector<double>{1, 2, 5, 10});
   auto revolutions = std::make_shared<double>(16);
   add_scene_options(*command, *options);
-  command->add_option("--points", *points, "F̄_max values at the scene's speed (default 1,2,5,10)")->delimiter(',');
-  command->add_option("--revolutions", *revolutions, "length of each transient (default 16)");
+  add_number_list_option(*command, "--points", *points, scene_limits::fmax_over_fcr,
+                         "F̄_max values at the scene's speed (default 1,2,5,10)");
+  // The growth fit needs 6 whole revolutions.
+  add_number_option(*command, "--revolutions", *revolutions, AllowedRange::closed(6, 1000),
+                    "length of each transient (default 16)");
   return [=] {
-    for (double f : *points) {
-      if (!(f >= 0 && f <= 1000)) throw InputError(fmt::format("--points: {} is not allowed; F̄_max values are in [0, 1000]", f));
-    }
-    if (!(*revolutions >= 6 && *revolutions <= 1000)) {  // the growth fit needs 6 whole revolutions
-      throw InputError(fmt::format("--revolutions {}: must be in [6, 1000]", *revolutions));
-    }
     const Scene scene = options->load();
     if (scene.operation.speed_rad_s <= 0) throw InputError("operation.speed_rad_s = 0: crosscheck needs a speed > 0");
+    check_crosscheck_work(scene, points->size(), *revolutions);
     CrosscheckOptions o;
     o.fmax_over_fcr = *points;
     o.revolutions = *revolutions;

@@ -1,6 +1,14 @@
 // bladestab: dynamic stability of rotating blades whose tips rub the casing.
+//
+// Exit status: 0 with the answer on stdout; 2 for bad input (InputError: a scene key, an option, a
+// limit of work), one line on stderr naming it; 1 when a computation fails its own checks
+// (NumericalError) or anything else fails, also one line; 128 + n when stopped by signal n
+// (interruption.hpp). Nothing non-finite is ever printed as an answer.
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <map>
+#include <new>
 #include <string>
 
 #include <CLI/CLI.hpp>
@@ -8,7 +16,10 @@
 
 #include "bladestab/blas_threads.hpp"
 #include "bladestab/input_error.hpp"
+#include "bladestab/message_text.hpp"
 #include "commands.hpp"
+#include "interruption.hpp"
+#include "work_limits.hpp"
 
 namespace {
 
@@ -18,22 +29,24 @@ std::string command_names(const std::map<std::string, bladestab::cli::Command>& 
   return names;
 }
 
-// "Could not convert: --count = abc" → what --count accepts, from its type name.
-std::string expected_type(const CLI::App& app, const std::string& message) {
-  const auto start = message.find("--");
-  const auto end = message.find(' ', start);
-  if (start == std::string::npos) return "a value of the option's type is expected";
-  const std::string name = message.substr(start, end - start);
-  for (const CLI::App* command : app.get_subcommands()) {
-    for (const CLI::Option* option : command->get_options()) {
-      if (!option->check_lname(name.substr(2))) continue;
-      const std::string type = option->get_type_name();
-      if (type.find("INT") != std::string::npos) return "must be an integer (comma-separated integers for a list)";
-      if (type.find("FLOAT") != std::string::npos) return "must be a number";
-      return "must be " + type;
-    }
+// "bladestab: error: …" (kind "error", exit 2) or "bladestab: failed: …" (exit 1), on one line
+// whatever the message holds: values are echoed short where they are put in, and this keeps any
+// message that quotes input (CLI11's among them) on one line.
+int report(const char* kind, const std::string& message, int status) {
+  constexpr std::size_t longest = 2000;
+  std::string line = bladestab::one_line(message);
+  if (line.size() > longest) line = line.substr(0, longest) + "…";
+  fmt::print(stderr, "bladestab: {}: {}\n", kind, line);
+  return status;
+}
+
+// The answer went to stdout; a write that failed there (a full disk, /dev/full, a closed pipe
+// with SIGPIPE ignored) is a failure of the run, not a success with a lost answer.
+int finish_stdout() {
+  if (std::fflush(stdout) != 0 || std::ferror(stdout)) {
+    return report("failed", fmt::format("cannot write the output to stdout: {}", std::strerror(errno)), 1);
   }
-  return "a value of the option's type is expected";
+  return 0;
 }
 
 }  // namespace
@@ -41,6 +54,7 @@ std::string expected_type(const CLI::App& app, const std::string& message) {
 int main(int argc, char** argv) {
   using namespace bladestab::cli;
   bladestab::use_single_threaded_blas();
+  stop_on_signals();
   CLI::App app{"bladestab: modes, Campbell diagrams and dynamic stability of rotating Timoshenko blades"};
   app.require_subcommand(1);
   std::map<std::string, Command> run;
@@ -52,12 +66,11 @@ int main(int argc, char** argv) {
   run["transient"] = register_transient(app);
   run["crosscheck"] = register_crosscheck(app);
   if (argc < 2) {
-    fmt::print(stderr, "bladestab: error: a command is required: {} (see bladestab --help)\n", command_names(run));
-    return 2;
+    return report("error", fmt::format("a command is required: {} (see bladestab --help)", command_names(run)), 2);
   }
   if (argv[1][0] != '-' && run.count(argv[1]) == 0) {
-    fmt::print(stderr, "bladestab: error: {}: unknown command; known: {}\n", argv[1], command_names(run));
-    return 2;
+    return report("error",
+                  fmt::format("{}: unknown command; known: {}", bladestab::echoed(argv[1]), command_names(run)), 2);
   }
   try {
     app.parse(argc, argv);
@@ -65,21 +78,20 @@ int main(int argc, char** argv) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {
     return app.exit(e);
-  } catch (const CLI::ConversionError& e) {
-    fmt::print(stderr, "bladestab: error: {}: {}\n", e.what(), expected_type(app, e.what()));
-    return 2;
   } catch (const CLI::ParseError& e) {
-    fmt::print(stderr, "bladestab: error: {} (see bladestab --help)\n", e.what());
-    return 2;
+    return report("error", fmt::format("{} (see bladestab --help)", e.what()), 2);
+  } catch (const bladestab::InputError& e) {  // a number option's value (number_options.hpp)
+    return report("error", e.what(), 2);
   }
+  stop_after(work_limits().seconds, fmt::format("--max-seconds {:g}", work_limits().seconds));
   try {
     run.at(app.get_subcommands().front()->get_name())();
   } catch (const bladestab::InputError& e) {
-    fmt::print(stderr, "bladestab: error: {}\n", e.what());
-    return 2;
+    return report("error", e.what(), 2);
+  } catch (const std::bad_alloc&) {
+    return report("failed", "out of memory", 1);
   } catch (const std::exception& e) {
-    fmt::print(stderr, "bladestab: failed: {}\n", e.what());
-    return 1;
+    return report("failed", e.what(), 1);
   }
-  return 0;
+  return finish_stdout();
 }

@@ -1,21 +1,28 @@
 // bladestab map SCENE --plane theta-fmax|speed-fmax: stability map, CSV/JSON data and a chart.
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
+#include <optional>
 #include <thread>
+#include <tuple>
+#include <utility>
 
 #include <fmt/format.h>
 
 #include "bladestab/damping.hpp"
 #include "bladestab/input_error.hpp"
+#include "bladestab/message_text.hpp"
+#include "bladestab/scene_limits.hpp"
 #include "bladestab/modes.hpp"
 #include "bladestab/stability_map.hpp"
 #include "chart.hpp"
 #include "error_output.hpp"
 #include "commands.hpp"
 #include "json_writer.hpp"
+#include "number_options.hpp"
 #include "options.hpp"
+#include "output_files.hpp"
 #include "progress.hpp"
+#include "work_limits.hpp"
 
 namespace bladestab::cli {
 namespace {
@@ -152,6 +159,43 @@ std::string grid_csv(const StabilityMap& m) {
   return csv;
 }
 
+// --resolution NXxNY: two plain integers in [1, 4096] (number_options.hpp).
+std::pair<int, int> parse_resolution(const std::string& text) {
+  const std::size_t x = text.find('x');
+  const std::optional<long> nx = x == std::string::npos ? std::nullopt : read_integer(text.substr(0, x));
+  const std::optional<long> ny = x == std::string::npos ? std::nullopt : read_integer(text.substr(x + 1));
+  if (!nx || !ny || *nx < 1 || *ny < 1 || *nx > 4096 || *ny > 4096) {
+    throw InputError(fmt::format("--resolution {}: must be NXxNY with integers in [1, 4096], e.g. 400x200",
+                                 echoed(text)));
+  }
+  return {static_cast<int>(*nx), static_cast<int>(*ny)};
+}
+
+// The map's work before it starts, from unit costs measured on the paper blade (N = 8, one core)
+// and scaled. A traced line solves both families' boundary equations, (2k + 1)·n unknowns for
+// n ≈ 20 reduced modes, ~26 (unknowns)³ flops each (measured ~0.1 s a line at the k = 8 the paper's
+// maps are raised to). A shading point reduces the whole model at its load (~20 n³ flops for n
+// dofs) and runs a Floquet monodromy on the reduced one (4 ms); the refinement adds points along
+// the boundaries, about 10 per effective cell of the resolution's width and height (12 500 on the
+// paper's 400 × 200 map, where the estimate takes 6000).
+void check_map_work(const BladeModel& model, const MapOptions& o) {
+  const double reduced_modes = 20, dofs = model.layout.size();
+  const double unknowns = (2 * o.approximation + 1) * reduced_modes;
+  const double line_seconds = 2 * 26 * unknowns * unknowns * unknowns / dense_flops_per_second;
+  const double point_seconds = 4e-3 + 20 * dofs * dofs * dofs / dense_flops_per_second;
+  const double grid = static_cast<double>(o.grid_x.size()) * o.grid_fbar.size();
+  const double points = grid + 10.0 * (o.resolution_x + o.resolution_y);
+  const double seconds = (o.trace.size() * line_seconds + points * point_seconds) / o.threads;
+  // The grid of max|ρ|, the samples and cells of the refinement, and each traced line's boundaries.
+  const double bytes = points * 64 + o.trace.size() * 4096.0;
+  const std::string cause = points * point_seconds > o.trace.size() * line_seconds
+                                ? fmt::format("a grid of {} × {} points refined to --resolution {}x{}", o.grid_x.size(),
+                                              o.grid_fbar.size(), o.resolution_x, o.resolution_y)
+                                : fmt::format("--trace {} at --approximation {}", o.trace.size(), o.approximation);
+  check_work(cause, fmt::format("the map of a {}-dof model on {} threads", model.layout.size(), o.threads), seconds,
+             bytes);
+}
+
 }  // namespace
 
 Command register_map(CLI::App& app) {
@@ -175,55 +219,36 @@ Command register_map(CLI::App& app) {
   command->add_option("--theta", *theta, "θ grid [rad/s] start:stop:count (default: ω1/4 to 2.5 ω1, 41 points)");
   command->add_option("--speeds", *speeds, "Ω grid [rad/s] start:stop:count (speed-fmax plane; required there)");
   command->add_option("--fmax", *fmax, "F̄_max grid start:stop:count (default 0:10:21)");
-  command->add_option("--trace", *trace, "parameter values for tracing the boundary curves (default 201)");
-  command->add_option("--engine-order", *order, "k in θ = kΩ (default: load.pulses_per_rev)");
-  command->add_option("--approximation", *approximation, "harmonics per family in the boundary equations (default 4)");
-  command->add_option("--max-order", *max_order,
-                      "boundary curves of orders n <= this (theta ~ 2 omega / n; default 4); harmonics are raised to "
-                      "converge them");
-  command->add_option("--tolerance", *tolerance, "accuracy of max|ρ| in the shading (default 1e-3)");
+  add_integer_option(*command, "--trace", *trace, 2, 100000,
+                     "parameter values for tracing the boundary curves (default 201)");
+  add_integer_option(*command, "--engine-order", *order, 1, 1000, "k in θ = kΩ (default: load.pulses_per_rev)");
+  add_integer_option(*command, "--approximation", *approximation, 1, 40,
+                     "harmonics per family in the boundary equations (default 4)");
+  add_integer_option(*command, "--max-order", *max_order, 1, 40,
+                     "boundary curves of orders n <= this (theta ~ 2 omega / n; default 4); harmonics are raised to "
+                     "converge them");
+  add_number_option(*command, "--tolerance", *tolerance, AllowedRange::open(0, 1),
+                    "accuracy of max|ρ| in the shading (default 1e-3)");
   auto threads = std::make_shared<int>(std::max(1u, std::thread::hardware_concurrency()));
-  command->add_option("--threads", *threads, "worker threads (default: the machine's cores)");
+  add_integer_option(*command, "--threads", *threads, 1, 256, "worker threads (default: the machine's cores)");
   auto resolution = std::make_shared<std::string>("400x200");
   command->add_option("--resolution", *resolution,
                       "effective cells NXxNY of the refined shading (default 400x200; the grid's cells are split "
                       "where stability changes)");
   add_chart_options(*command, *out, *chart, "directory for map_<plane>.json, _curves.csv, _grid.csv and the chart");
   return [=] {
-    Scene scene = options->load();
     const bool theta_plane = *plane == "theta-fmax";
     MapOptions o;
     o.plane = theta_plane ? MapPlane::theta_fmax : MapPlane::speed_fmax;
-    o.grid_fbar = parse_range("--fmax", *fmax);
-    if (o.grid_fbar.front() < 0) throw InputError(fmt::format("--fmax {}: F̄_max must be >= 0", *fmax));
-    if (*trace < 2 || *trace > 100000) throw InputError(fmt::format("--trace {}: must be an integer in [2, 100000]", *trace));
-    if (*approximation < 1 || *approximation > 40) {
-      throw InputError(fmt::format("--approximation {}: must be an integer in [1, 40]", *approximation));
-    }
-    if (!(*tolerance > 0 && *tolerance < 1)) throw InputError(fmt::format("--tolerance {}: must be in (0, 1)", *tolerance));
-    o.engine_order = *order > 0 ? *order : scene.load.pulses_per_rev;
-    if (*order < 0) throw InputError(fmt::format("--engine-order {}: must be an integer >= 1", *order));
+    o.grid_fbar = parse_range("--fmax", *fmax, scene_limits::fmax_over_fcr);
     o.approximation = *approximation;
-    if (*max_order < 1 || *max_order > 40) {
-      throw InputError(fmt::format("--max-order {}: must be an integer in [1, 40]", *max_order));
-    }
     o.max_order = *max_order;
     o.tolerance = *tolerance;
-    {
-      int rx = 0, ry = 0;
-      char sep = 0, extra = 0;
-      if (std::sscanf(resolution->c_str(), "%d%c%d%c", &rx, &sep, &ry, &extra) != 3 || sep != 'x' || rx < 1 ||
-          ry < 1 || rx > 4096 || ry > 4096) {
-        throw InputError(fmt::format("--resolution {}: must be NXxNY with integers in [1, 4096], e.g. 400x200",
-                                     *resolution));
-      }
-      o.resolution_x = rx;
-      o.resolution_y = ry;
-    }
-    if (*threads < 1 || *threads > 256) {
-      throw InputError(fmt::format("--threads {}: must be an integer in [1, 256]", *threads));
-    }
+    std::tie(o.resolution_x, o.resolution_y) = parse_resolution(*resolution);
     o.threads = *threads;
+    check_output_directory("--out", *out);
+    const Scene scene = options->load();
+    o.engine_order = *order > 0 ? *order : scene.load.pulses_per_rev;
     const BladeModel model = assemble_model(scene.blade, scene.model);
     if (theta_plane) {
       if (scene.operation.speed_rad_s <= 0 && scene.damping.model == DampingModel::paper) {
@@ -232,18 +257,20 @@ Command register_map(CLI::App& app) {
       if (theta->empty()) {
         const double w1 = solve_modes(model, system_at(model, scene.operation.speed_rad_s, Eigen::MatrixXd::Zero(model.layout.size(), model.layout.size())),
                                       scene.operation.speed_rad_s, 1, EigenSolverKind::dense).modes.at(0).eigenvalue.imag();
-        o.grid_x = parse_range("--theta", fmt::format("{}:{}:41", w1 / 4, 2.5 * w1));
+        o.grid_x = parse_range("--theta", fmt::format("{}:{}:41", w1 / 4, 2.5 * w1),
+                               scene_limits::pulse_angular_frequency_rad_s);
       } else {
-        o.grid_x = parse_range("--theta", *theta);
+        o.grid_x = parse_range("--theta", *theta, scene_limits::pulse_angular_frequency_rad_s);
       }
-      if (o.grid_x.front() <= 0) throw InputError(fmt::format("--theta {}: pulse frequencies must be > 0", *theta));
-      o.trace = parse_range("--fmax", fmt::format("{}:{}:{}", o.grid_fbar.front(), o.grid_fbar.back(), *trace));
+      o.trace = parse_range("--fmax", fmt::format("{}:{}:{}", o.grid_fbar.front(), o.grid_fbar.back(), *trace),
+                            scene_limits::fmax_over_fcr);
     } else {
       if (speeds->empty()) throw InputError("--speeds: required for --plane speed-fmax (start:stop:count in rad/s)");
-      o.grid_x = parse_range("--speeds", *speeds);
-      if (o.grid_x.front() <= 0) throw InputError(fmt::format("--speeds {}: speeds must be > 0", *speeds));
-      o.trace = parse_range("--speeds", fmt::format("{}:{}:{}", o.grid_x.front(), o.grid_x.back(), *trace));
+      o.grid_x = parse_range("--speeds", *speeds, AllowedRange::above(0, scene_limits::speed_rad_s.hi));
+      o.trace = parse_range("--speeds", fmt::format("{}:{}:{}", o.grid_x.front(), o.grid_x.back(), *trace),
+                            AllowedRange::above(0, scene_limits::speed_rad_s.hi));
     }
+    check_map_work(model, o);
     const bool for_people = options->output_format() == OutputFormat::table;
     const StabilityMap m = stability_map(scene, o, progress_reporter("map: points", for_people));
 

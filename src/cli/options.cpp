@@ -3,11 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 
 #include <fmt/format.h>
 
 #include "bladestab/input_error.hpp"
+#include "bladestab/message_text.hpp"
+#include "number_options.hpp"
+#include "work_limits.hpp"
 
 namespace bladestab::cli {
 
@@ -31,37 +33,28 @@ void add_scene_options(CLI::App& command, SceneOptions& options) {
       ->check(CLI::IsMember({"table", "json", "csv"}));
   command.add_option("--solver", options.solver, "eigensolver: auto (default), dense (LAPACK) or arpack")
       ->check(CLI::IsMember({"auto", "dense", "arpack"}));
+  add_work_limit_options(command);
 }
 
-std::vector<double> parse_range(const std::string& option, const std::string& text) {
-  const std::string allowed = "must be start:stop:count with finite start < stop and an integer count >= 2";
-  double start = 0, stop = 0;
-  long count = 0;
-  char c1 = 0, c2 = 0;
-  std::size_t used = 0;
-  bool ok = false;
-  try {
-    std::size_t p1 = text.find(':'), p2 = text.find(':', p1 == std::string::npos ? p1 : p1 + 1);
-    if (p1 != std::string::npos && p2 != std::string::npos) {
-      c1 = c2 = ':';
-      start = std::stod(text.substr(0, p1), &used);
-      ok = used == p1;
-      stop = std::stod(text.substr(p1 + 1, p2 - p1 - 1), &used);
-      ok = ok && used == p2 - p1 - 1;
-      count = std::stol(text.substr(p2 + 1), &used);
-      ok = ok && used == text.size() - p2 - 1;
-    }
-  } catch (const std::exception&) {
-    ok = false;
+std::vector<double> parse_range(const std::string& option, const std::string& text, const AllowedRange& values) {
+  constexpr long max_count = 100000;
+  const auto refuse = [&] {
+    throw InputError(fmt::format("{} {}: must be start:stop:count with start < stop, both in {}, and an integer "
+                                 "count in [2, {}]", option, echoed(text), values.text(), max_count));
+  };
+  const std::size_t first = text.find(':'), second = first == std::string::npos ? first : text.find(':', first + 1);
+  if (second == std::string::npos) refuse();
+  const std::optional<double> start = read_decimal(text.substr(0, first));
+  const std::optional<double> stop = read_decimal(text.substr(first + 1, second - first - 1));
+  const std::optional<long> count = read_integer(text.substr(second + 1));
+  if (!start || !stop || !count || !(*start < *stop) || !values.contains(*start) || !values.contains(*stop) ||
+      *count < 2 || *count > max_count) {
+    refuse();
   }
-  if (!ok || c1 != ':' || c2 != ':' || !std::isfinite(start) || !std::isfinite(stop) || !(start < stop) ||
-      count < 2 || count > 100000) {
-    throw InputError(fmt::format("{} {}: {}", option, text, allowed));
-  }
-  std::vector<double> values(count);
-  for (long i = 0; i < count; ++i) values[i] = start + (stop - start) * static_cast<double>(i) / (count - 1);
-  values.back() = stop;
-  return values;
+  std::vector<double> grid(*count);
+  for (long i = 0; i < *count; ++i) grid[i] = *start + (*stop - *start) * static_cast<double>(i) / (*count - 1);
+  grid.back() = *stop;
+  return grid;
 }
 
 int significant_digits(double error) {
@@ -79,15 +72,6 @@ std::string scene_title(const Scene& scene) {
   const std::filesystem::path p(scene.source);
   const std::string folder = p.parent_path().filename().string();
   return (folder.empty() ? "" : folder + "/") + p.stem().string();
-}
-
-void write_file(const std::string& path, const std::string& text) {
-  const std::filesystem::path p(path);
-  std::error_code ec;
-  if (p.has_parent_path()) std::filesystem::create_directories(p.parent_path(), ec);
-  std::ofstream out(path);
-  out << text;
-  if (!out) throw InputError(fmt::format("{}: cannot write this file", path));
 }
 
 }  // namespace bladestab::cli

@@ -5,6 +5,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "bladestab/allowed_range.hpp"
 #include "bladestab/model.hpp"
 #include "bladestab/modes.hpp"
 #include "bladestab/scene.hpp"
@@ -27,8 +28,9 @@ struct SceneOptions {
 // Adds SCENE, --set, --format and --solver to a subcommand.
 void add_scene_options(CLI::App& command, SceneOptions& options);
 
-// "start:stop:count" → count evenly spaced values; InputError naming `option` otherwise.
-std::vector<double> parse_range(const std::string& option, const std::string& text);
+// "start:stop:count" → count evenly spaced values, start and stop in `values`; InputError naming
+// `option` otherwise.
+std::vector<double> parse_range(const std::string& option, const std::string& text, const AllowedRange& values);
 
 // Significant digits worth printing for a value with relative error `error` (3 to 12).
 int significant_digits(double error);
@@ -38,8 +40,5 @@ std::string describe_model(const BladeModel& model);
 
 // "sinha2005/blade" for stability_maps/sinha2005/blade.toml: the scene's name in chart titles.
 std::string scene_title(const Scene& scene);
-
-// Writes text to a file, creating its directory; InputError if that fails.
-void write_file(const std::string& path, const std::string& text);
 
 }  // namespace bladestab::cli

@@ -2,18 +2,21 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 
 #include <fmt/format.h>
 
 #include "bladestab/stability_analysis.hpp"
 #include "bladestab/input_error.hpp"
 #include "bladestab/matrix_export.hpp"
+#include "bladestab/message_text.hpp"
+#include "bladestab/scene_limits.hpp"
 #include "bladestab/periodic_system.hpp"
 #include "commands.hpp"
 #include "error_output.hpp"
 #include "json_writer.hpp"
+#include "number_options.hpp"
 #include "options.hpp"
+#include "output_files.hpp"
 
 namespace bladestab::cli {
 namespace {
@@ -143,35 +146,25 @@ void print(const SceneOptions& options, const Scene& scene, const StabilityAnswe
   }
 }
 
-// --export-matrices FILE.json: the manifest's path and the stem of its Matrix Market files, checked
-// before anything is computed (a path that cannot be written is an input error, exit 2).
-std::string export_stem(const std::string& path) {
-  namespace fs = std::filesystem;
-  const fs::path p(path);
+// --export-matrices FILE.json: the manifest's path must end in .json and its directory be writable;
+// checked before anything is computed (an input error, exit 2).
+void check_export_path(const std::string& path) {
+  const std::filesystem::path p(path);
   if (p.extension() != ".json" || p.stem().empty()) {
     throw InputError(fmt::format("--export-matrices {}: must be a FILE.json (the manifest; the matrices go beside it "
-                                 "as FILE.A0.mtx, FILE.B.mtx and FILE.load.mtx)", path));
+                                 "as FILE.A0.mtx, FILE.B.mtx and FILE.load.mtx)", echoed(path, 240)));
   }
-  std::error_code ec;
-  if (p.has_parent_path()) fs::create_directories(p.parent_path(), ec);
-  const fs::path stem = fs::path(p).replace_extension();
-  const ExportedArrays arrays = matrix_market_files(stem.string());
-  for (const std::string& file : {path, arrays.A0, arrays.B, arrays.load}) {
-    const bool existed = fs::exists(file, ec);
-    bool writable = !fs::is_directory(file, ec);
-    if (writable) writable = static_cast<bool>(std::ofstream(file, std::ios::app));
-    if (!existed) fs::remove(file, ec);
-    if (!writable) throw InputError(fmt::format("--export-matrices {}: cannot write {}", path, file));
-  }
-  return stem.string();
+  check_output_directory(fmt::format("--export-matrices {}: its directory", echoed(path, 240)),
+                         p.parent_path().string());
 }
 
 // The system the answer's Floquet analysis integrated (its basis, reduction and load series), in
-// Matrix Market files, and a manifest with everything else a reader needs.
-void export_matrices(const std::string& path, const std::string& stem, const Scene& scene, const StabilityAnswer& a,
-                     double tolerance) {
+// Matrix Market files, and a manifest with everything else a reader needs; all four or none.
+void export_matrices(const std::string& path, const Scene& scene, const StabilityAnswer& a, double tolerance) {
   const PeriodicSystem sys = periodic_system(assemble_model(scene.blade, a.model), scene, a.load, a.reduction);
-  const ExportedArrays files = write_matrix_market(sys, stem);
+  const ExportedArrays files = matrix_market_files(std::filesystem::path(path).replace_extension().string());
+  OutputFiles output;
+  write_matrix_market(sys, {output.reserve(files.A0), output.reserve(files.B), output.reserve(files.load)});
   const auto name = [](const std::string& file) { return std::filesystem::path(file).filename().string(); };
   JsonWriter json;
   json.begin_object()
@@ -201,7 +194,8 @@ void export_matrices(const std::string& path, const std::string& stem, const Sce
       .value("stable", a.stable);
   write_error_budget(json, a.budget);
   json.end_object();
-  write_file(path, json.str() + "\n");
+  output.write(path, json.str() + "\n");
+  output.commit();
 }
 
 }  // namespace
@@ -217,27 +211,27 @@ Command register_stability(CLI::App& app) {
   add_scene_options(*command, *options);
   command->add_option("--method", *method, "hill, koopman-hill, monodromy (Magnus), monodromy-rkf45 or auto (default)")
       ->check(CLI::IsMember({"hill", "koopman-hill", "monodromy", "monodromy-rkf45", "auto"}));
-  command->add_option("--harmonics", *harmonics, "Hill truncation q (default: raised until --tolerance is met)");
-  command->add_option("--tolerance", *tolerance, "wanted accuracy of max|ρ| (default 1e-6)");
-  command->add_option("--cutoff-hz", *cutoff,
-                      "modal truncation: keep only the unloaded modes below this frequency (model.reduction = "
-                      "\"modal\"; default: the automatic reduction)");
+  add_integer_option(*command, "--harmonics", *harmonics, 1, 60,
+                     "Hill truncation q (default: raised until --tolerance is met)");
+  add_number_option(*command, "--tolerance", *tolerance, AllowedRange::open(0, 1),
+                    "wanted accuracy of max|ρ| (default 1e-6)");
+  add_number_option(*command, "--cutoff-hz", *cutoff, AllowedRange::closed(0, scene_limits::cutoff_hz.hi),
+                    "modal truncation: keep only the unloaded modes below this frequency (model.reduction = "
+                    "\"modal\"; default 0: the automatic reduction)");
   command->add_option("--export-matrices", *export_path,
                       "write the periodic system the analysis integrated: FILE.json (manifest) and beside it "
                       "FILE.A0.mtx, FILE.B.mtx, FILE.load.mtx (Matrix Market)");
   return [=] {
-    if (*harmonics < 0 || *harmonics > 60) throw InputError(fmt::format("--harmonics {}: must be in [1, 60]", *harmonics));
-    if (!(*tolerance > 0 && *tolerance < 1)) throw InputError(fmt::format("--tolerance {}: must be in (0, 1)", *tolerance));
-    if (!(*cutoff >= 0)) throw InputError(fmt::format("--cutoff-hz {}: must be >= 0", *cutoff));
-    const std::string stem = export_path->empty() ? "" : export_stem(*export_path);
+    if (!export_path->empty()) check_export_path(*export_path);
     Scene scene = options->load();
     if (*cutoff > 0) scene.model.reduction = {ReductionKind::modal, 0, *cutoff};
-    if (!stem.empty() && scene.load.approximation == LoadApproximation::exact) {
+    if (!export_path->empty() && scene.load.approximation == LoadApproximation::exact) {
       throw InputError(fmt::format("--export-matrices {}: load.approximation = \"exact\" is integrated through each "
-                                   "pulse and has no series to export; use \"cosine\" or \"fourier\"", *export_path));
+                                   "pulse and has no series to export; use \"cosine\" or \"fourier\"",
+                                   echoed(*export_path, 240)));
     }
     const StabilityAnswer answer = analyse_stability(scene, {parse_method(*method), *harmonics, *tolerance});
-    if (!stem.empty()) export_matrices(*export_path, stem, scene, answer, *tolerance);
+    if (!export_path->empty()) export_matrices(*export_path, scene, answer, *tolerance);
     print(*options, scene, answer);
   };
 }

@@ -1,16 +1,22 @@
 // bladestab transient SCENE: time response to the rub, CSV of the history, JSON summary, chart.
 
+#include <regex>
+
 #include <fmt/format.h>
 
 #include "bladestab/input_error.hpp"
+#include "bladestab/message_text.hpp"
 #include "bladestab/response_analysis.hpp"
 #include "bladestab/transient.hpp"
 #include "bladestab/transient_checks.hpp"
 #include "chart.hpp"
 #include "commands.hpp"
 #include "json_writer.hpp"
+#include "number_options.hpp"
 #include "options.hpp"
+#include "output_files.hpp"
 #include "progress.hpp"
+#include "work_limits.hpp"
 
 namespace bladestab::cli {
 namespace {
@@ -146,6 +152,33 @@ std::string summary_json(const Scene& scene, const BladeModel& model, const Tran
   return json.str();
 }
 
+// --name STEM names files: letters, digits, '.', '_', '+' and '-', not starting with '.' or '-'
+// (a hidden file, an option); no '/', spaces, quotes or control characters.
+void check_file_stem(const std::string& name) {
+  static const std::regex stem("[A-Za-z0-9_+][A-Za-z0-9._+-]*");
+  if (name.size() > 200 || !std::regex_match(name, stem)) {
+    throw InputError(fmt::format("--name {}: must be a file stem of at most 200 letters, digits, '.', '_', '+' and "
+                                 "'-', not starting with '.' or '-' (no '/', spaces or control characters)",
+                                 echoed(name)));
+  }
+}
+
+// The run's work before it starts: RKF45 never steps beyond the cap of the stiffest mode
+// (transient.hpp): duration/cap steps (adaptive runs take up to twice as many, each cheaper than
+// rkf45_seconds assumes); the history holds samples-per-rev × revolutions samples, ~600 bytes
+// each with their CSV and chart series.
+void check_transient_work(const BladeModel& model, const Scene& scene, const TransientOptions& o, double revolutions) {
+  const double duration = o.revolutions * 6.28318530717958647692 / scene.operation.speed_rad_s;
+  const FixedStep step = transient_step(model, scene, o, duration);
+  const double steps = duration / step.step_s;
+  const double seconds = rkf45_seconds(steps, model.layout.size());
+  const double bytes = 600 * revolutions * o.samples_per_revolution;
+  check_work(fmt::format("--revolutions {:g}", revolutions),
+             fmt::format("{:.3g} RKF45 steps of a {}-dof model and {:.3g} samples", steps, model.layout.size(),
+                         revolutions * o.samples_per_revolution),
+             seconds, bytes);
+}
+
 }  // namespace
 
 Command register_transient(CLI::App& app) {
@@ -161,30 +194,26 @@ Command register_transient(CLI::App& app) {
   auto name = std::make_shared<std::string>("transient");
   auto follower = std::make_shared<bool>(false);
   add_scene_options(*command, *options);
-  command->add_option("--revolutions", *revolutions, "length of the run in revolutions (default 10)");
-  command->add_option("--tolerance", *tolerance, "relative tolerance of the adaptive steps (default 1e-8)");
+  add_number_option(*command, "--revolutions", *revolutions, AllowedRange::above(0, 1e5),
+                    "length of the run in revolutions (default 10)");
+  add_number_option(*command, "--tolerance", *tolerance, AllowedRange::below(1e-13, 1),
+                    "relative tolerance of the adaptive steps (default 1e-8)");
   command->add_option("--step", *step, "adaptive (default) or fixed (the paper's Δt = (1/8)(2π/ω_max), eq. 54)")
       ->check(CLI::IsMember({"adaptive", "fixed"}));
-  command->add_option("--steps-per-period", *steps_per_period,
-                      "fixed steps per period of the stiffest mode: 8 is the paper's (54); default: the fewest ≥ 8 "
-                      "that keep RKF45's parasitic growth of that mode under 1 % over the run");
-  command->add_option("--samples-per-rev", *samples, "output samples per revolution (default 200)");
+  add_integer_option(*command, "--steps-per-period", *steps_per_period, 8, 100000,
+                     "fixed steps per period of the stiffest mode: 8 is the paper's (54); default: the fewest ≥ 8 "
+                     "that keep RKF45's parasitic growth of that mode under 1 % over the run");
+  add_integer_option(*command, "--samples-per-rev", *samples, 8, 100000, "output samples per revolution (default 200)");
   add_chart_options(*command, *out, *chart, "directory for NAME.csv, NAME.json and the chart");
   command->add_option("--name", *name, "stem of the output files (default transient)");
   command->add_flag("--follower", *follower, "the tip load follows the tip slope (F cos ψ axially, −F sin ψ laterally)");
   return [=] {
-    if (!(*revolutions > 0 && *revolutions <= 1e5)) {
-      throw InputError(fmt::format("--revolutions {}: must be in (0, 100000]", *revolutions));
+    if (command->count("--steps-per-period") > 0 && *step != "fixed") {
+      throw InputError(fmt::format("--steps-per-period {}: must be in [8, 100000] (8 is the paper's (54)), with --step "
+                                   "fixed", *steps_per_period));
     }
-    if (!(*tolerance >= 1e-13 && *tolerance < 1)) throw InputError(fmt::format("--tolerance {}: must be in [1e-13, 1)", *tolerance));
-    if (*steps_per_period != 0 && (*steps_per_period < 8 || *steps_per_period > 100000 || *step != "fixed")) {
-      throw InputError(fmt::format("--steps-per-period {}: must be in [8, 100000] (8 is the paper's (54)), with --step fixed",
-                                   *steps_per_period));
-    }
-    if (*samples < 8 || *samples > 100000) throw InputError(fmt::format("--samples-per-rev {}: must be in [8, 100000]", *samples));
-    if (name->empty() || name->find('/') != std::string::npos) {
-      throw InputError(fmt::format("--name {}: must be a file stem without '/'", *name));
-    }
+    check_file_stem(*name);
+    check_output_directory("--out", *out);
     const Scene scene = options->load();
     if (scene.operation.speed_rad_s <= 0) {
       throw InputError("operation.speed_rad_s = 0: the transient is counted in revolutions; give a speed > 0");
@@ -199,6 +228,7 @@ Command register_transient(CLI::App& app) {
     o.follower = *follower;
     const bool for_people = options->output_format() == OutputFormat::table;
     o.progress = progress_reporter("transient: revolutions", for_people);
+    check_transient_work(model, scene, o, *revolutions);
     const TransientResult r = run_transient(model, scene, o);
     const double sample_rate = *samples * scene.operation.speed_rad_s / 6.28318530717958647692;
     const Summary s = summarize(r, sample_rate);

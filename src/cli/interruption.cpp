@@ -1,0 +1,124 @@
+#include "interruption.hpp"
+
+#include <signal.h>
+#include <unistd.h>
+
+#include <array>
+#include <atomic>
+#include <chrono>
+#include <cstring>
+#include <mutex>
+#include <thread>
+
+#include <fmt/format.h>
+
+namespace bladestab::cli {
+namespace {
+
+// The registry of temporaries is read by a signal handler, so it is plain memory: fixed slots,
+// each claimed and published through lock-free atomics, its path a fixed buffer.
+constexpr std::size_t slots = 64, max_path = 4096;
+struct Slot {
+  std::atomic<bool> claimed{false}, published{false};
+  char path[max_path] = {};
+};
+std::array<Slot, slots> registry;
+
+void remove_temporaries() {  // async-signal-safe: unlink only
+  for (Slot& s : registry) {
+    if (s.published.load()) ::unlink(s.path);
+  }
+}
+
+void write_line(const char* text) {  // async-signal-safe
+  const std::size_t length = std::strlen(text);
+  for (std::size_t done = 0; done < length;) {
+    const ssize_t n = ::write(STDERR_FILENO, text + done, length - done);
+    if (n <= 0) break;
+    done += static_cast<std::size_t>(n);
+  }
+}
+
+// The deadline takes this lock before it stops the run; a StopDeferral holds it meanwhile.
+std::mutex& commit_lock() {
+  static std::mutex lock;
+  return lock;
+}
+
+extern "C" void stop_on_signal(int signal_number) {
+  remove_temporaries();
+  write_line(signal_number == SIGINT ? "bladestab: stopped: interrupted (SIGINT); no output files written\n"
+                                     : "bladestab: stopped: terminated (SIGTERM); no output files written\n");
+  ::_exit(128 + signal_number);
+}
+
+sigset_t stop_signals() {
+  sigset_t set;
+  sigemptyset(&set);
+  sigaddset(&set, SIGINT);
+  sigaddset(&set, SIGTERM);
+  return set;
+}
+
+}  // namespace
+
+void stop_on_signals() {
+  struct sigaction action {};
+  action.sa_handler = stop_on_signal;
+  sigemptyset(&action.sa_mask);
+  sigaction(SIGINT, &action, nullptr);
+  sigaction(SIGTERM, &action, nullptr);
+}
+
+void stop_after(double seconds, const std::string& limit) {
+  const std::string message =
+      fmt::format("bladestab: failed: stopped at the time limit ({}): the run took longer than estimated; no output "
+                  "files written\n", limit);
+  // The watchdog starts with SIGINT and SIGTERM blocked, so they never run on it while a set of
+  // files is being renamed on the main thread.
+  const sigset_t set = stop_signals();
+  sigset_t previous;
+  pthread_sigmask(SIG_BLOCK, &set, &previous);
+  std::thread([seconds, message] {
+    std::this_thread::sleep_for(std::chrono::duration<double>(seconds));
+    commit_lock().lock();  // never released: the process ends here
+    remove_temporaries();
+    write_line(message.c_str());
+    ::_exit(1);
+  }).detach();
+  pthread_sigmask(SIG_SETMASK, &previous, nullptr);
+}
+
+int remember_temporary(const std::string& path) {
+  if (path.size() >= max_path) return -1;
+  for (std::size_t k = 0; k < slots; ++k) {
+    bool expected = false;
+    if (!registry[k].claimed.compare_exchange_strong(expected, true)) continue;
+    std::memcpy(registry[k].path, path.c_str(), path.size() + 1);
+    registry[k].published.store(true);
+    return static_cast<int>(k);
+  }
+  return -1;
+}
+
+void forget_temporary(int slot) {
+  if (slot < 0) return;
+  registry[slot].published.store(false);
+  registry[slot].claimed.store(false);
+}
+
+// Signals are blocked (they stay pending and stop the run once the set is in place); the deadline
+// waits for the lock.
+StopDeferral::StopDeferral() {
+  const sigset_t set = stop_signals();
+  pthread_sigmask(SIG_BLOCK, &set, nullptr);
+  commit_lock().lock();
+}
+
+StopDeferral::~StopDeferral() {
+  commit_lock().unlock();
+  const sigset_t set = stop_signals();
+  pthread_sigmask(SIG_UNBLOCK, &set, nullptr);
+}
+
+}  // namespace bladestab::cli

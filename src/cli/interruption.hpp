@@ -1,0 +1,30 @@
+#pragma once
+// Stopping a run from outside: Ctrl-C (SIGINT), SIGTERM, and the --max-seconds deadline. A stop
+// ends the process at once — the numerics need no cooperation — with one line on stderr and a
+// non-zero status (128 + the signal; 1 for the deadline), after removing the temporaries of output
+// files not yet complete (output_files.hpp): the files of a run are all written or none is.
+#include <string>
+
+namespace bladestab::cli {
+
+// SIGINT and SIGTERM stop the run as above.
+void stop_on_signals();
+
+// After `seconds` of wall time the run is stopped as above; `limit` names the limit in the message.
+void stop_after(double seconds, const std::string& limit);
+
+// A temporary file to remove if the run is stopped; returns its slot for forget_temporary (-1 if
+// the registry is full, when the file is simply not removed).
+int remember_temporary(const std::string& path);
+void forget_temporary(int slot);
+
+// While one lives, a stop waits (a set of output files is being renamed into place).
+class StopDeferral {
+public:
+  StopDeferral();
+  ~StopDeferral();
+  StopDeferral(const StopDeferral&) = delete;
+  StopDeferral& operator=(const StopDeferral&) = delete;
+};
+
+}  // namespace bladestab::cli

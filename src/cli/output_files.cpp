@@ -1,0 +1,98 @@
+#include "output_files.hpp"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+
+#include <fmt/format.h>
+
+#include "bladestab/input_error.hpp"
+#include "bladestab/message_text.hpp"
+#include "interruption.hpp"
+
+namespace bladestab::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+// ".campbell.png.4711-3.tmp.png" beside "campbell.png": hidden, unique to this process, and with
+// the final extension (matplotlib chooses the format by it).
+std::string temporary_for(const std::string& path) {
+  static int serial = 0;
+  const fs::path p(path);
+  const std::string name = fmt::format(".{}.{}-{}.tmp{}", p.filename().string(), ::getpid(), serial++,
+                                       p.extension().string());
+  return (p.parent_path() / name).string();
+}
+
+}  // namespace
+
+void check_output_directory(const std::string& option, const std::string& dir) {
+  const std::string shown = fmt::format("{} {}", option, echoed(dir, 240));
+  std::error_code ec;
+  const fs::path folder = dir.empty() ? fs::path(".") : fs::path(dir);
+  fs::create_directories(folder, ec);
+  if (!fs::is_directory(folder)) {
+    throw InputError(fmt::format("{}: cannot write into it: {}", shown,
+                                 fs::exists(folder) ? "it is not a directory"
+                                                    : ec ? ec.message() : "it cannot be created"));
+  }
+  // The only sure test of writing is to write.
+  const std::string probe = temporary_for((folder / "probe").string());
+  const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0600);
+  if (fd < 0) throw InputError(fmt::format("{}: cannot write into it: {}", shown, std::strerror(errno)));
+  ::close(fd);
+  ::unlink(probe.c_str());
+}
+
+OutputFiles::~OutputFiles() {
+  for (const Entry& e : entries_) {
+    std::error_code ec;
+    fs::remove(e.temporary, ec);
+    forget_temporary(e.slot);
+  }
+}
+
+std::string OutputFiles::reserve(const std::string& path) {
+  Entry e{path, temporary_for(path), -1};
+  e.slot = remember_temporary(e.temporary);
+  entries_.push_back(e);
+  return e.temporary;
+}
+
+std::string OutputFiles::write(const std::string& path, const std::string& text) {
+  const std::string temporary = reserve(path);
+  std::ofstream out(temporary, std::ios::binary);
+  out << text;
+  out.close();
+  if (!out) throw InputError(fmt::format("{}: cannot write this file: {}", echoed(path, 240), std::strerror(errno)));
+  return temporary;
+}
+
+std::vector<std::string> OutputFiles::commit() {
+  // A stop (Ctrl-C, the deadline) waits until the set is renamed: all of it or none.
+  const StopDeferral deferral;
+  // Renaming onto a directory is the one way a rename in place fails: found before any is renamed.
+  for (const Entry& e : entries_) {
+    if (fs::is_directory(e.path)) {
+      throw InputError(fmt::format("{}: cannot write this file: it is a directory", echoed(e.path, 240)));
+    }
+  }
+  std::vector<std::string> written;
+  for (Entry& e : entries_) {
+    std::error_code ec;
+    fs::rename(e.temporary, e.path, ec);
+    if (ec) throw InputError(fmt::format("{}: cannot write this file: {}", echoed(e.path, 240), ec.message()));
+    forget_temporary(e.slot);
+    e.slot = -1;
+    written.push_back(e.path);
+  }
+  entries_.clear();
+  return written;
+}
+
+}  // namespace bladestab::cli

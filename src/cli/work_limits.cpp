@@ -1,0 +1,49 @@
+#include "work_limits.hpp"
+
+#include <fmt/format.h>
+
+#include "bladestab/allowed_range.hpp"
+#include "bladestab/input_error.hpp"
+#include "number_options.hpp"
+
+namespace bladestab::cli {
+namespace {
+
+std::string duration_text(double seconds) {
+  if (seconds < 120) return fmt::format("{:.3g} s", seconds);
+  if (seconds < 7200) return fmt::format("{:.3g} min", seconds / 60);
+  if (seconds < 2 * 86400) return fmt::format("{:.3g} h", seconds / 3600);
+  return fmt::format("{:.3g} days", seconds / 86400);
+}
+
+std::string size_text(double bytes) {
+  if (bytes < 1e6) return fmt::format("{:.3g} kB", bytes / 1e3);
+  if (bytes < 1e9) return fmt::format("{:.3g} MB", bytes / 1e6);
+  return fmt::format("{:.3g} GB", bytes / 1e9);
+}
+
+}  // namespace
+
+WorkLimits& work_limits() {
+  static WorkLimits limits;
+  return limits;
+}
+
+void add_work_limit_options(CLI::App& command) {
+  WorkLimits& limits = work_limits();
+  add_number_option(command, "--max-seconds", limits.seconds, AllowedRange::above(0, 1e7),
+                    "refuse work estimated to take longer, and stop a run that does (default 600)");
+  add_number_option(command, "--max-memory", limits.megabytes, AllowedRange::above(0, 1e7),
+                    "refuse work estimated to need more memory, in MB (default 1024)");
+}
+
+void check_work(const std::string& cause, const std::string& what, double seconds, double bytes) {
+  const WorkLimits& limits = work_limits();
+  if (seconds <= limits.seconds && bytes <= limits.megabytes * 1e6) return;
+  throw InputError(fmt::format("{}: {} would take about {} and {}; beyond the limits of {:g} s (--max-seconds) and "
+                               "{:g} MB (--max-memory)",
+                               cause, what, duration_text(seconds), size_text(bytes), limits.seconds,
+                               limits.megabytes));
+}
+
+}  // namespace bladestab::cli
