@@ -28,9 +28,10 @@ Eigen::MatrixXd damping_matrix(const BladeModel& model, const DampingSpec& spec,
     case DampingModel::modal: {
       Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(model.stiffness(speed), model.M);
       if (eig.info() != Eigen::Success || eig.eigenvalues().minCoeff() <= 0) {
-        throw InputError(fmt::format("damping.model = \"modal\": the stiffness at Ω = {} rad/s is not positive "
-                                     "definite (the blade is statically unstable), so modal damping is undefined",
-                                     speed));
+        throw InputError(fmt::format("damping.model = \"modal\": the stiffness at operation.speed_rad_s = {} is not "
+                                     "positive definite (the blade of blade.length = {:g} m, blade.youngs_modulus = "
+                                     "{:g} Pa is statically unstable there), so modal damping is undefined",
+                                     speed, model.blade.L, model.blade.E));
       }
       const Eigen::MatrixXd MPhi = model.M * eig.eigenvectors();  // Φ is M-orthonormal
       const Eigen::VectorXd two_zeta_omega = 2 * spec.ratio * eig.eigenvalues().cwiseSqrt();

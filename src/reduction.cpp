@@ -48,8 +48,13 @@ ReducedSystem reduce(const BladeModel& model, double speed, const Eigen::MatrixX
                      const ReductionSpec& spec) {
   const auto unloaded = loaded_modes(model, speed, 0);
   if (unloaded.eigenvalues().minCoeff() <= 0) {
-    throw InputError(fmt::format("operation.speed_rad_s = {}: the unloaded blade is statically unstable at this speed",
-                                 speed));
+    // Spin softening (−ρAΩ² on the axial and lateral fields) beats the blade's own stiffness: a
+    // matter of the speed and of the blade together, so the message names both.
+    throw InputError(fmt::format("operation.speed_rad_s = {}: the unloaded blade is statically unstable at this speed "
+                                 "(its spin softening outweighs the stiffness of blade.length = {:g} m, "
+                                 "blade.youngs_modulus = {:g} Pa, blade.density = {:g} kg/m^3); lower the speed or "
+                                 "stiffen the blade",
+                                 speed, model.blade.L, model.blade.E, model.blade.rho));
   }
   const Eigen::MatrixXd C = damping + model.gyroscopic(speed);
   const int dofs = model.layout.size();

@@ -368,8 +368,8 @@ Scene read_scene(const toml::table& root, const std::string& source_name, const 
     }
   }
   if (l.contact_time_rev * (l.pulses_per_rev) > 1 + 1e-12) {
-    throw InputError(fmt::format("{}: load.contact_time_rev = {}: pulses overlap; must be <= 1/pulses_per_rev = {}",
-                                 source, l.contact_time_rev, 1.0 / l.pulses_per_rev));
+    load.fail_both("contact_time_rev", "pulses_per_rev",
+                   fmt::format("pulses overlap; t̄_c must be <= 1/pulses_per_rev = {:.6g}", 1.0 / l.pulses_per_rev));
   }
   load.reject_unknown("load.mode = \"force\"");
   return scene;

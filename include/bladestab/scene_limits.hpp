@@ -17,7 +17,9 @@ inline const AllowedRange slenderness = AllowedRange::below(1e-4, 1);
 inline const AllowedRange youngs_modulus_pa = AllowedRange::closed(1e5, 1e13);   // soft rubber to past diamond
 inline const AllowedRange density_kg_m3 = AllowedRange::closed(1, 1e5);          // foams to past osmium
 inline const AllowedRange poisson = AllowedRange::open(-1, 0.5);
-inline const AllowedRange shear_coefficient = AllowedRange::above(0, 1);
+// κ: 5/6 for a rectangle, about a half for thin-walled and I sections; towards 0 the shear stiffness
+// vanishes and the Timoshenko model with it.
+inline const AllowedRange shear_coefficient = AllowedRange::closed(0.05, 1);
 inline const AllowedRange stagger_deg = AllowedRange::closed(-90, 90);
 inline const AllowedRange speed_rad_s = AllowedRange::closed(0, 1e5);            // ~1e6 rpm
 inline const AllowedRange damping_ratio = AllowedRange::below(0, 1);

@@ -17,6 +17,7 @@
 #include "bladestab/scene_limits.hpp"
 #include "commands.hpp"
 #include "error_output.hpp"
+#include "finite_results.hpp"
 #include "json_writer.hpp"
 #include "number_options.hpp"
 #include "options.hpp"
@@ -25,8 +26,23 @@
 namespace bladestab::cli {
 namespace {
 
+void require_finite(const BoundaryAnalysis& result, const std::vector<InstabilityRegion>& regions) {
+  const FiniteResults check("boundaries");
+  check.require("window", result.window.first).require("window", result.window.second);
+  for (const EstimatedBoundary& e : result.boundaries) {
+    check.require("boundary θ", e.boundary.theta_rad_s)
+        .require("boundary F_max", e.boundary.peak_force_n)
+        .require("boundary error estimate", e.budget.total());
+  }
+  for (const InstabilityRegion& r : regions) {
+    check.require("region edge", r.lower).require("region edge", r.upper)
+        .require("max|ρ| in a region", r.middle_max_abs_multiplier);
+  }
+}
+
 void print(const SceneOptions& options, const Scene& scene, const BladeModel& model, const BoundaryRequest& request,
            const BoundaryAnalysis& result, const std::vector<InstabilityRegion>& regions) {
+  require_finite(result, regions);
   const double fcr = model.blade.critical_load();
   const bool in_load = request.theta_rad_s.has_value();
   const double unit = in_load ? fcr : 1.0;  // the window in θ [rad/s] or F̄_max
@@ -160,7 +176,7 @@ void check_boundary_work(const Scene& scene, const BladeModel& model, const Boun
       bytes = std::max(bytes, 32 * unknowns * unknowns);
     }
   }
-  check_work(fmt::format("--approximation {}", request.first_approximation),
+  check_work(fmt::format("--approximation {} with model.terms = {}", request.first_approximation, scene.model.terms),
              fmt::format("the boundary equations of {} modes", sys.kept_modes), flops / dense_flops_per_second, bytes);
 }
 
@@ -214,7 +230,7 @@ Command register_boundaries(CLI::App& app) {
     const bool in_load = command->count("--at-theta") > 0;
     if (in_load) request->theta_rad_s = *at_theta;
     const std::optional<std::pair<double, double>> window =
-        range->empty() ? std::nullopt : std::optional(parse_window(*range));
+        command->count("--range") > 0 ? std::optional(parse_window(*range)) : std::nullopt;
     const Scene scene = options->load();
     if (in_load) check_pulse_fits(scene, *at_theta);
     const BladeModel model = assemble_model(scene.blade, scene.model);

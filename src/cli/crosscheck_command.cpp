@@ -6,6 +6,7 @@
 #include "bladestab/scene_limits.hpp"
 #include "bladestab/transient.hpp"
 #include "commands.hpp"
+#include "finite_results.hpp"
 #include "json_writer.hpp"
 #include "number_options.hpp"
 #include "options.hpp"
@@ -22,7 +23,8 @@ void check_crosscheck_work(const Scene& scene, std::size_t points, double revolu
   TransientOptions o;
   const double duration = revolutions * 6.28318530717958647692 / scene.operation.speed_rad_s;
   const double steps = 2 * points * duration / transient_step(model, scene, o, duration).step_s;
-  check_work(fmt::format("--points with {} values and --revolutions {:g}", points, revolutions),
+  check_work(fmt::format("--points with {} values and --revolutions {:g} with model.terms = {}", points, revolutions,
+                         scene.model.terms),
              fmt::format("{:.3g} RKF45 steps of a {}-dof model", steps, model.layout.size()),
              rkf45_seconds(steps, model.layout.size()), 0);
 }
@@ -49,6 +51,15 @@ Command register_crosscheck(CLI::App& app) {
     o.revolutions = *revolutions;
     o.progress = progress_reporter("crosscheck: points", options->output_format() == OutputFormat::table);
     const std::vector<CrosscheckPoint> result = crosscheck(scene, o);
+    const FiniteResults check("crosscheck");
+    for (const CrosscheckPoint& p : result) {
+      check.require("cosine Floquet max|ρ|", p.floquet_cosine)
+          .require("cosine transient growth", p.transient_cosine_growth)
+          .require("RKF45 monodromy max|ρ|", p.rkf45_max_abs_multiplier)
+          .require("monodromy difference", p.monodromy_difference)
+          .require("pulse Floquet max|ρ|", p.floquet_pulse)
+          .require("pulse transient growth", p.transient_pulse_growth);
+    }
     switch (options->output_format()) {
       case OutputFormat::json: {
         JsonWriter json;

@@ -192,8 +192,8 @@ void check_map_work(const BladeModel& model, const MapOptions& o) {
                                 ? fmt::format("a grid of {} × {} points refined to --resolution {}x{}", o.grid_x.size(),
                                               o.grid_fbar.size(), o.resolution_x, o.resolution_y)
                                 : fmt::format("--trace {} at --approximation {}", o.trace.size(), o.approximation);
-  check_work(cause, fmt::format("the map of a {}-dof model on {} threads", model.layout.size(), o.threads), seconds,
-             bytes);
+  check_work(fmt::format("{} with model.terms = {}", cause, model.spec.terms),
+             fmt::format("the map of a {}-dof model on {} threads", model.layout.size(), o.threads), seconds, bytes);
 }
 
 }  // namespace
@@ -254,7 +254,7 @@ Command register_map(CLI::App& app) {
       if (scene.operation.speed_rad_s <= 0 && scene.damping.model == DampingModel::paper) {
         throw InputError("damping.model = \"paper\" needs operation.speed_rad_s > 0");
       }
-      if (theta->empty()) {
+      if (command->count("--theta") == 0) {
         const double w1 = solve_modes(model, system_at(model, scene.operation.speed_rad_s, Eigen::MatrixXd::Zero(model.layout.size(), model.layout.size())),
                                       scene.operation.speed_rad_s, 1, EigenSolverKind::dense).modes.at(0).eigenvalue.imag();
         o.grid_x = parse_range("--theta", fmt::format("{}:{}:41", w1 / 4, 2.5 * w1),
@@ -265,7 +265,7 @@ Command register_map(CLI::App& app) {
       o.trace = parse_range("--fmax", fmt::format("{}:{}:{}", o.grid_fbar.front(), o.grid_fbar.back(), *trace),
                             scene_limits::fmax_over_fcr);
     } else {
-      if (speeds->empty()) throw InputError("--speeds: required for --plane speed-fmax (start:stop:count in rad/s)");
+      if (command->count("--speeds") == 0) throw InputError("--speeds: required for --plane speed-fmax (start:stop:count in rad/s)");
       o.grid_x = parse_range("--speeds", *speeds, AllowedRange::above(0, scene_limits::speed_rad_s.hi));
       o.trace = parse_range("--speeds", fmt::format("{}:{}:{}", o.grid_x.front(), o.grid_x.back(), *trace),
                             AllowedRange::above(0, scene_limits::speed_rad_s.hi));

@@ -9,6 +9,7 @@
 #include "bladestab/mode_convergence.hpp"
 #include "commands.hpp"
 #include "error_output.hpp"
+#include "finite_results.hpp"
 #include "json_writer.hpp"
 #include "number_options.hpp"
 #include "options.hpp"
@@ -19,7 +20,21 @@ namespace {
 
 constexpr double rpm_per_rad_s = 60 / 6.28318530717958647692;
 
+void require_finite(const Scene& scene, const ConvergedModes& result) {
+  const FiniteResults check("modes");
+  check.require("nondimensional speed", result.model.blade.nondimensional_speed(scene.operation.speed_rad_s));
+  for (std::size_t k = 0; k < result.solution.modes.size(); ++k) {
+    const Mode& m = result.solution.modes[k];
+    const std::string of = fmt::format(" of mode {}", m.index);
+    check.require("frequency" + of, m.frequency_hz)
+        .require("Λ" + of, m.lambda)
+        .require("damping ratio" + of, m.damping_ratio)
+        .require("error estimate" + of, result.budget(k).total());
+  }
+}
+
 void print_modes(const SceneOptions& options, const Scene& scene, const ConvergedModes& result) {
+  require_finite(scene, result);
   const ModalSolution& sol = result.solution;
   const double speed = scene.operation.speed_rad_s;
   switch (options.output_format()) {

@@ -33,8 +33,9 @@ std::string temporary_for(const std::string& path) {
 
 void check_output_directory(const std::string& option, const std::string& dir) {
   const std::string shown = fmt::format("{} {}", option, echoed(dir, 240));
+  if (dir.empty()) throw InputError(fmt::format("{}: must name a directory", shown));
   std::error_code ec;
-  const fs::path folder = dir.empty() ? fs::path(".") : fs::path(dir);
+  const fs::path folder(dir);
   fs::create_directories(folder, ec);
   if (!fs::is_directory(folder)) {
     throw InputError(fmt::format("{}: cannot write into it: {}", shown,

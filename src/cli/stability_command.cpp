@@ -13,6 +13,7 @@
 #include "bladestab/periodic_system.hpp"
 #include "commands.hpp"
 #include "error_output.hpp"
+#include "finite_results.hpp"
 #include "json_writer.hpp"
 #include "number_options.hpp"
 #include "options.hpp"
@@ -62,7 +63,19 @@ void write_checks(JsonWriter& json, const FloquetChecks& c) {
   json.value("monodromy_max_abs_multiplier", c.monodromy_max_abs_multiplier).end_object();
 }
 
+void require_finite(const StabilityAnswer& a) {
+  const FiniteResults check("stability");
+  check.require("max|ρ|", a.floquet.max_abs_multiplier)
+      .require("max Re λ", a.floquet.max_real_exponent)
+      .require("error estimate", a.budget.total())
+      .require("pulse frequency θ", a.theta_rad_s);
+  for (Eigen::Index k = 0; k < a.floquet.multipliers.size(); ++k) {
+    check.require(fmt::format("multiplier {}", k + 1), std::abs(a.floquet.multipliers(k)));
+  }
+}
+
 void print(const SceneOptions& options, const Scene& scene, const StabilityAnswer& a) {
+  require_finite(a);
   const FloquetResult& r = a.floquet;
   const double fbar = scene.load.fmax_over_fcr;
   const double error = a.budget.total();
@@ -155,7 +168,7 @@ void check_export_path(const std::string& path) {
                                  "as FILE.A0.mtx, FILE.B.mtx and FILE.load.mtx)", echoed(path, 240)));
   }
   check_output_directory(fmt::format("--export-matrices {}: its directory", echoed(path, 240)),
-                         p.parent_path().string());
+                         p.has_parent_path() ? p.parent_path().string() : ".");
 }
 
 // The system the answer's Floquet analysis integrated (its basis, reduction and load series), in
@@ -222,16 +235,17 @@ Command register_stability(CLI::App& app) {
                       "write the periodic system the analysis integrated: FILE.json (manifest) and beside it "
                       "FILE.A0.mtx, FILE.B.mtx, FILE.load.mtx (Matrix Market)");
   return [=] {
-    if (!export_path->empty()) check_export_path(*export_path);
+    const bool exporting = command->count("--export-matrices") > 0;
+    if (exporting) check_export_path(*export_path);
     Scene scene = options->load();
     if (*cutoff > 0) scene.model.reduction = {ReductionKind::modal, 0, *cutoff};
-    if (!export_path->empty() && scene.load.approximation == LoadApproximation::exact) {
+    if (exporting && scene.load.approximation == LoadApproximation::exact) {
       throw InputError(fmt::format("--export-matrices {}: load.approximation = \"exact\" is integrated through each "
                                    "pulse and has no series to export; use \"cosine\" or \"fourier\"",
                                    echoed(*export_path, 240)));
     }
     const StabilityAnswer answer = analyse_stability(scene, {parse_method(*method), *harmonics, *tolerance});
-    if (!export_path->empty()) export_matrices(*export_path, scene, answer, *tolerance);
+    if (exporting) export_matrices(*export_path, scene, answer, *tolerance);
     print(*options, scene, answer);
   };
 }

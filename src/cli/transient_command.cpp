@@ -173,7 +173,7 @@ void check_transient_work(const BladeModel& model, const Scene& scene, const Tra
   const double steps = duration / step.step_s;
   const double seconds = rkf45_seconds(steps, model.layout.size());
   const double bytes = 600 * revolutions * o.samples_per_revolution;
-  check_work(fmt::format("--revolutions {:g}", revolutions),
+  check_work(fmt::format("--revolutions {:g} with model.terms = {}", revolutions, scene.model.terms),
              fmt::format("{:.3g} RKF45 steps of a {}-dof model and {:.3g} samples", steps, model.layout.size(),
                          revolutions * o.samples_per_revolution),
              seconds, bytes);
