@@ -1,117 +1,32 @@
 // Bad input end to end: run the real `bladestab` program on broken scenes and command lines and check
-// that it refuses them the way the input-error contract says (include/bladestab/input_error.hpp):
-//   - exit status exactly 2 (1 means an internal failure, a signal means a crash),
-//   - nothing on stdout,
-//   - exactly one line on stderr, "bladestab: error: ...", naming the offending key or option, the
-//     offending value and what is allowed.
+// that it refuses them the way the input-error contract says (tests/support/run_cli.hpp): exit 2,
+// nothing on stdout, one line on stderr naming the key or option, the value and what is allowed.
 //
 // The ctest names carry "(bad_input)" so that `ctest -R bad_input` selects them.
+#include <sys/stat.h>
 #include <sys/wait.h>
-#include <unistd.h>
 
 #include <algorithm>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <catch2/catch.hpp>
 
+#include "support/run_cli.hpp"
+
 namespace {
 
 namespace fs = std::filesystem;
+using testing_support::describe;
+using testing_support::expect_rejected;
+using testing_support::read_text;
+using testing_support::scratch;
 
 const std::string valid_scene = BLADESTAB_SOURCE_DIR "/stability_maps/sinha2005/blade.toml";
-
-// A private scratch directory for this test process: captured output, edited scenes, campbell --out.
-const fs::path& scratch() {
-  struct Dir {
-    fs::path path;
-    Dir() {
-      std::string pattern = (fs::temp_directory_path() / "bladestab_bad_input_XXXXXX").string();
-      if (mkdtemp(pattern.data()) == nullptr) throw std::runtime_error("mkdtemp failed for " + pattern);
-      path = pattern;
-    }
-    ~Dir() {
-      std::error_code ec;
-      fs::remove_all(path, ec);
-    }
-  };
-  static const Dir dir;
-  return dir.path;
-}
-
-std::string read_text(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-std::string shell_quote(const std::string& word) {
-  std::string quoted = "'";
-  for (char c : word) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return quoted + "'";
-}
-
-struct Outcome {
-  std::string command;  // for messages
-  int wait_status = 0;  // as returned by std::system
-  std::string out, err;
-};
-
-// Runs bladestab with `args`, stdin from /dev/null, stdout and stderr captured in files. `exec` makes
-// the shell become bladestab, so a crash shows up as a signal rather than as exit status 128+n.
-Outcome run_bladestab(const std::vector<std::string>& args) {
-  static int runs = 0;
-  ++runs;
-  const fs::path out = scratch() / ("stdout_" + std::to_string(runs));
-  const fs::path err = scratch() / ("stderr_" + std::to_string(runs));
-  Outcome o;
-  o.command = shell_quote(BLADESTAB_EXE);
-  for (const std::string& a : args) o.command += " " + shell_quote(a);
-  const std::string line = "exec " + o.command + " </dev/null >" + shell_quote(out.string()) + " 2>" +
-                           shell_quote(err.string());
-  o.wait_status = std::system(line.c_str());
-  REQUIRE(o.wait_status != -1);
-  o.out = read_text(out);
-  o.err = read_text(err);
-  return o;
-}
-
-std::string describe(int wait_status) {
-  if (WIFEXITED(wait_status)) return "exit status " + std::to_string(WEXITSTATUS(wait_status));
-  if (WIFSIGNALED(wait_status)) return "killed by signal " + std::to_string(WTERMSIG(wait_status));
-  return "wait status " + std::to_string(wait_status);
-}
-
-// The one check every case makes. Each entry of `expected` must occur in the error line; an entry
-// "a|b" is satisfied by either a or b.
-void expect_rejected(const std::vector<std::string>& args, const std::vector<std::string>& expected) {
-  const Outcome o = run_bladestab(args);
-  INFO("command: " << o.command);
-  INFO("result:  " << describe(o.wait_status));
-  INFO("stdout:  " << o.out);
-  INFO("stderr:  " << o.err);
-
-  CHECK(WIFEXITED(o.wait_status));
-  CHECK(WEXITSTATUS(o.wait_status) == 2);
-  CHECK(o.out.empty());
-  CHECK(std::count(o.err.begin(), o.err.end(), '\n') == 1);
-  CHECK((!o.err.empty() && o.err.back() == '\n'));
-  CHECK_THAT(o.err, Catch::Matchers::StartsWith("bladestab: error: "));
-  for (const std::string& entry : expected) {
-    std::vector<std::string> options;
-    std::istringstream split(entry);
-    for (std::string option; std::getline(split, option, '|');) options.push_back(option);
-    const bool found = std::any_of(options.begin(), options.end(),
-                                   [&](const std::string& s) { return o.err.find(s) != std::string::npos; });
-    INFO("expected the error line to contain: " << entry);
-    CHECK(found);
-  }
-}
 
 // `bladestab modes <valid scene> extra...`
 std::vector<std::string> modes(std::vector<std::string> extra = {}) {
@@ -173,8 +88,8 @@ TEST_CASE("bad input: out-of-range and non-finite scene numbers (bad_input)", "[
       {"blade.poisson=0.5", {"blade.poisson = 0.5", "(-1, 0.5)"}},
       {"blade.poisson=0.6", {"blade.poisson = 0.6", "(-1, 0.5)"}},
       {"blade.poisson=-1", {"blade.poisson = -1", "(-1, 0.5)"}},
-      {"blade.shear_coefficient=1.5", {"blade.shear_coefficient = 1.5", "(0, 1]"}},
-      {"blade.shear_coefficient=0", {"blade.shear_coefficient = 0", "(0, 1]"}},
+      {"blade.shear_coefficient=1.5", {"blade.shear_coefficient = 1.5", "[0.05, 1]"}},
+      {"blade.shear_coefficient=0", {"blade.shear_coefficient = 0", "[0.05, 1]"}},
       {"blade.stagger_deg=91", {"blade.stagger_deg = 91", "[-90, 90]"}},
       {"model.terms=0", {"model.terms = 0", "[1, 200]"}},
       {"operation.speed_rad_s=-5", {"operation.speed_rad_s = -5", "[0, 1e5]"}},
@@ -441,5 +356,193 @@ TEST_CASE("bad input: transient and crosscheck options (bad_input)", "[bad_input
   }
   SECTION("crosscheck --revolutions 1") {
     expect_rejected(with({"crosscheck", "--revolutions", "1"}), {"--revolutions 1", "[6, 1000]"});
+  }
+}
+
+// Issue 11's hostile runs, one or more per class it found; each used to crash, hang, print NaN with
+// exit 0, write a multi-line or misdirected error, or leave files behind.
+TEST_CASE("bad input: issue 11, crashes on non-finite numerics (bad_input)", "[bad_input]") {
+  const std::string out = (scratch() / "issue11").string();
+  SECTION("boundaries --at-theta inf") { expect_rejected({"boundaries", valid_scene, "--at-theta", "inf"}, {"--at-theta inf", "(0, 1e9]"}); }
+  SECTION("boundaries --at-theta 1e308") { expect_rejected({"boundaries", valid_scene, "--at-theta", "1e308"}, {"--at-theta 1e308", "(0, 1e9]"}); }
+  SECTION("boundaries --at-theta beyond the contact") {
+    expect_rejected({"boundaries", valid_scene, "--at-theta", "1e6"}, {"--at-theta 1e+06", "load.contact_time_rev", "Ω/t̄_c"});
+  }
+  SECTION("map --fmax 0:1e308:3") {
+    expect_rejected({"map", valid_scene, "--plane", "theta-fmax", "--fmax", "0:1e308:3", "--out", out, "--chart", "none"},
+                    {"--fmax 0:1e308:3", "[0, 1000]"});
+  }
+  SECTION("boundaries with blade.youngs_modulus=1e308") {
+    expect_rejected({"boundaries", valid_scene, "--set", "blade.youngs_modulus=1e308"},
+                    {"blade.youngs_modulus = 1e+308", "[1e5, 1e13]"});
+  }
+  SECTION("map with load.fmax_over_fcr=1e308") {
+    expect_rejected({"map", valid_scene, "--plane", "theta-fmax", "--set", "load.fmax_over_fcr=1e308", "--out", out, "--chart", "none"},
+                    {"load.fmax_over_fcr = 1e+308", "[0, 1000]"});
+  }
+  SECTION("Koopman-Hill with Rayleigh damping at 1e-300 Hz") {
+    expect_rejected({"stability", valid_scene, "--method", "koopman-hill", "--set", "damping.model=rayleigh", "--set",
+                     "damping.ratio=0.01", "--set", "damping.frequencies_hz=[1e-300,2e-300]"},
+                    {"damping.frequencies_hz = [1e-300, 2e-300]", "[0.001, 1e9]"});
+  }
+  SECTION("the Magnus exponential of a Fourier load with a contact of 1e-308 rev") {
+    expect_rejected({"stability", valid_scene, "--set", "load.approximation=fourier", "--set", "load.contact_time_rev=1e-308"},
+                    {"load.contact_time_rev = 1e-308", "[1e-6, 1]"});
+  }
+  SECTION("campbell with blade.youngs_modulus=1e-308") {
+    expect_rejected({"campbell", valid_scene, "--speeds", "0:600:3", "--set", "blade.youngs_modulus=1e-308", "--out", out,
+                     "--chart", "none"},
+                    {"blade.youngs_modulus = 1e-308"});
+  }
+  SECTION("modes with blade.youngs_modulus=1e-308 (printed Λ = nan with exit 0; then blamed speed_rad_s)") {
+    const auto o = expect_rejected(modes({"--set", "blade.youngs_modulus=1e-308"}), {"blade.youngs_modulus = 1e-308", "[1e5, 1e13]"});
+    CHECK(o.err.find("speed_rad_s") == std::string::npos);
+  }
+}
+
+TEST_CASE("bad input: issue 11, work and memory beyond the limits (bad_input)", "[bad_input]") {
+  const std::string out = (scratch() / "issue11").string();
+  const std::vector<std::string> estimate{"would take about", "--max-seconds", "--max-memory"};
+  const auto with = [&](std::vector<std::string> args, const std::vector<std::string>& more) {
+    std::vector<std::string> expected = estimate;
+    expected.insert(expected.end(), more.begin(), more.end());
+    return std::pair{args, expected};
+  };
+  for (const auto& [args, expected] : {
+           with({"transient", valid_scene, "--revolutions", "100000", "--out", out, "--chart", "none"}, {"--revolutions 100000"}),
+           with({"transient", valid_scene, "--set", "model.terms=200", "--out", out, "--chart", "none"}, {"model.terms = 200"}),
+           with({"map", valid_scene, "--plane", "theta-fmax", "--trace", "100000", "--out", out, "--chart", "none"}, {"--trace 100000"}),
+           with({"boundaries", valid_scene, "--approximation", "36"}, {"--approximation 36"}),
+           with({"crosscheck", valid_scene, "--points", "1,2,3,4,5,6,7,8,9,10", "--revolutions", "1000"}, {"--points"}),
+       }) {
+    DYNAMIC_SECTION(args[0] << " " << args.back()) { expect_rejected(args, expected); }
+  }
+  SECTION("stability --method hill --harmonics 60") {
+    expect_rejected({"stability", valid_scene, "--method", "hill", "--harmonics", "60"}, {"--harmonics 60", "rows", "1200"});
+  }
+  SECTION("a run that outlasts --max-seconds is stopped there, with one line and no output") {
+    const auto o = testing_support::run_bladestab({"stability", valid_scene, "--max-seconds", "0.001"});
+    INFO(o.command << "\n" << describe(o) << "\n" << o.err);
+    CHECK((WIFEXITED(o.wait_status) && WEXITSTATUS(o.wait_status) == 1));
+    CHECK(o.out.empty());
+    CHECK(std::count(o.err.begin(), o.err.end(), '\n') == 1);
+    CHECK(o.err.find("--max-seconds 0.001") != std::string::npos);
+  }
+  SECTION("Ctrl-C stops a long run with one line and no files") {
+    const fs::path dir = scratch() / "interrupted";
+    testing_support::RunOptions options;
+    options.interrupt_after = 0.5;
+    const auto o = testing_support::run_bladestab(
+        {"transient", valid_scene, "--set", "model.terms=8", "--revolutions", "5", "--out", dir.string(), "--chart", "none"},
+        options);
+    INFO(o.command << "\n" << describe(o) << "\n" << o.err);
+    CHECK((WIFEXITED(o.wait_status) && WEXITSTATUS(o.wait_status) == 130));
+    CHECK(std::count(o.err.begin(), o.err.end(), '\n') == 1);
+    CHECK(o.err.find("interrupted") != std::string::npos);
+    CHECK(fs::is_empty(dir));
+  }
+}
+
+TEST_CASE("bad input: issue 11, scene files that never end (bad_input)", "[bad_input]") {
+  testing_support::RunOptions quick;
+  quick.timeout_seconds = 10;
+  SECTION("/dev/zero") { expect_rejected({"modes", "/dev/zero"}, {"/dev/zero", "not a regular file", "character device"}, quick); }
+  SECTION("a FIFO without a writer") {
+    const std::string fifo = (scratch() / "scene.fifo").string();
+    REQUIRE(mkfifo(fifo.c_str(), 0600) == 0);
+    expect_rejected({"modes", fifo}, {fifo, "not a regular file", "FIFO"}, quick);
+  }
+  SECTION("a scene past 1 MiB") {
+    const std::string big = (scratch() / "big.toml").string();
+    std::ofstream(big) << read_text(valid_scene) << "\n# " << std::string(2 << 20, 'x') << "\n";
+    expect_rejected({"modes", big}, {big, "at most 1048576"}, quick);
+  }
+}
+
+TEST_CASE("bad input: issue 11, messages (bad_input)", "[bad_input]") {
+  SECTION("a string with a newline is echoed escaped") {
+    expect_rejected(modes({"--set", "model.basis=\"a\\nb\""}), {"model.basis = \"a\\nb\""});
+  }
+  SECTION("an array of 300 000 elements is echoed short") {
+    std::string array = "[1";
+    for (int k = 1; k < 300000; ++k) array += ", 1";
+    const std::string path = edited_scene("big_array.toml", "model", "model = \"rayleigh\"\nratio = 0.01\nfrequencies_hz = " + array + "]");
+    const auto o = expect_rejected({"modes", path}, {"damping.frequencies_hz = [1, 1, 1", "(300000 elements)"});
+    CHECK(o.err.size() < 400);
+  }
+  SECTION("an empty option value is not 0") { expect_rejected(modes({"--count", ""}), {"--count ''", "integer >= 1"}); }
+  SECTION("a pulse frequency of 1e308 is blamed on itself") {
+    const auto o = expect_rejected({"stability", valid_scene, "--set", "load.pulse_frequency_hz=1e308"},
+                                   {"load.pulse_frequency_hz = 1e+308", "(0, 1e8]"});
+    CHECK(o.err.find("contact_time_rev") == std::string::npos);
+  }
+  SECTION("a pulse frequency too high for the contact names both keys") {
+    expect_rejected({"stability", valid_scene, "--set", "load.pulse_frequency_hz=1e7"},
+                    {"load.pulse_frequency_hz = 10000000", "load.contact_time_rev = 0.01", "outlasts"});
+  }
+  SECTION("a directory as the scene") {
+    expect_rejected({"modes", scratch().string()}, {scratch().string(), "is a directory"});
+  }
+  SECTION("a missing scene says why") {
+    expect_rejected({"modes", (scratch() / "nowhere.toml").string()}, {"nowhere.toml", "No such file or directory"});
+  }
+  SECTION("the unloaded blade's static instability names the blade's keys with the speed") {
+    expect_rejected({"stability", valid_scene, "--set", "blade.length=1000"},
+                    {"operation.speed_rad_s = 300", "blade.length = 1000", "statically unstable"});
+  }
+}
+
+TEST_CASE("bad input: issue 11, options read alike (bad_input)", "[bad_input]") {
+  SECTION("--cutoff-hz nan and -1 are refused by boundaries as by stability") {
+    for (const std::string value : {"nan", "-1"}) {
+      const auto b = expect_rejected({"boundaries", valid_scene, "--cutoff-hz", value}, {"--cutoff-hz " + value, "[0, 1e9]"});
+      const auto s = expect_rejected({"stability", valid_scene, "--cutoff-hz", value}, {"--cutoff-hz " + value, "[0, 1e9]"});
+      CHECK(b.err == s.err);
+    }
+  }
+  SECTION("crosscheck --points '' does not run F = 0") {
+    expect_rejected({"crosscheck", valid_scene, "--points", ""}, {"--points ''", "empty"});
+  }
+  SECTION("hex and padded numbers are refused everywhere") {
+    expect_rejected(modes({"--count", "0x10"}), {"--count 0x10"});
+    expect_rejected(modes({"--count", " 3"}), {"--count ' 3'"});
+    expect_rejected({"stability", valid_scene, "--tolerance", "0x1p-20"}, {"--tolerance 0x1p-20"});
+    expect_rejected({"boundaries", valid_scene, "--range", " 100:200"}, {"--range ' 100:200'"});
+    expect_rejected(campbell(" 0:600:5"), {"--speeds ' 0:600:5'"});
+    expect_rejected({"map", valid_scene, "--plane", "theta-fmax", "--resolution", " 4x4", "--chart", "none"},
+                    {"--resolution ' 4x4'"});
+  }
+  SECTION("--name with a newline makes no such file") {
+    const fs::path dir = scratch() / "names";
+    expect_rejected({"transient", valid_scene, "--name", "a\nb", "--out", dir.string(), "--chart", "none"}, {"--name a\\nb"});
+    CHECK((!fs::exists(dir) || fs::is_empty(dir)));
+  }
+}
+
+TEST_CASE("bad input: issue 11, outputs (bad_input)", "[bad_input]") {
+  const std::vector<std::string> tiny{"--set", "model.terms=4", "--count", "2", "--chart", "none"};
+  SECTION("--out is checked before computing") {
+    std::ofstream(scratch() / "a_file") << "x";
+    expect_rejected({"campbell", valid_scene, "--speeds", "0:600:3", "--out", (scratch() / "a_file").string()},
+                    {"--out", "a_file", "not a directory"});
+  }
+  SECTION("a set that cannot be completed leaves no file of it") {
+    const fs::path dir = scratch() / "blocked";
+    fs::create_directories(dir / "campbell.json");  // the set's last file cannot be renamed into place
+    std::vector<std::string> args{"campbell", valid_scene, "--speeds", "0:600:3", "--out", dir.string()};
+    args.insert(args.end(), tiny.begin(), tiny.end());
+    expect_rejected(args, {"campbell.json", "is a directory"});
+    std::vector<std::string> left;
+    for (const auto& entry : fs::directory_iterator(dir)) left.push_back(entry.path().filename().string());
+    CHECK(left == std::vector<std::string>{"campbell.json"});
+  }
+  SECTION("a failed write to stdout exits 1") {
+    testing_support::RunOptions full;
+    full.stdout_path = "/dev/full";
+    const auto o = testing_support::run_bladestab(modes({"--count", "2"}), full);
+    INFO(o.command << "\n" << describe(o) << "\n" << o.err);
+    CHECK((WIFEXITED(o.wait_status) && WEXITSTATUS(o.wait_status) == 1));
+    CHECK(std::count(o.err.begin(), o.err.end(), '\n') == 1);
+    CHECK(o.err.find("stdout") != std::string::npos);
   }
 }

@@ -5,6 +5,7 @@
 
 #include "bladestab/basis.hpp"
 #include "bladestab/model.hpp"
+#include "bladestab/numerical_error.hpp"
 #include "bladestab/quadrature.hpp"
 #include "support/scenes.hpp"
 
@@ -82,4 +83,23 @@ TEST_CASE("derived blade quantities follow SPEC section 3 and 7", "[model]") {
   CHECK(b.slenderness() == Approx(0.01).epsilon(1e-14));
   CHECK(b.I == Approx(2.239e-7).epsilon(1e-14));
   CHECK(b.G == Approx(117e9 / 2.6).epsilon(1e-15));
+}
+
+TEST_CASE("a model without a positive definite mass is refused naming the scene's numbers", "[model]") {
+  // Built in code, past the scene's validation: a density of 0 leaves the mass singular.
+  Scene s = paper_scene();
+  s.blade.density = 0;
+  try {
+    assemble_model(s.blade, s.model);
+    FAIL("assemble_model accepted a zero density");
+  } catch (const NumericalError& e) {
+    const std::string message = e.what();
+    CHECK(message.find("mass matrix is not positive definite") != std::string::npos);
+    CHECK(message.find("blade.density = 0") != std::string::npos);
+    CHECK(message.find("model.terms = 16") != std::string::npos);
+  }
+  s.blade.youngs_modulus = std::nan("");
+  s.blade.density = 7850;
+  CHECK_THROWS_WITH(assemble_model(s.blade, s.model), Catch::Matchers::Contains("matrices are not finite") &&
+                                                           Catch::Matchers::Contains("blade.youngs_modulus = nan"));
 }
