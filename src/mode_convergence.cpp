@@ -149,7 +149,7 @@ InputError tolerance_not_met(double tolerance, const ModelSpec& spec, double est
   return InputError(fmt::format("--tolerance {}: not met with {} terms per field (estimated error {:.2g}); "
                                 "{}a looser tolerance",
                                 tolerance, spec.terms, estimate,
-                                spec.basis == BasisKind::sine ? "use the legendre basis or " : ""));
+                                spec.basis == BasisKind::sine ? "use model.basis = \"legendre\" (for model.basis = \"sine\") or " : ""));
 }
 
 InputError tolerance_below_rounding(double tolerance, double rounding) {
