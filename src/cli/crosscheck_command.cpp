@@ -26,7 +26,7 @@ void check_crosscheck_work(const Scene& scene, std::size_t points, double revolu
   check_work(fmt::format("--points with {} values and --revolutions {:g} with model.terms = {}", points, revolutions,
                          scene.model.terms),
              fmt::format("{:.3g} RKF45 steps of a {}-dof model", steps, model.layout.size()),
-             rkf45_seconds(steps, model.layout.size()), 0);
+             rkf45_seconds(steps, model.layout.size()), transient_history_bytes(revolutions, o.samples_per_revolution));
 }
 
 }  // namespace

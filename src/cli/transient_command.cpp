@@ -165,17 +165,16 @@ void check_file_stem(const std::string& name) {
 
 // The run's work before it starts: RKF45 never steps beyond the cap of the stiffest mode
 // (transient.hpp): duration/cap steps (adaptive runs take up to twice as many, each cheaper than
-// rkf45_seconds assumes); the history holds samples-per-rev × revolutions samples, ~600 bytes
-// each with their CSV and chart series.
-void check_transient_work(const BladeModel& model, const Scene& scene, const TransientOptions& o, double revolutions) {
+// rkf45_seconds assumes); the history holds samples-per-rev × revolutions samples.
+void check_transient_work(const BladeModel& model, const Scene& scene, const TransientOptions& o) {
   const double duration = o.revolutions * 6.28318530717958647692 / scene.operation.speed_rad_s;
   const FixedStep step = transient_step(model, scene, o, duration);
   const double steps = duration / step.step_s;
   const double seconds = rkf45_seconds(steps, model.layout.size());
-  const double bytes = 600 * revolutions * o.samples_per_revolution;
-  check_work(fmt::format("--revolutions {:g} with model.terms = {}", revolutions, scene.model.terms),
+  const double bytes = transient_history_bytes(o.revolutions, o.samples_per_revolution);
+  check_work(fmt::format("--revolutions {:g} with model.terms = {}", o.revolutions, scene.model.terms),
              fmt::format("{:.3g} RKF45 steps of a {}-dof model and {:.3g} samples", steps, model.layout.size(),
-                         revolutions * o.samples_per_revolution),
+                         o.revolutions * o.samples_per_revolution),
              seconds, bytes);
 }
 
@@ -228,7 +227,7 @@ Command register_transient(CLI::App& app) {
     o.follower = *follower;
     const bool for_people = options->output_format() == OutputFormat::table;
     o.progress = progress_reporter("transient: revolutions", for_people);
-    check_transient_work(model, scene, o, *revolutions);
+    check_transient_work(model, scene, o);
     const TransientResult r = run_transient(model, scene, o);
     const double sample_rate = *samples * scene.operation.speed_rad_s / 6.28318530717958647692;
     const Summary s = summarize(r, sample_rate);

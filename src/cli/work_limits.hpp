@@ -31,6 +31,12 @@ void check_work(const std::string& cause, const std::string& what, double second
 inline constexpr double dense_flops_per_second = 4e9;
 inline constexpr double small_product_flops_per_second = 2e9;
 
+// Bytes of a transient's history of `revolutions` at `samples_per_revolution`: each sample with its
+// CSV line and chart series takes about 600.
+inline double transient_history_bytes(double revolutions, int samples_per_revolution) {
+  return 600 * revolutions * samples_per_revolution;
+}
+
 // Seconds of `steps` RKF45 steps of the transient's equations for a model of `dofs` dofs: six
 // right-hand sides a step, each ~5 products of an n × n matrix with a vector (measured 1.0 µs at
 // 24 dofs, 2.3 µs at 48).
