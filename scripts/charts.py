@@ -53,6 +53,9 @@ map
         {"x": float, "y": float, "label": str (optional)}
       ]
     }
+    A PNG map records where its markers landed, as the text chunk
+    "bladestab:markers_px" = "x,y;x,y;..." (pixels from the image's top left),
+    so a test can read the colour under a marker.
 
 transient
     Time response of the blade tip under rub pulses: 2x2 panels with the tip
@@ -583,6 +586,7 @@ def chart_map(data, ax):
             [], [], color=line.get_color(), linestyle=line.get_linestyle(),
             linewidth=line.get_linewidth(), label=MAP_FAMILIES[multiplier][0]))
 
+    ax.bladestab_markers = [(m["x"], m["y"]) for m in markers]
     if markers:
         ax.plot([m["x"] for m in markers], [m["y"] for m in markers],
                 linestyle="none", marker="x", markersize=7, color="black",
@@ -890,6 +894,18 @@ CHARTS = {
 }
 
 
+def _marker_pixels(fig, ax, points):
+    """Data points as PNG pixels at the saved resolution: "x,y;x,y", from the
+    image's top left (matplotlib's display coordinates start bottom left)."""
+    scale = DPI / fig.dpi
+    height = fig.get_figheight() * DPI
+    pixels = []
+    for x, y in points:
+        px, py = ax.transData.transform((x, y))
+        pixels.append(f"{px * scale:.1f},{height - py * scale:.1f}")
+    return ";".join(pixels)
+
+
 def render(kind, input_path, output_path):
     if kind not in CHARTS:
         raise InputError(f"unknown chart kind '{kind}'"
@@ -913,6 +929,9 @@ def render(kind, input_path, output_path):
         CHARTS[kind](data, ax)
         fig.tight_layout()
         metadata = {"Date": None} if fmt == "svg" else {}
+        points = getattr(ax, "bladestab_markers", [])
+        if fmt == "png" and points:
+            metadata["bladestab:markers_px"] = _marker_pixels(fig, ax, points)
         try:
             fig.savefig(output_path, format=fmt, dpi=DPI, metadata=metadata)
         except OSError as exc:
