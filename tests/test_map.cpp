@@ -27,7 +27,7 @@ double distance_to_multiplier(const Scene& base, double speed, double theta, dou
   s.load.fmax_over_fcr = fbar;
   const BladeModel m = assemble_model(s.blade, s.model);
   const PeriodicSystem sys = periodic_system(m, speed, damping_matrix(m, s.damping, speed), load_series(s));
-  const Eigen::VectorXcd rho = monodromy_multipliers(sys, 2048);
+  const Eigen::VectorXcd rho = monodromy_multipliers(sys, 4096);
   double best = 1e300;
   for (Eigen::Index k = 0; k < rho.size(); ++k) best = std::min(best, std::abs(rho(k) - target));
   return best;
@@ -41,7 +41,9 @@ TEST_CASE("speed-plane map: every traced boundary point has a multiplier at +1 o
   o.grid_x = linspace(100, 600, 3);
   o.grid_fbar = linspace(0, 3, 3);  // below the static buckling load (F̄ ≈ 3.9 at 100 rad/s)
   o.trace = linspace(100, 600, 51);
-  o.approximation = 8;               // converged to 8 digits here (6 is not, near F̄ = 3.9)
+  // 12 harmonics per family: the boundary equations' truncation then moves F̄ by less than 1e-12
+  // (at 8 harmonics a point near F̄ = 3 had its multiplier 7e-6 from +1).
+  o.approximation = 12;
   const StabilityMap map = stability_map(scene, o);
   REQUIRE(map.curves.size() >= 2);
   int checked = 0;
@@ -50,8 +52,8 @@ TEST_CASE("speed-plane map: every traced boundary point has a multiplier at +1 o
       INFO("curve ρ = " << c.multiplier << ", mode " << c.mode << ", order " << c.order << " at Ω = " << c.x[k]
                         << ", F̄ = " << c.fbar[k]);
       // At a boundary two multipliers meet at ±1 and split like the square root of the distance
-      // from it: 2e-4 in ρ is ~1e-8 in F̄.
-      CHECK(distance_to_multiplier(scene, c.x[k], c.x[k], c.fbar[k], c.multiplier) < 2e-4);
+      // from it: 1e-6 in ρ is ~1e-12 in F̄ (measured worst: 4e-7).
+      CHECK(distance_to_multiplier(scene, c.x[k], c.x[k], c.fbar[k], c.multiplier) < 1e-6);
       ++checked;
     }
   }
