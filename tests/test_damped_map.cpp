@@ -1,0 +1,95 @@
+// Damping in the boundary equations and the map: with damping a principal region no longer reaches
+// F̄ = 0 (a parametric resonance must overcome the dissipation), its boundaries move up, and the
+// boundary equations, which carry the damping in their Ĉ term, agree with an independent Floquet
+// analysis of the damped system.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include "bladestab/boundaries.hpp"
+#include "bladestab/damping.hpp"
+#include "bladestab/floquet.hpp"
+#include "bladestab/periodic_load.hpp"
+#include "bladestab/periodic_system.hpp"
+#include "bladestab/stability_map.hpp"
+#include "support/scenes.hpp"
+
+using namespace bladestab;
+using testing_support::paper_scene;
+
+namespace {
+
+constexpr double two_pi = 6.28318530717958647692;
+
+// The principal region of mode 1 at Ω = 300 rad/s lies near θ = 2ω₁ = 853 rad/s (the cosine load's
+// mean compression bends it to lower θ); θ = 836 rad/s is inside it for F̄ ≳ 0.4 undamped.
+constexpr double theta = 836;
+
+Scene scene_with(const std::string& damping) {
+  std::vector<std::string> overrides{"model.terms=6"};
+  if (!damping.empty()) {
+    overrides.push_back("damping.model=" + damping.substr(0, damping.find(':')));
+    overrides.push_back("damping.ratio=" + damping.substr(damping.find(':') + 1));
+  }
+  overrides.push_back("load.pulse_frequency_hz=" + std::to_string(theta / two_pi));
+  return paper_scene(overrides);
+}
+
+// max|ρ| of the whole Ritz model at F̄ by its monodromy matrix (2048 Magnus steps: 1e-10 here).
+double floquet_max_rho(Scene s, double fbar) {
+  s.load.fmax_over_fcr = fbar;
+  const double speed = s.operation.speed_rad_s;
+  const BladeModel m = assemble_model(s.blade, s.model);
+  const PeriodicSystem sys = periodic_system(m, speed, damping_matrix(m, s.damping, speed), load_series(s));
+  return monodromy_multipliers(sys, 2048).cwiseAbs().maxCoeff();
+}
+
+// The lowest boundary F̄ at θ from the boundary equations of the whole Ritz model.
+double lowest_boundary(const Scene& s) {
+  BoundaryRequest r;
+  r.theta_rad_s = theta;
+  r.cutoff_hz = 0;
+  r.window = std::make_pair(0.0, 3 * assemble_model(s.blade, s.model).blade.critical_load());
+  const BoundaryAnalysis a = boundaries_with_error_estimate(s, r);
+  REQUIRE(!a.boundaries.empty());
+  const double fcr = assemble_model(s.blade, s.model).blade.critical_load();
+  return a.boundaries.front().boundary.peak_force_n / fcr;
+}
+
+}  // namespace
+
+TEST_CASE("damped boundaries move up and agree with the damped Floquet multipliers", "[boundaries][damping]") {
+  const double undamped = lowest_boundary(scene_with(""));
+  for (const std::string damping : {"modal:0.01", "paper:0.02"}) {
+    const Scene s = scene_with(damping);
+    const double fbar = lowest_boundary(s);
+    INFO(damping << ": lowest boundary F̄ = " << fbar << " (undamped " << undamped << ")");
+    CHECK(fbar > undamped * 1.01);
+    // Independently: the damped multipliers leave the unit circle there (|ρ| < 1 below, > 1 above;
+    // a damped pair meets −1 on the real axis, so max|ρ| − 1 changes sign linearly).
+    CHECK(floquet_max_rho(s, fbar * (1 - 1e-4)) < 1);
+    CHECK(floquet_max_rho(s, fbar * (1 + 1e-4)) > 1);
+  }
+}
+
+TEST_CASE("a damped map's principal region is lifted off the F-bar = 0 axis", "[map][damping]") {
+  MapOptions o;
+  o.plane = MapPlane::theta_fmax;
+  o.grid_x = {780, 800, 820, 840, 860, 880};
+  o.grid_fbar = {0, 0.1, 0.2, 0.3};
+  o.trace = {0.1, 0.2, 0.3};
+  o.resolution_x = 6;
+  o.resolution_y = 4;
+  const auto largest_low = [&](const std::string& damping) {
+    const StabilityMap map = stability_map(scene_with(damping), o);
+    double largest = 0;
+    for (const MapSample& p : map.samples) {
+      if (p.fbar > 0) largest = std::max(largest, p.max_abs_multiplier);
+    }
+    return largest;
+  };
+  // Undamped, the region reaches down to F̄ → 0 at θ = 2ω₁: some low-load point is unstable.
+  CHECK(largest_low("") > 1 + o.tolerance);
+  // With 1 % modal damping every point up to F̄ = 0.3 is stable (the region starts near F̄ = 0.5).
+  CHECK(largest_low("modal:0.01") < 1);
+}
