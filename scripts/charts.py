@@ -414,8 +414,56 @@ def _map_curves(data):
         points = [(a, b) if math.isfinite(a) and math.isfinite(b)
                   else (math.nan, math.nan) for a, b in zip(xs, ys)]
         curves.append({"multiplier": int(multiplier),
+                       "mode": int(curve["mode"]) if curve.get("mode") is not None else None,
+                       "order": int(curve["order"]) if curve.get("order") is not None else None,
                        "x": [p[0] for p in points], "y": [p[1] for p in points]})
     return curves
+
+
+SUBSCRIPT_DIGITS = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")
+MAX_REGION_LABELS = 16
+
+
+def _region_label(mode, order):
+    """The region a boundary curve belongs to, as the resonance that opens it:
+    "2ω₁/2" for mode 1, order 2 (θ ≈ 2ω₁/2); "2ω₁" for order 1; "ω₁ buckling"
+    for order 0 (the +1 family's static divergence under the mean load)."""
+    omega = "ω" + str(mode).translate(SUBSCRIPT_DIGITS)
+    if order == 0:
+        return f"{omega} buckling"
+    return f"2{omega}" if order == 1 else f"2{omega}/{order}"
+
+
+def _label_regions(ax, curves):
+    """One label per (family, mode, order), at the curve's lowest point (a
+    region's tip), when there are few enough to stay legible."""
+    tips = {}
+    for curve in curves:
+        if curve["mode"] is None or curve["order"] is None:
+            continue
+        points = [(y, x) for x, y in zip(curve["x"], curve["y"])
+                  if math.isfinite(x) and math.isfinite(y)]
+        if not points:
+            continue
+        key = (curve["multiplier"], curve["mode"], curve["order"])
+        tip = min(points)
+        if key not in tips or tip < tips[key]:
+            tips[key] = tip
+    if not tips or len(tips) > MAX_REGION_LABELS:
+        return
+    x_lo, x_hi = ax.get_xlim()
+    y_lo, y_hi = ax.get_ylim()
+    for (multiplier, mode, order), (y, x) in sorted(tips.items()):
+        if not (x_lo <= x <= x_hi and y_lo <= y <= y_hi):
+            continue
+        right = x > x_lo + 0.85 * (x_hi - x_lo)  # keep labels near the right edge inside
+        ax.annotate(_region_label(mode, order), xy=(x, y),
+                    xytext=(-3 if right else 3, 2), textcoords="offset points",
+                    ha="right" if right else "left", va="bottom", fontsize=7,
+                    color=MAP_FAMILIES[multiplier][1], zorder=5,
+                    bbox=dict(boxstyle="round,pad=0.1", fc="white", ec="none",
+                              alpha=0.75),
+                    annotation_clip=True)
 
 
 def _map_markers(data):
@@ -580,6 +628,7 @@ def chart_map(data, ax):
                                 for j in (i - 1, i + 1))]
         ax.plot([cx[i] for i in isolated], [cy[i] for i in isolated],
                 linestyle="none", marker=".", color=color, zorder=3)
+    _label_regions(ax, curves)
     for multiplier in sorted(legend_lines):
         line = legend_lines[multiplier]
         handles.append(Line2D(

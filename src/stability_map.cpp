@@ -2,11 +2,12 @@
 
 #include <algorithm>
 #include <atomic>
-#include <exception>
 #include <cmath>
+#include <exception>
 #include <limits>
 #include <map>
 #include <mutex>
+#include <optional>
 #include <thread>
 #include <tuple>
 #include <unordered_map>
@@ -182,6 +183,141 @@ private:
   std::vector<Open> open_;
   std::vector<BoundaryCurve> curves_;
 };
+
+// Closes curves through their turning points. Where two curves of one family start (or end) on the
+// same trace line with no boundary of that family between them there, a region's boundary may
+// fold back between that line and the one before (after): the pair of boundaries coalesces at the
+// turning point and vanishes beyond it. The fold's line is found by bisection on the trace
+// parameter — the pair exists on one side only — to 2^−fold_bisections of the line spacing; the
+// curves are joined through the pair there (two boundary points a hair apart) if it did coalesce (its gap shrank tenfold: near a fold
+// it shrinks like the square root of the distance, 64× over the bisection), or if it was closer
+// than the boundary equations resolve a pair (a thin tongue, drawn as one line). In the θ plane a
+// pair on the lowest line above F̄ = 0 belongs to a region that opens on the axis, where its tip
+// is known: θ = 2ω_m/n for mode m and order n (the boundary equations at F = 0). Curves that leave
+// the window, and pairs that belong to two regions, stay open.
+constexpr int fold_bisections = 12;
+
+struct CurveEnd {
+  int curve;
+  bool at_start;
+};
+
+std::vector<BoundaryCurve> close_folds(std::vector<BoundaryCurve> curves, const std::vector<double>& trace,
+                                       bool theta_plane, double max_jump, int threads,
+                                       const std::function<std::vector<double>(int multiplier, double line)>& along,
+                                       const Eigen::VectorXd& unloaded_omega) {
+  // Points as (line value, value along the line): F̄ and θ in the θ plane, Ω and F̄ in the speed plane.
+  const auto line_value = [&](const BoundaryCurve& c, std::size_t k) { return theta_plane ? c.fbar[k] : c.x[k]; };
+  const auto value = [&](const BoundaryCurve& c, std::size_t k) { return theta_plane ? c.x[k] : c.fbar[k]; };
+  const auto end_index = [](const BoundaryCurve& c, bool start) { return start ? std::size_t{0} : c.x.size() - 1; };
+  const auto line_of = [&](const BoundaryCurve& c, bool start) {
+    return static_cast<int>(std::find(trace.begin(), trace.end(), line_value(c, end_index(c, start))) - trace.begin());
+  };
+  // Whether a boundary of the family lies strictly between u and v on the line.
+  const auto between = [&](int multiplier, double line, double u, double v) {
+    const double lo = std::min(u, v), hi = std::max(u, v);
+    for (const BoundaryCurve& c : curves) {
+      if (c.multiplier != multiplier) continue;
+      for (std::size_t k = 0; k < c.x.size(); ++k) {
+        if (line_value(c, k) == line && value(c, k) > lo && value(c, k) < hi) return true;
+      }
+    }
+    return false;
+  };
+  // Pairs of ends on one line, of one family, nearest each other with nothing between.
+  std::vector<std::pair<CurveEnd, CurveEnd>> folds;
+  std::vector<bool> taken(curves.size(), false);
+  for (std::size_t a = 0; a < curves.size(); ++a) {
+    for (const bool start : {true, false}) {
+      if (taken[a] || curves[a].x.empty()) continue;
+      const int line = line_of(curves[a], start), beyond = start ? line - 1 : line + 1;
+      if (beyond < 0 || beyond >= static_cast<int>(trace.size())) continue;
+      const double va = value(curves[a], end_index(curves[a], start));
+      int best = -1;
+      double best_gap = std::numeric_limits<double>::infinity();
+      for (std::size_t b = 0; b < curves.size(); ++b) {
+        if (b == a || taken[b] || curves[b].multiplier != curves[a].multiplier || curves[b].x.empty()) continue;
+        if (line_of(curves[b], start) != line) continue;
+        const double gap = std::abs(value(curves[b], end_index(curves[b], start)) - va);
+        if (gap < best_gap) best_gap = gap, best = static_cast<int>(b);
+      }
+      if (best < 0 || between(curves[a].multiplier, trace[line], va, value(curves[best], end_index(curves[best], start)))) {
+        continue;
+      }
+      taken[a] = taken[best] = true;
+      folds.push_back({{static_cast<int>(a), start}, {best, start}});
+    }
+  }
+  // Each fold's turning point by bisection between the line the pair is on and the one beyond.
+  // The points that join a fold's two curves, (line, value along it), boundary points all; unset
+  // where the pair is not joined.
+  using Join = std::vector<std::pair<double, double>>;
+  std::vector<std::optional<Join>> joins(folds.size());
+  parallel_for(folds.size(), threads, [&](std::size_t f) {
+    const auto& [a, b] = folds[f];
+    const int line = line_of(curves[a.curve], a.at_start);
+    double inside = trace[line], outside = trace[a.at_start ? line - 1 : line + 1];
+    double va = value(curves[a.curve], end_index(curves[a.curve], a.at_start));
+    double vb = value(curves[b.curve], end_index(curves[b.curve], b.at_start));
+    const double first_gap = std::abs(va - vb);
+    const BoundaryCurve &ca = curves[a.curve], &cb = curves[b.curve];
+    if (theta_plane && outside <= 0 && ca.mode == cb.mode && ca.order == cb.order && ca.order > 0 &&
+        ca.mode <= unloaded_omega.size()) {
+      const double tip = 2 * unloaded_omega(ca.mode - 1) / ca.order;
+      if (std::abs(tip - 0.5 * (va + vb)) <= std::max(max_jump, first_gap)) joins[f] = Join{{0.0, tip}};
+      return;
+    }
+    if (first_gap <= 1e-3 * max_jump) {  // one line to the eye: joined where the pair ends
+      joins[f] = Join{};
+      return;
+    }
+    for (int step = 0; step < fold_bisections; ++step) {
+      const double middle = 0.5 * (inside + outside);
+      const std::vector<double> found = along(curves[a.curve].multiplier, middle);
+      // Each of the pair's boundaries continued by the nearest one within a jump (or the pair's gap).
+      const double reach = std::max(max_jump, std::abs(va - vb));
+      const auto nearest = [&](double v) {
+        double best = std::numeric_limits<double>::quiet_NaN();
+        for (double x : found) {
+          if (std::abs(x - v) <= reach && (std::isnan(best) || std::abs(x - v) < std::abs(best - v))) best = x;
+        }
+        return best;
+      };
+      const double na = nearest(va), nb = nearest(vb);
+      if (std::isfinite(na) && std::isfinite(nb) && na != nb) {
+        inside = middle, va = na, vb = nb;
+      } else {
+        outside = middle;
+      }
+    }
+    if (std::abs(va - vb) <= 0.1 * first_gap) joins[f] = Join{{inside, va}, {inside, vb}};
+  });
+  // Joined: a reversed, the turning point, b (or the mirror for ends).
+  std::vector<bool> merged(curves.size(), false);
+  std::vector<BoundaryCurve> out;
+  for (std::size_t f = 0; f < folds.size(); ++f) {
+    if (!joins[f]) continue;
+    const auto& [a, b] = folds[f];
+    BoundaryCurve first = curves[a.curve], second = curves[b.curve];
+    if (a.at_start) {
+      std::reverse(first.x.begin(), first.x.end()), std::reverse(first.fbar.begin(), first.fbar.end());
+    } else {
+      std::reverse(second.x.begin(), second.x.end()), std::reverse(second.fbar.begin(), second.fbar.end());
+    }
+    for (const auto& [line, along_line] : *joins[f]) {
+      first.x.push_back(theta_plane ? along_line : line);
+      first.fbar.push_back(theta_plane ? line : along_line);
+    }
+    first.x.insert(first.x.end(), second.x.begin(), second.x.end());
+    first.fbar.insert(first.fbar.end(), second.fbar.begin(), second.fbar.end());
+    out.push_back(std::move(first));
+    merged[a.curve] = merged[b.curve] = true;
+  }
+  for (std::size_t c = 0; c < curves.size(); ++c) {
+    if (!merged[c]) out.push_back(std::move(curves[c]));
+  }
+  return out;
+}
 
 // Reduced-basis vectors per load level for the map: enough unloaded modes (at the window's lowest
 // speed, where they are lowest) to hold every tongue drawn. A tongue of order n ≤ max_order sits
@@ -384,7 +520,21 @@ StabilityMap stability_map(const Scene& scene, const MapOptions& o, const std::f
     }
     tracer.add(static_cast<int>(i), shown, along, o.trace[i], theta_plane);
   }
-  map.curves = tracer.curves();
+  // The unloaded frequencies of the curves' model at the map's speed: the tips of the θ plane's
+  // regions on the F̄ = 0 axis (the speed plane has no such line).
+  const Eigen::VectorXd unloaded_omega =
+      theta_plane ? periodic_system(model, scene_at(scene, speed, two_pi, 0), load_series(scene_at(scene, speed, two_pi, 0)),
+                                    curve_model.reduction)
+                        .modal_frequencies
+                  : Eigen::VectorXd();
+  map.curves = close_folds(tracer.curves(), o.trace, theta_plane, 0.05 * window.span(), o.threads,
+                           [&](int multiplier, double line) {
+    std::vector<double> values;
+    for (const Boundary& b : window.on_line(scene, curve_model, line)) {
+      if (b.multiplier == multiplier && window.shown(b, curve_model.approximation)) values.push_back(window.along(b));
+    }
+    return values;
+  }, unloaded_omega);
   map.curves.erase(std::remove_if(map.curves.begin(), map.curves.end(), [](const BoundaryCurve& c) { return c.x.size() < 2; }),
                    map.curves.end());
 

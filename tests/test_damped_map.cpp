@@ -93,3 +93,35 @@ TEST_CASE("a damped map's principal region is lifted off the F-bar = 0 axis", "[
   // With 1 % modal damping every point up to F̄ = 0.3 is stable (the region starts near F̄ = 0.5).
   CHECK(largest_low("modal:0.01") < 1);
 }
+
+TEST_CASE("a damped region's traced boundary is closed through its tip, and the tip is where Floquet says",
+          "[map][damping][fold]") {
+  const Scene s = scene_with("modal:0.01");
+  MapOptions o;
+  o.plane = MapPlane::theta_fmax;
+  o.grid_x = {700, 800, 900};
+  o.grid_fbar = {0, 1.5, 3};
+  o.trace = {0.3, 0.5, 0.7, 0.9, 1.1, 1.3, 1.5};  // the tip (F̄ ≈ 0.53) between the second and third
+  o.resolution_x = 3;
+  o.resolution_y = 3;
+  const StabilityMap map = stability_map(s, o);
+  std::vector<const BoundaryCurve*> principal;
+  for (const BoundaryCurve& c : map.curves) {
+    if (c.multiplier == -1 && c.mode == 1 && c.order == 1) principal.push_back(&c);
+  }
+  // Both edges of the region in one curve, its lowest point between two trace lines.
+  REQUIRE(principal.size() == 1);
+  const BoundaryCurve& c = *principal.front();
+  const auto tip = std::min_element(c.fbar.begin(), c.fbar.end()) - c.fbar.begin();
+  const double tip_theta = c.x[tip], tip_fbar = c.fbar[tip];
+  INFO("tip at θ = " << tip_theta << ", F̄ = " << tip_fbar);
+  CHECK(tip_fbar > 0.5);
+  CHECK(tip_fbar < 0.7);
+  CHECK(tip > 0);
+  CHECK(tip + 1 < static_cast<long>(c.fbar.size()));
+  // Floquet at the tip's θ: stable 1 % below it, unstable 1 % above (inside the narrow tip).
+  Scene at = s;
+  at.load.pulse_frequency_hz = tip_theta / two_pi;
+  CHECK(floquet_max_rho(at, tip_fbar * 0.99) < 1);
+  CHECK(floquet_max_rho(at, tip_fbar * 1.01) > 1);
+}
