@@ -376,10 +376,6 @@ TEST_CASE("bad input: stability, boundaries and map options (bad_input)", "[bad_
     expect_rejected(with({"map", "--plane", "theta-fmax", "--theta", "-100:100:3", "--chart", "none"}),
                     {"--theta -100:100:3", "> 0"});
   }
-  SECTION("map of the exact pulse train") {
-    expect_rejected(with({"map", "--plane", "theta-fmax", "--set", "load.approximation=exact", "--chart", "none"}),
-                    {"load.approximation = \"exact\"", "series"});
-  }
   SECTION("map --threads 0") {
     expect_rejected(with({"map", "--plane", "theta-fmax", "--threads", "0", "--chart", "none"}),
                     {"--threads 0", "[1, 256]"});
