@@ -45,8 +45,10 @@ FloquetResult point_multipliers(const BladeModel& model, const Scene& scene, int
   const ReductionSpec reduction = vectors > 0 ? ReductionSpec{ReductionKind::automatic, vectors, 0}
                                               : ReductionSpec{ReductionKind::none, 0, 0};
   const PeriodicSystem sys = periodic_system(model, scene, load, reduction);
-  const FloquetOptions options{FloquetMethod::automatic, 0, tolerance, false};
-  return load.exact_pulse ? pulse_train_multipliers(sys, pulse_train(scene), options) : floquet_multipliers(sys, options);
+  if (load.exact_pulse) {
+    return pulse_train_multipliers(sys, pulse_train(scene), {FloquetMethod::automatic, 0, tolerance, false});
+  }
+  return floquet_multipliers(sys, {FloquetMethod::automatic, 0, tolerance, false});
 }
 
 // One model of the boundary equations: a Ritz model, its reduction, K harmonics per family.

@@ -43,7 +43,8 @@ double floquet_max_rho(Scene s, double fbar) {
   s.load.fmax_over_fcr = fbar;
   const double speed = s.operation.speed_rad_s;
   const BladeModel m = assemble_model(s.blade, s.model);
-  const PeriodicSystem sys = periodic_system(m, speed, damping_matrix(m, s.damping, speed), load_series(s));
+  const PeriodicSystem sys = periodic_system(m, speed, damping_matrix(m, s.damping, speed), load_series(s),
+                                             {ReductionKind::none, 0, 0});
   return monodromy_multipliers(sys, 2048).cwiseAbs().maxCoeff();
 }
 
@@ -137,7 +138,8 @@ namespace {
 double odeint_true_pulse_max_rho(const Scene& s) {
   const BladeModel m = assemble_model(s.blade, s.model);
   const double speed = s.operation.speed_rad_s;
-  const PeriodicSystem sys = periodic_system(m, speed, damping_matrix(m, s.damping, speed), load_series(s));
+  const PeriodicSystem sys = periodic_system(m, speed, damping_matrix(m, s.damping, speed), load_series(s),
+                                             {ReductionKind::none, 0, 0});
   const PulseTrain train = pulse_train(s);
   const Eigen::MatrixXd A_free = sys.A0 - sys.load.at(0).real() * sys.B;  // the mean's share back out
   const int n = sys.state_size();
@@ -176,10 +178,19 @@ TEST_CASE("a map of the true pulse train matches an independent integration of t
   const StabilityMap map = stability_map(s, o);
   CHECK(map.curves.empty());  // no boundary equations for the true train: shaded only
   REQUIRE(map.samples.size() >= 9);
+  // Every unstable sample (up to four: the thin tongues are where the two could differ) and two
+  // stable ones.
+  std::vector<MapSample> chosen;
+  for (const MapSample& p : map.samples) {
+    if (p.max_abs_multiplier > 1 + o.tolerance && chosen.size() < 4) chosen.push_back(p);
+  }
+  const std::size_t unstable = chosen.size();
+  for (const MapSample& p : map.samples) {
+    if (p.max_abs_multiplier <= 1 && chosen.size() < unstable + 2) chosen.push_back(p);
+  }
+  CHECK(unstable >= 1);
   int checked = 0;
-  for (std::size_t k = 0; k < map.samples.size(); k += map.samples.size() / 6) {
-    const MapSample& p = map.samples[k];
-    if (p.x <= 0) continue;
+  for (const MapSample& p : chosen) {
     Scene at = s;
     at.operation.speed_rad_s = p.x;
     at.load.pulse_frequency_hz = p.x / two_pi;
@@ -189,5 +200,5 @@ TEST_CASE("a map of the true pulse train matches an independent integration of t
     CHECK(std::abs(p.max_abs_multiplier - reference) <= o.tolerance * std::max(1.0, reference));
     ++checked;
   }
-  CHECK(checked >= 6);
+  CHECK(checked >= 3);
 }
