@@ -509,6 +509,27 @@ def _map_refined(data):
     return x, y, raster
 
 
+def _map_contour(ax, refined, stable_below, handles):
+    """The max|rho| = stable_below contour of the refined shading (its
+    lattice's cell centres): the edge of every instability, the combination
+    resonances' too, which have no traced +-1 curve."""
+    if refined is None:
+        return
+    x_edges, y_edges, raster = refined
+    with np.errstate(divide="ignore", invalid="ignore"):
+        level_of = np.log10(raster)
+    level = math.log10(stable_below)
+    finite = level_of[np.isfinite(level_of)]
+    if finite.size == 0 or not (finite.min() <= level < finite.max()):
+        return
+    xc = 0.5 * (x_edges[:-1] + x_edges[1:])
+    yc = 0.5 * (y_edges[:-1] + y_edges[1:])
+    ax.contour(xc, yc, level_of, levels=[level], colors="0.15", linewidths=0.6,
+               linestyles=":", zorder=2.5)
+    handles.append(Line2D([], [], color="0.15", linestyle=":", linewidth=0.8,
+                          label=f"max|ρ| = {stable_below:.6g} (combination resonances too)"))
+
+
 def _map_shading(ax, grid, stable_below=STABLE_LIMIT, edges=False):
     """Shade growth per period, log10 max|rho|, with its lower end at the
     stability threshold: every unstable cell is clearly coloured, stable ones
@@ -614,6 +635,8 @@ def chart_map(data, ax):
     else:
         handles = []
 
+    _map_contour(ax, refined, stable_below, handles)
+
     # Boundary curves, one legend entry per multiplier family.
     legend_lines = {}
     for curve in curves:
@@ -651,7 +674,7 @@ def chart_map(data, ax):
     anchor = ax.xaxis.label
     if handles:
         anchor = ax.legend(handles=handles, loc="upper center",
-                           bbox_to_anchor=(0.5, -0.13), ncol=len(handles),
+                           bbox_to_anchor=(0.5, -0.13), ncol=len(handles) if len(handles) <= 3 else 2,
                            fontsize=8, frameon=False, borderaxespad=0.0)
     ax.annotate(MAP_NOTE, xy=(0.5, 0.0), xycoords=anchor, xytext=(0, -4),
                 textcoords="offset points", ha="center", va="top",
