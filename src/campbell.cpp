@@ -319,7 +319,7 @@ CampbellWithErrors campbell_with_error_estimate(const Scene& scene, const Campbe
   ModelSpec spec = scene.model;
   bool dense = false;  // set when a reduced sweep could not certify some speed
   while (true) {
-    auto model = std::make_unique<BladeModel>(assemble_model(scene.blade, spec));
+    auto model = std::make_unique<BladeModel>(assemble_model(scene, spec));
     const int count = solve_count(*model, wanted), nt = tracked_count(*model, wanted);
     // The richer models are solved densely where they are solved whole, as `modes` does (ARPACK
     // is for the lowest modes of large models, and some damped pairs defeat it).
@@ -333,7 +333,7 @@ CampbellWithErrors campbell_with_error_estimate(const Scene& scene, const Campbe
       ModelSpec richer = spec;
       richer.terms = reference_terms(spec.basis, terms.back());
       terms.push_back(richer.terms);
-      refs.push_back({std::make_unique<BladeModel>(assemble_model(scene.blade, richer)), nullptr, {}});
+      refs.push_back({std::make_unique<BladeModel>(assemble_model(scene, richer)), nullptr, {}});
     }
     const auto raise = [&](double estimate) {
       const std::optional<int> next = terms_for_tolerance(spec.basis, spec.terms, estimate, tolerance);

@@ -70,9 +70,13 @@ int significant_digits(double error) {
 
 std::string describe_model(const BladeModel& model) {
   const ModelSpec& s = model.spec;
-  return fmt::format("{}, {} basis, {} terms/field ({} dofs), axial {}, coriolis {}", to_string(s.theory),
+  const std::string compression =
+      model.static_tip_force_n == 0
+          ? ""
+          : fmt::format(", static tip compression {:.6g} F_cr", -model.static_tip_force_n / model.blade.critical_load());
+  return fmt::format("{}, {} basis, {} terms/field ({} dofs), axial {}, coriolis {}{}", to_string(s.theory),
                      to_string(s.basis), s.terms, model.layout.size(), s.axial ? "on" : "off",
-                     s.coriolis ? "on" : "off");
+                     s.coriolis ? "on" : "off", compression);
 }
 
 std::string scene_title(const Scene& scene) {

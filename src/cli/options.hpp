@@ -33,7 +33,8 @@ std::vector<double> parse_range(const std::string& option, const std::string& te
 // Significant digits worth printing for a value with relative error `error` (3 to 12).
 int significant_digits(double error);
 
-// One line describing the model, e.g. "timoshenko, legendre basis, 16 terms/field (48 dofs), axial on, coriolis on".
+// One line describing the model, e.g. "timoshenko, legendre basis, 16 terms/field (48 dofs), axial on, coriolis on",
+// with ", static tip compression 0.5 F_cr" when the scene has one.
 std::string describe_model(const BladeModel& model);
 
 // "sinha2005/blade" for stability_maps/sinha2005/blade.toml: the scene's name in chart titles.
