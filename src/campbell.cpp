@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "bladestab/mode_convergence.hpp"
+#include "bladestab/mode_tracking.hpp"
 #include "bladestab/speed_sweep.hpp"
 
 namespace bladestab {
@@ -23,8 +24,7 @@ int tracked_count(const BladeModel& model, const CampbellOptions& options) {
 
 // Modes solved per speed: a few more than tracked, so that modes entering from above can be followed.
 int solve_count(const BladeModel& model, const CampbellOptions& options) {
-  const int tracked = tracked_count(model, options);
-  return std::min(model.layout.size(), tracked + std::max(4, tracked / 2));
+  return tracking_candidates(tracked_count(model, options), model.layout.size());
 }
 
 // Index of the mode in `modes` most like `shape` (unit columns: MAC = |aᴴ b|²).
@@ -35,23 +35,11 @@ int most_like(const SpeedModes& modes, const Eigen::VectorXcd& shape, double* ma
   return static_cast<int>(best);
 }
 
-// Greedy assignment by largest MAC: result[i] = index in `candidates` for tracked shape i.
+// Greedy assignment by largest MAC (unit columns: MAC = |aᴴ b|²): result[i] = index in
+// `candidates` for tracked shape i.
 std::vector<int> match_by_shape(const Eigen::MatrixXcd& tracked, const Eigen::MatrixXcd& candidates,
                                 std::vector<double>& mac_out) {
-  const Eigen::Index nt = tracked.cols(), nc = candidates.cols();
-  const Eigen::MatrixXd mac = (tracked.adjoint() * candidates).cwiseAbs2();
-  std::vector<int> result(nt, -1);
-  mac_out.assign(nt, 0);
-  Eigen::MatrixXd open = mac;
-  for (Eigen::Index step = 0; step < std::min(nt, nc); ++step) {
-    Eigen::Index i = 0, j = 0;
-    open.maxCoeff(&i, &j);
-    result[i] = static_cast<int>(j);
-    mac_out[i] = mac(i, j);
-    open.row(i).setConstant(-1);
-    open.col(j).setConstant(-1);
-  }
-  return result;
+  return assign_by_correlation((tracked.adjoint() * candidates).cwiseAbs2(), mac_out);
 }
 
 // Root of g(Ω) = f(Ω) − kΩ/2π in [a, b] by the Illinois variant of regula falsi.
