@@ -27,8 +27,11 @@ struct SceneOptions {
 // Adds SCENE, --set, --format and --solver to a subcommand.
 void add_scene_options(CLI::App& command, SceneOptions& options);
 
-// "start:stop:count" → count evenly spaced values; InputError naming `option` otherwise.
-std::vector<double> parse_range(const std::string& option, const std::string& text);
+// "start:stop:count" → count evenly spaced values; InputError naming `option` otherwise. Increasing
+// (start < stop) unless `order` allows either way (start != stop).
+enum class RangeOrder { increasing, either_way };
+std::vector<double> parse_range(const std::string& option, const std::string& text,
+                                RangeOrder order = RangeOrder::increasing);
 
 // Significant digits worth printing for a value with relative error `error` (3 to 12).
 int significant_digits(double error);
