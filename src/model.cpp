@@ -7,6 +7,7 @@
 
 #include "bladestab/basis.hpp"
 #include "bladestab/quadrature.hpp"
+#include "bladestab/static_buckling.hpp"
 
 namespace bladestab {
 namespace {
@@ -19,10 +20,8 @@ Eigen::MatrixXd gram(const Eigen::VectorXd& weighted_coefficient, const Eigen::M
 
 Eigen::MatrixXd symmetrized(const Eigen::MatrixXd& m) { return 0.5 * (m + m.transpose()); }
 
-}  // namespace
-
-BladeModel assemble_model(const BladeSpec& blade_spec, const ModelSpec& spec) {
-  BladeModel model{BladeProperties(blade_spec), spec, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}};
+BladeModel assemble_blade(const BladeSpec& blade_spec, const ModelSpec& spec) {
+  BladeModel model{BladeProperties(blade_spec), spec, {}, 0, {}, {}, {}, {}, {}, {}, {}, {}, {}};
   const BladeProperties& b = model.blade;
   const bool timoshenko = spec.theory == BeamTheory::timoshenko;
   const int N = spec.terms;
@@ -105,6 +104,21 @@ BladeModel assemble_model(const BladeSpec& blade_spec, const ModelSpec& spec) {
   model.K_S = symmetrized(model.K_S);
   model.K_C1 = symmetrized(model.K_C1);
   model.G = symmetrized(model.G);
+  return model;
+}
+
+}  // namespace
+
+BladeModel assemble_model(const Scene& scene) { return assemble_model(scene, scene.model); }
+
+BladeModel assemble_model(const Scene& scene, const ModelSpec& spec) {
+  BladeModel model = assemble_blade(scene.blade, spec);
+  // A static tip compression F_a = c F_cr is a constant tip tension −F_a: its geometric stiffness
+  // −F_a G joins the speed-free stiffness (SPEC (23), (40) with F(t) = −F_a), its axial push the
+  // steady load (steady_load()).
+  model.static_tip_force_n = -scene.operation.tip_compression_over_fcr * model.blade.critical_load();
+  if (model.static_tip_force_n != 0) model.K_S += model.static_tip_force_n * model.G;
+  if (std::optional<InputError> unstable = static_instability(model, scene.operation)) throw *unstable;
   return model;
 }
 

@@ -59,7 +59,12 @@ Eigen::MatrixXd m_orthonormal(Eigen::MatrixXd W, const Eigen::MatrixXd& M) {
 
 ReducedSystem reduce(const BladeModel& model, double speed, const Eigen::MatrixXd& damping, double min_force_n,
                      const ReductionSpec& spec) {
-  const auto statically_unstable = [speed] {
+  const auto statically_unstable = [&model, speed] {
+    if (model.static_tip_force_n != 0) {
+      return InputError(fmt::format("operation.speed_rad_s = {}: the blade is statically unstable at this speed under "
+                                    "its static tip compression (operation.tip_compression_over_fcr = {:.6g})",
+                                    speed, -model.static_tip_force_n / model.blade.critical_load()));
+    }
     return InputError(fmt::format("operation.speed_rad_s = {}: the unloaded blade is statically unstable at this speed",
                                   speed));
   };

@@ -452,7 +452,7 @@ ShadingFidelity check_shading(const BladeModel& model, const MapOptions& o, int 
 }  // namespace
 
 StabilityMap stability_map(const Scene& scene, const MapOptions& o, const std::function<void(int, int)>& progress) {
-  const BladeModel model = assemble_model(scene.blade, scene.model);
+  const BladeModel model = assemble_model(scene);
   const double fcr = model.blade.critical_load();
   const bool theta_plane = o.plane == MapPlane::theta_fmax;
   const double speed = scene.operation.speed_rad_s;
@@ -487,7 +487,7 @@ StabilityMap stability_map(const Scene& scene, const MapOptions& o, const std::f
                          o.approximation};
   ModelSpec richer_spec = scene.model;
   richer_spec.terms = reference_terms(richer_spec.basis, richer_spec.terms);
-  const BladeModel richer = assemble_model(scene.blade, richer_spec);
+  const BladeModel richer = assemble_model(scene, richer_spec);
   LineCache cache;
   // A pulse's own series (not the cosine approximation) puts many harmonics into the balance, and
   // its boundaries need many more harmonics, not monotonically: on the paper blade with t_c = 0.3

@@ -42,7 +42,7 @@ Scene scene_with(const std::string& damping) {
 double floquet_max_rho(Scene s, double fbar) {
   s.load.fmax_over_fcr = fbar;
   const double speed = s.operation.speed_rad_s;
-  const BladeModel m = assemble_model(s.blade, s.model);
+  const BladeModel m = assemble_model(s);
   const PeriodicSystem sys = periodic_system(m, speed, damping_matrix(m, s.damping, speed), load_series(s),
                                              {ReductionKind::none, 0, 0});
   return monodromy_multipliers(sys, 2048).cwiseAbs().maxCoeff();
@@ -53,10 +53,10 @@ double lowest_boundary(const Scene& s) {
   BoundaryRequest r;
   r.theta_rad_s = theta;
   r.cutoff_hz = 0;
-  r.window = std::make_pair(0.0, 3 * assemble_model(s.blade, s.model).blade.critical_load());
+  r.window = std::make_pair(0.0, 3 * assemble_model(s).blade.critical_load());
   const BoundaryAnalysis a = boundaries_with_error_estimate(s, r);
   REQUIRE(!a.boundaries.empty());
-  const double fcr = assemble_model(s.blade, s.model).blade.critical_load();
+  const double fcr = assemble_model(s).blade.critical_load();
   return a.boundaries.front().boundary.peak_force_n / fcr;
 }
 
@@ -136,7 +136,7 @@ namespace {
 // (rtol 1e-10) through the contact and the free flight separately: shares no code with the map's
 // piecewise monodromy (exponential of the free flight, Magnus through the contact).
 double odeint_true_pulse_max_rho(const Scene& s) {
-  const BladeModel m = assemble_model(s.blade, s.model);
+  const BladeModel m = assemble_model(s);
   const double speed = s.operation.speed_rad_s;
   const PeriodicSystem sys = periodic_system(m, speed, damping_matrix(m, s.damping, speed), load_series(s),
                                              {ReductionKind::none, 0, 0});

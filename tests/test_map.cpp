@@ -26,7 +26,7 @@ double distance_to_multiplier(const Scene& base, double speed, double theta, dou
   s.operation.speed_rad_s = speed;
   s.load.pulse_frequency_hz = theta / (2 * 3.14159265358979323846);
   s.load.fmax_over_fcr = fbar;
-  const BladeModel m = assemble_model(s.blade, s.model);
+  const BladeModel m = assemble_model(s);
   const PeriodicSystem sys = periodic_system(m, speed, damping_matrix(m, s.damping, speed), load_series(s));
   const Eigen::VectorXcd rho = monodromy_multipliers(sys, 4096);
   double best = 1e300;
@@ -64,7 +64,7 @@ TEST_CASE("speed-plane map: every traced boundary point has a multiplier at +1 o
 TEST_CASE("theta-plane map of Mathieu's equation: unstable inside the principal tongue, stable outside", "[map][mathieu]") {
   const Scene scene = paper_scene({"model.theory=euler-bernoulli", "model.terms=1", "model.axial=false",
                                    "model.basis=sine", "operation.speed_rad_s=300"});
-  const BladeModel model = assemble_model(scene.blade, scene.model);
+  const BladeModel model = assemble_model(scene);
   const double w0 = std::sqrt(model.stiffness(300)(0, 0) / model.M(0, 0));
   const double fcr = model.blade.critical_load();
   // Centre of the principal tongue: twice the frequency under the mean load −F_max/2.
@@ -132,7 +132,7 @@ TEST_CASE("refined shading: leaves tile the lattice, agree at their corners, and
     Scene at = scene;
     at.load.pulse_frequency_hz = p.x / (2 * 3.14159265358979323846);
     at.load.fmax_over_fcr = p.fbar;
-    const BladeModel m = assemble_model(at.blade, at.model);
+    const BladeModel m = assemble_model(at);
     const PeriodicSystem whole = periodic_system(m, at, load_series(at), {ReductionKind::none, 0, 0});
     const double rho = monodromy_multipliers(whole, 4096).cwiseAbs().maxCoeff();
     INFO("θ = " << p.x << ", F̄ = " << p.fbar << ": map " << p.max_abs_multiplier << ", whole model " << rho);
@@ -163,9 +163,9 @@ TEST_CASE("map marks the scene's point with its max|rho| and the nearest boundar
   // to 1e-6, checked by RKF45); the nearest to F̄ = 5 within the curves' tolerance of the window.
   BoundaryRequest r;
   r.theta_rad_s = 300;
-  r.window = std::make_pair(0.0, 8 * assemble_model(s.blade, s.model).blade.critical_load());
+  r.window = std::make_pair(0.0, 8 * assemble_model(s).blade.critical_load());
   const BoundaryAnalysis a = boundaries_with_error_estimate(s, r);
-  const double fcr = assemble_model(s.blade, s.model).blade.critical_load();
+  const double fcr = assemble_model(s).blade.critical_load();
   double nearest = 1e300;
   for (const EstimatedBoundary& e : a.boundaries) {
     if (std::abs(e.boundary.peak_force_n / fcr - 5) < std::abs(nearest - 5)) nearest = e.boundary.peak_force_n / fcr;
@@ -188,7 +188,7 @@ TEST_CASE("50 random refined samples of each plane's map match the whole model's
   o.resolution_y = 50;
   const StabilityMap map = stability_map(s, o);
   REQUIRE(map.samples.size() >= 200);
-  const BladeModel model = assemble_model(s.blade, s.model);
+  const BladeModel model = assemble_model(s);
   // A fixed pseudo-random draw (Knuth's multiplicative hash of the index) of 50 evaluated points.
   int checked = 0;
   for (std::size_t k = 0; checked < 50; ++k) {

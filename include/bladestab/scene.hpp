@@ -43,7 +43,15 @@ struct ModelSpec {
 
 struct OperationSpec {
   double speed_rad_s = 0;  // Ω
+  // Optional: a static compressive tip load F_a = tip_compression_over_fcr · F_cr, F_cr = π²EI/(4L²)
+  // (compression positive; Sinha's Fig. 9). It enters the stiffness through the geometric matrix,
+  // K_S − F_a G, and the steady load through the tip (model.hpp).
+  double tip_compression_over_fcr = 0;
 };
+
+// Bound on operation.tip_compression_over_fcr: far above the static buckling load of any blade
+// spinning below its own divergence (the paper blade buckles at 0.999 F_cr at rest, 4.95 F_cr at 300 rad/s).
+inline constexpr double max_tip_compression_over_fcr = 1000;
 
 enum class DampingModel { none, modal, rayleigh, paper };
 
@@ -88,7 +96,11 @@ struct Scene {
 // validates everything. Throws InputError with a one-line message on any problem.
 Scene load_scene(const std::string& path, const std::vector<std::string>& overrides = {});
 
-// Same, from TOML text (used by tests and by scenes built in code).
+// The text of a scene file; InputError naming the path when it cannot be read.
+std::string read_scene_file(const std::string& path);
+
+// Same as load_scene, from TOML text (used by tests, by scenes built in code and by sweeps that read
+// one file with many overrides).
 Scene parse_scene(const std::string& toml_text, const std::string& source_name,
                   const std::vector<std::string>& overrides = {});
 

@@ -171,7 +171,7 @@ Command register_boundaries(CLI::App& app) {
     if (in_load && !(*at_theta > 0)) throw InputError(fmt::format("--at-theta {}: must be > 0 rad/s", *at_theta));
     if (in_load) request->theta_rad_s = *at_theta;
     const Scene scene = options->load();
-    const BladeModel model = assemble_model(scene.blade, scene.model);
+    const BladeModel model = assemble_model(scene);
     if (!range->empty()) {
       double lo = 0, hi = 0;
       char colon = 0, extra = 0;

@@ -51,6 +51,7 @@ int main(int argc, char** argv) {
   run["map"] = register_map(app);
   run["transient"] = register_transient(app);
   run["crosscheck"] = register_crosscheck(app);
+  run["sweep"] = register_sweep(app);
   if (argc < 2) {
     fmt::print(stderr, "bladestab: error: a command is required: {} (see bladestab --help)\n", command_names(run));
     return 2;

@@ -224,7 +224,7 @@ Command register_map(CLI::App& app) {
       throw InputError(fmt::format("--threads {}: must be an integer in [1, 256]", *threads));
     }
     o.threads = *threads;
-    const BladeModel model = assemble_model(scene.blade, scene.model);
+    const BladeModel model = assemble_model(scene);
     if (theta_plane) {
       if (scene.operation.speed_rad_s <= 0 && scene.damping.model == DampingModel::paper) {
         throw InputError("damping.model = \"paper\" needs operation.speed_rad_s > 0");

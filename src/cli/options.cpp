@@ -33,8 +33,10 @@ void add_scene_options(CLI::App& command, SceneOptions& options) {
       ->check(CLI::IsMember({"auto", "dense", "arpack"}));
 }
 
-std::vector<double> parse_range(const std::string& option, const std::string& text) {
-  const std::string allowed = "must be start:stop:count with finite start < stop and an integer count >= 2";
+std::vector<double> parse_range(const std::string& option, const std::string& text, RangeOrder order) {
+  const bool either = order == RangeOrder::either_way;
+  const std::string allowed = fmt::format("must be start:stop:count with finite start {} stop and an integer count >= 2",
+                                          either ? "!=" : "<");
   double start = 0, stop = 0;
   long count = 0;
   char c1 = 0, c2 = 0;
@@ -54,8 +56,8 @@ std::vector<double> parse_range(const std::string& option, const std::string& te
   } catch (const std::exception&) {
     ok = false;
   }
-  if (!ok || c1 != ':' || c2 != ':' || !std::isfinite(start) || !std::isfinite(stop) || !(start < stop) ||
-      count < 2 || count > 100000) {
+  if (!ok || c1 != ':' || c2 != ':' || !std::isfinite(start) || !std::isfinite(stop) ||
+      !(either ? start != stop : start < stop) || count < 2 || count > 100000) {
     throw InputError(fmt::format("{} {}: {}", option, text, allowed));
   }
   std::vector<double> values(count);
@@ -70,9 +72,13 @@ int significant_digits(double error) {
 
 std::string describe_model(const BladeModel& model) {
   const ModelSpec& s = model.spec;
-  return fmt::format("{}, {} basis, {} terms/field ({} dofs), axial {}, coriolis {}", to_string(s.theory),
+  const std::string compression =
+      model.static_tip_force_n == 0
+          ? ""
+          : fmt::format(", static tip compression {:.6g} F_cr", -model.static_tip_force_n / model.blade.critical_load());
+  return fmt::format("{}, {} basis, {} terms/field ({} dofs), axial {}, coriolis {}{}", to_string(s.theory),
                      to_string(s.basis), s.terms, model.layout.size(), s.axial ? "on" : "off",
-                     s.coriolis ? "on" : "off");
+                     s.coriolis ? "on" : "off", compression);
 }
 
 std::string scene_title(const Scene& scene) {

@@ -71,6 +71,7 @@ void print(const SceneOptions& options, const Scene& scene, const StabilityAnswe
           .value("scene", scene.source)
           .value("speed_rad_s", scene.operation.speed_rad_s)
           .value("fmax_over_fcr", fbar)
+          .value("tip_compression_over_fcr", scene.operation.tip_compression_over_fcr)
           .value("theta_rad_s", a.theta_rad_s)
           .value("load_approximation", to_string(scene.load.approximation))
           .value("load_harmonics", load.harmonics())
@@ -113,8 +114,12 @@ void print(const SceneOptions& options, const Scene& scene, const StabilityAnswe
                  scene.source, to_string(a.model.theory), to_string(a.model.basis), a.model.terms, a.reference_terms,
                  a.model.axial ? "on" : "off", a.model.coriolis ? "on" : "off");
       fmt::print("reduction  {}\n", describe_reduction(a));
-      fmt::print("operation  Ω = {:.6g} rad/s, F̄_max = {:.6g}, θ = {:.6g} rad/s; load: {}\n",
-                 scene.operation.speed_rad_s, fbar, a.theta_rad_s,
+      fmt::print("operation  Ω = {:.6g} rad/s, {}F̄_max = {:.6g}, θ = {:.6g} rad/s; load: {}\n",
+                 scene.operation.speed_rad_s,
+                 scene.operation.tip_compression_over_fcr == 0
+                     ? std::string()
+                     : fmt::format("static tip compression F_a = {:.6g} F_cr, ", scene.operation.tip_compression_over_fcr),
+                 fbar, a.theta_rad_s,
                  load.cosine_approximation ? std::string("cosine approximation (42)")
                 : load.exact_pulse
                     ? fmt::format("the true {} pulse train, integrated through each contact", to_string(scene.load.profile))
@@ -170,7 +175,7 @@ std::string export_stem(const std::string& path) {
 // Matrix Market files, and a manifest with everything else a reader needs.
 void export_matrices(const std::string& path, const std::string& stem, const Scene& scene, const StabilityAnswer& a,
                      double tolerance) {
-  const PeriodicSystem sys = periodic_system(assemble_model(scene.blade, a.model), scene, a.load, a.reduction);
+  const PeriodicSystem sys = periodic_system(assemble_model(scene, a.model), scene, a.load, a.reduction);
   const ExportedArrays files = write_matrix_market(sys, stem);
   const auto name = [](const std::string& file) { return std::filesystem::path(file).filename().string(); };
   JsonWriter json;

@@ -189,7 +189,7 @@ Command register_transient(CLI::App& app) {
     if (scene.operation.speed_rad_s <= 0) {
       throw InputError("operation.speed_rad_s = 0: the transient is counted in revolutions; give a speed > 0");
     }
-    const BladeModel model = assemble_model(scene.blade, scene.model);
+    const BladeModel model = assemble_model(scene);
     TransientOptions o;
     o.revolutions = *revolutions;
     o.adaptive = *step == "adaptive";
