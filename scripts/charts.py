@@ -204,17 +204,23 @@ def _campbell_curves(data, n_speeds):
                              f" expected {n_speeds}")
         curves.append({"mode": mode, "family": family, "freqs": freqs})
 
+    return _label_by_family(curves, "mode", darkest=0.9, spread=0.35)
+
+
+def _label_by_family(items, order_key, darkest, spread):
+    """Labels ("B1", "B2", … per family) and colours (shades of the family's
+    colour map, from `darkest` down by up to `spread`), in `order_key` order."""
     by_family = {}
-    for curve in sorted(curves, key=lambda c: c["mode"]):
-        by_family.setdefault(curve["family"], []).append(curve)
+    for item in sorted(items, key=lambda c: c[order_key]):
+        by_family.setdefault(item["family"], []).append(item)
     for family, members in by_family.items():
         prefix, cmap_name, _ = CAMPBELL_FAMILIES[family]
         cmap = matplotlib.colormaps[cmap_name]
-        for n, curve in enumerate(members):
-            shade = 0.9 - 0.35 * n / max(len(members) - 1, 1)
-            curve["label"] = f"{prefix}{n + 1}"
-            curve["color"] = cmap(shade if len(members) > 1 else 0.75)
-    return sorted(curves, key=lambda c: c["mode"])
+        for n, item in enumerate(members):
+            shade = darkest - spread * n / max(len(members) - 1, 1)
+            item["label"] = f"{prefix}{n + 1}"
+            item["color"] = cmap(shade if len(members) > 1 else 0.75)
+    return sorted(items, key=lambda c: c[order_key])
 
 
 def _campbell_crossings(data):
@@ -1011,17 +1017,7 @@ def _sweep_modes(data, n_values):
                       "lambda": lam, "families": families})
     if not modes:
         raise InputError("modes is empty")
-    by_family = {}
-    for mode in sorted(modes, key=lambda m: m["index"]):
-        by_family.setdefault(mode["family"], []).append(mode)
-    for family, members in by_family.items():
-        prefix, cmap_name, _ = CAMPBELL_FAMILIES[family]
-        cmap = matplotlib.colormaps[cmap_name]
-        for n, mode in enumerate(members):
-            shade = 0.95 - 0.5 * n / max(len(members) - 1, 1)
-            mode["label"] = f"{prefix}{n + 1}"
-            mode["color"] = cmap(shade if len(members) > 1 else 0.75)
-    return sorted(modes, key=lambda m: m["index"])
+    return _label_by_family(modes, "index", darkest=0.95, spread=0.5)
 
 
 def _family_runs(families):
