@@ -215,7 +215,9 @@ def write(results, folder):
     w("# Work–precision benchmark (issue 9, \"Fast at equal error\")\n")
     w(f"Measured {m['date']} at commit `{m['commit']}` by `bench/run{' --quick' if m.get('quick') else ''}` "
       f"in {m.get('duration_s', 0) / 60:.1f} min, on {m['cores']} cores ({m['cpu']}), shared with other work: "
-      f"load average {m.get('load_before')} before and {m.get('load_after')} after. Python {m.get('python')}, "
+      f"load average {m.get('load_before')} before and {m.get('load_after')} after"
+      + (f", {m['steal_percent']:.1f} % of the cores' time taken by the hypervisor (steal)"
+         if m.get("steal_percent") is not None else "") + f". Python {m.get('python')}, "
       f"NumPy {m.get('numpy')}, SciPy {m.get('scipy')} (Debian). Times are wall times of the whole `bladestab` "
       "process (start, scene, model, answer, output), medians of the repeats stated; SciPy's are of `solve_ivp` "
       "and the eigenvalues in a running interpreter (Python's start and the file reading not counted), with NumPy's "
@@ -255,7 +257,7 @@ def write(results, folder):
         a = c["acceptance"]
         q = ratio(CAMPBELL_BASELINE_S, a.get("median_s"))
         acc.append(("`campbell` with 200 speeds on the default scene at 1e-6: at least 10× faster than the issue's 2.3 s",
-                    (f"{s(a.get('median_s'))} (5 repeats{'' if c['tolerance_option'] else '; campbell has no --tolerance yet, run without it'}): "
+                    (f"{s(a.get('median_s'))} ({a.get('repeats', 5)} repeats{'' if c['tolerance_option'] else '; campbell has no --tolerance yet, run without it'}): "
                      f"{r(q)} the baseline" if a["status"] == "ok" else a.get("message", "")), met(q is not None and q >= 10)))
     mp = results.get("map")
     if mp:

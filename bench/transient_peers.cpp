@@ -78,7 +78,7 @@ Problem make_problem(const Scene& scene, int revolutions) {
   if (scene.load.mode != LoadMode::force || scene.load.friction != 0) {
     throw std::runtime_error("transient_peers: the benchmark's system is load.mode = \"force\" without friction");
   }
-  const BladeModel model = assemble_model(scene.blade, scene.model);
+  const BladeModel model = assemble_model(scene);
   const double speed = scene.operation.speed_rad_s;
   Problem p;
   p.n = model.layout.size();
@@ -93,7 +93,7 @@ Problem make_problem(const Scene& scene, int revolutions) {
   p.MiG = mass.solve(model.G);
   p.G = model.G;
   if (!D.isZero(0)) p.D = D;
-  p.Mi_cf = mass.solve(Eigen::VectorXd(speed * speed * model.P_cf1));
+  p.Mi_cf = mass.solve(model.steady_load(speed));
   p.Mi_axial = mass.solve(Eigen::VectorXd(model.tip_axial.transpose()));
   p.p_u = model.tip_axial.transpose();
   p.tip_lateral = model.tip_lateral;

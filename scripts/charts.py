@@ -53,6 +53,30 @@ map
         {"x": float, "y": float, "label": str (optional)}
       ]
     }
+    A PNG map records where its markers landed, as the text chunk
+    "bladestab:markers_px" = "x,y;x,y;..." (pixels from the image's top left),
+    so a test can read the colour under a marker.
+
+sweep
+    Natural frequencies against a scene key (bladestab sweep), one line per
+    tracked mode: bending solid, rotation and axial dashed (as Sinha's
+    Figs. 7-9). Frequency [Hz] on the left; on the right the frequency
+    parameter lambda where it is not proportional to the frequency (the key
+    changes EI, e.g. the slenderness: the paper's Figs. 7, 8), else each
+    frequency relative to its value at the first point (Fig. 9's drop).
+    {
+      "title":  str (optional),
+      "key":    str                          the x axis label,
+      "values": [float, ...]                 >= 2 values, strictly monotonic,
+      "modes": [                             one per tracked mode
+        {"index": int,
+         "family": "bending" | "axial" | "rotation",
+         "families": [str, ...]              optional; the family at each
+                                             value (sets each piece's style),
+         "frequency_hz": [float, ...],       same length as values, >= 0,
+         "lambda": [float, ...]}             optional; same length
+      ]
+    }
 
 transient
     Time response of the blade tip under rub pulses: 2x2 panels with the tip
@@ -99,7 +123,7 @@ from matplotlib.patches import Patch  # noqa: E402
 
 RAD_S_TO_RPM = 60.0 / (2.0 * math.pi)
 FIGSIZE = (8.0, 5.5)
-FIGSIZES = {"transient": (10.0, 7.0)}  # kinds that need another size
+FIGSIZES = {"transient": (10.0, 7.0), "sweep": (11.0, 5.0)}  # kinds that need another size
 DPI = 150
 OUTPUT_FORMATS = {".png": "png", ".svg": "svg"}
 
@@ -180,17 +204,23 @@ def _campbell_curves(data, n_speeds):
                              f" expected {n_speeds}")
         curves.append({"mode": mode, "family": family, "freqs": freqs})
 
+    return _label_by_family(curves, "mode", darkest=0.9, spread=0.35)
+
+
+def _label_by_family(items, order_key, darkest, spread):
+    """Labels ("B1", "B2", … per family) and colours (shades of the family's
+    colour map, from `darkest` down by up to `spread`), in `order_key` order."""
     by_family = {}
-    for curve in sorted(curves, key=lambda c: c["mode"]):
-        by_family.setdefault(curve["family"], []).append(curve)
+    for item in sorted(items, key=lambda c: c[order_key]):
+        by_family.setdefault(item["family"], []).append(item)
     for family, members in by_family.items():
         prefix, cmap_name, _ = CAMPBELL_FAMILIES[family]
         cmap = matplotlib.colormaps[cmap_name]
-        for n, curve in enumerate(members):
-            shade = 0.9 - 0.35 * n / max(len(members) - 1, 1)
-            curve["label"] = f"{prefix}{n + 1}"
-            curve["color"] = cmap(shade if len(members) > 1 else 0.75)
-    return sorted(curves, key=lambda c: c["mode"])
+        for n, item in enumerate(members):
+            shade = darkest - spread * n / max(len(members) - 1, 1)
+            item["label"] = f"{prefix}{n + 1}"
+            item["color"] = cmap(shade if len(members) > 1 else 0.75)
+    return sorted(items, key=lambda c: c[order_key])
 
 
 def _campbell_crossings(data):
@@ -411,8 +441,56 @@ def _map_curves(data):
         points = [(a, b) if math.isfinite(a) and math.isfinite(b)
                   else (math.nan, math.nan) for a, b in zip(xs, ys)]
         curves.append({"multiplier": int(multiplier),
+                       "mode": int(curve["mode"]) if curve.get("mode") is not None else None,
+                       "order": int(curve["order"]) if curve.get("order") is not None else None,
                        "x": [p[0] for p in points], "y": [p[1] for p in points]})
     return curves
+
+
+SUBSCRIPT_DIGITS = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")
+MAX_REGION_LABELS = 16
+
+
+def _region_label(mode, order):
+    """The region a boundary curve belongs to, as the resonance that opens it:
+    "2ω₁/2" for mode 1, order 2 (θ ≈ 2ω₁/2); "2ω₁" for order 1; "ω₁ buckling"
+    for order 0 (the +1 family's static divergence under the mean load)."""
+    omega = "ω" + str(mode).translate(SUBSCRIPT_DIGITS)
+    if order == 0:
+        return f"{omega} buckling"
+    return f"2{omega}" if order == 1 else f"2{omega}/{order}"
+
+
+def _label_regions(ax, curves):
+    """One label per (family, mode, order), at the curve's lowest point (a
+    region's tip), when there are few enough to stay legible."""
+    tips = {}
+    for curve in curves:
+        if curve["mode"] is None or curve["order"] is None:
+            continue
+        points = [(y, x) for x, y in zip(curve["x"], curve["y"])
+                  if math.isfinite(x) and math.isfinite(y)]
+        if not points:
+            continue
+        key = (curve["multiplier"], curve["mode"], curve["order"])
+        tip = min(points)
+        if key not in tips or tip < tips[key]:
+            tips[key] = tip
+    if not tips or len(tips) > MAX_REGION_LABELS:
+        return
+    x_lo, x_hi = ax.get_xlim()
+    y_lo, y_hi = ax.get_ylim()
+    for (multiplier, mode, order), (y, x) in sorted(tips.items()):
+        if not (x_lo <= x <= x_hi and y_lo <= y <= y_hi):
+            continue
+        right = x > x_lo + 0.85 * (x_hi - x_lo)  # keep labels near the right edge inside
+        ax.annotate(_region_label(mode, order), xy=(x, y),
+                    xytext=(-3 if right else 3, 2), textcoords="offset points",
+                    ha="right" if right else "left", va="bottom", fontsize=7,
+                    color=MAP_FAMILIES[multiplier][1], zorder=5,
+                    bbox=dict(boxstyle="round,pad=0.1", fc="white", ec="none",
+                              alpha=0.75),
+                    annotation_clip=True)
 
 
 def _map_markers(data):
@@ -456,6 +534,27 @@ def _map_refined(data):
     x = np.linspace(bounds[0], bounds[1], nx + 1)
     y = np.linspace(bounds[2], bounds[3], ny + 1)
     return x, y, raster
+
+
+def _map_contour(ax, refined, stable_below, handles):
+    """The max|rho| = stable_below contour of the refined shading (its
+    lattice's cell centres): the edge of every instability, the combination
+    resonances' too, which have no traced +-1 curve."""
+    if refined is None:
+        return
+    x_edges, y_edges, raster = refined
+    with np.errstate(divide="ignore", invalid="ignore"):
+        level_of = np.log10(raster)
+    level = math.log10(stable_below)
+    finite = level_of[np.isfinite(level_of)]
+    if finite.size == 0 or not (finite.min() <= level < finite.max()):
+        return
+    xc = 0.5 * (x_edges[:-1] + x_edges[1:])
+    yc = 0.5 * (y_edges[:-1] + y_edges[1:])
+    ax.contour(xc, yc, level_of, levels=[level], colors="0.15", linewidths=0.6,
+               linestyles=":", zorder=2.5)
+    handles.append(Line2D([], [], color="0.15", linestyle=":", linewidth=0.8,
+                          label=f"max|ρ| = {stable_below:.6g} (combination resonances too)"))
 
 
 def _map_shading(ax, grid, stable_below=STABLE_LIMIT, edges=False):
@@ -563,6 +662,8 @@ def chart_map(data, ax):
     else:
         handles = []
 
+    _map_contour(ax, refined, stable_below, handles)
+
     # Boundary curves, one legend entry per multiplier family.
     legend_lines = {}
     for curve in curves:
@@ -577,12 +678,14 @@ def chart_map(data, ax):
                                 for j in (i - 1, i + 1))]
         ax.plot([cx[i] for i in isolated], [cy[i] for i in isolated],
                 linestyle="none", marker=".", color=color, zorder=3)
+    _label_regions(ax, curves)
     for multiplier in sorted(legend_lines):
         line = legend_lines[multiplier]
         handles.append(Line2D(
             [], [], color=line.get_color(), linestyle=line.get_linestyle(),
             linewidth=line.get_linewidth(), label=MAP_FAMILIES[multiplier][0]))
 
+    ax.bladestab_markers = [(m["x"], m["y"]) for m in markers]
     if markers:
         ax.plot([m["x"] for m in markers], [m["y"] for m in markers],
                 linestyle="none", marker="x", markersize=7, color="black",
@@ -598,7 +701,7 @@ def chart_map(data, ax):
     anchor = ax.xaxis.label
     if handles:
         anchor = ax.legend(handles=handles, loc="upper center",
-                           bbox_to_anchor=(0.5, -0.13), ncol=len(handles),
+                           bbox_to_anchor=(0.5, -0.13), ncol=len(handles) if len(handles) <= 3 else 2,
                            fontsize=8, frameon=False, borderaxespad=0.0)
     ax.annotate(MAP_NOTE, xy=(0.5, 0.0), xycoords=anchor, xytext=(0, -4),
                 textcoords="offset points", ha="center", va="top",
@@ -880,14 +983,144 @@ def chart_transient(data, ax):
 
 
 # --------------------------------------------------------------------------
+# Sweep: natural frequencies against a scene key
+# --------------------------------------------------------------------------
+
+SWEEP_LOG_RATIO = 30.0   # a log frequency axis when the lines span more than this
+
+
+def _sweep_modes(data, n_values):
+    """Validate the tracked modes; return them with labels and colours
+    (B1, B2, ..., A1, R1 by family, as in the Campbell diagram)."""
+    modes = []
+    for i, mode in enumerate(_require(data, "modes", list)):
+        if not isinstance(mode, dict):
+            raise InputError(f"modes[{i}] is not an object")
+        family = mode.get("family")
+        if family not in CAMPBELL_FAMILIES:
+            raise InputError(f"modes[{i}] has unknown family {family!r}")
+        index = _integer(mode.get("index"), f"modes[{i}].index")
+        freqs = _numbers(mode.get("frequency_hz"), f"modes[{i}].frequency_hz")
+        families = mode.get("families") or [family] * n_values
+        if not isinstance(families, list) or len(families) != n_values or \
+                any(f not in CAMPBELL_FAMILIES for f in families):
+            raise InputError(f"modes[{i}].families must list {n_values} families")
+        lam = _numbers(mode.get("lambda"), f"modes[{i}].lambda") \
+            if mode.get("lambda") is not None else None
+        for name, series in (("frequency_hz", freqs), ("lambda", lam)):
+            if series is not None and len(series) != n_values:
+                raise InputError(f"modes[{i}].{name} has {len(series)} values,"
+                                 f" expected {n_values}")
+            if series is not None and any(v < 0 for v in series):
+                raise InputError(f"modes[{i}].{name} has a negative value")
+        modes.append({"index": index, "family": family, "freqs": freqs,
+                      "lambda": lam, "families": families})
+    if not modes:
+        raise InputError("modes is empty")
+    return _label_by_family(modes, "index", darkest=0.95, spread=0.5)
+
+
+def _family_runs(families):
+    """Index ranges [a, b] (inclusive) of equal family; consecutive runs share
+    their boundary point, so the pieces join."""
+    runs, start = [], 0
+    for i in range(1, len(families) + 1):
+        if i == len(families) or families[i] != families[start]:
+            runs.append((start, min(i, len(families) - 1), families[start]))
+            start = i
+    return runs
+
+
+def _sweep_panel(ax, values, modes, series, ylabel):
+    positive = [v for m in modes for v in m[series] if v > 0]
+    for mode in modes:
+        # A tracked mode can change family where it veers (e.g. bending to
+        # rotation as the blade gets stubby): each piece in its own style.
+        for n, (a, b, family) in enumerate(_family_runs(mode["families"])):
+            style = "-" if family == "bending" else "--"
+            ax.plot(values[a:b + 1], mode[series][a:b + 1], linestyle=style,
+                    color=mode["color"], linewidth=1.6, zorder=3,
+                    label=mode["label"] if n == 0 else None)
+    if positive and max(positive) > SWEEP_LOG_RATIO * min(positive):
+        ax.set_yscale("log")
+    ax.set_xlim(min(values), max(values))
+    ax.set_ylabel(ylabel)
+    ax.grid(True, which="major", color="0.88", linewidth=0.6)
+    ax.set_axisbelow(True)
+
+
+def chart_sweep(data, ax):
+    """Natural frequencies against a scene key: one line per tracked mode."""
+    values = _numbers(_require(data, "values", list), "values")
+    if len(values) < 2:
+        raise InputError("values needs at least two entries")
+    steps = [b - a for a, b in zip(values, values[1:])]
+    if not (all(d > 0 for d in steps) or all(d < 0 for d in steps)):
+        raise InputError("values must be strictly monotonic")
+    key = _require(data, "key", str)
+    modes = _sweep_modes(data, len(values))
+    # Lambda = omega L^2 sqrt(rho A / EI) is worth its own panel only where it
+    # is not the frequency times one constant (the key changes EI, L, rho or
+    # A); otherwise the second panel shows each frequency relative to its
+    # value at the first point, the drop (or rise) of every mode alike.
+    with_lambda = all(m["lambda"] is not None for m in modes) and any(
+        not math.isclose(lam * m["freqs"][0], m["lambda"][0] * f, rel_tol=1e-9)
+        for m in modes for f, lam in zip(m["freqs"], m["lambda"]))
+    for mode in modes:
+        first = mode["freqs"][0]
+        mode["relative"] = [f / first if first > 0 else math.nan
+                            for f in mode["freqs"]]
+
+    fig = ax.figure
+    ax.remove()
+    ax, ax_second = fig.subplots(1, 2)
+    _sweep_panel(ax, values, modes, "freqs", "Frequency [Hz]")
+    if with_lambda:
+        _sweep_panel(ax_second, values, modes, "lambda",
+                     "Frequency parameter Λ = ωL²√(ρA/EI)")
+        ax_second.set_title("(b) frequency parameter (the paper's form)",
+                            fontsize=10)
+    else:
+        _sweep_panel(ax_second, values, modes, "relative",
+                     "Frequency / frequency at the first value")
+        ax_second.set_yscale("linear")
+        ax_second.set_ylim(bottom=0)
+        ax_second.set_title("(b) relative to the first value", fontsize=10)
+    ax.set_title("(a) frequency", fontsize=10)
+    for panel in (ax, ax_second):
+        panel.set_xlabel(key)
+    fig.suptitle(_display_text(data.get("title") or "Frequencies"))
+    handles, labels = ax_second.get_legend_handles_labels()
+    handles += [Line2D([], [], color="0.3", linestyle="-"),
+                Line2D([], [], color="0.3", linestyle="--")]
+    labels += ["bending", "rotation / axial"]
+    ax_second.legend(handles, labels, loc="upper left",
+                     bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0,
+                     fontsize=8, frameon=False)
+
+
+# --------------------------------------------------------------------------
 # Dispatch
 # --------------------------------------------------------------------------
 
 CHARTS = {
     "campbell": chart_campbell,
     "map": chart_map,
+    "sweep": chart_sweep,
     "transient": chart_transient,
 }
+
+
+def _marker_pixels(fig, ax, points):
+    """Data points as PNG pixels at the saved resolution: "x,y;x,y", from the
+    image's top left (matplotlib's display coordinates start bottom left)."""
+    scale = DPI / fig.dpi
+    height = fig.get_figheight() * DPI
+    pixels = []
+    for x, y in points:
+        px, py = ax.transData.transform((x, y))
+        pixels.append(f"{px * scale:.1f},{height - py * scale:.1f}")
+    return ";".join(pixels)
 
 
 def render(kind, input_path, output_path):
@@ -913,6 +1146,9 @@ def render(kind, input_path, output_path):
         CHARTS[kind](data, ax)
         fig.tight_layout()
         metadata = {"Date": None} if fmt == "svg" else {}
+        points = getattr(ax, "bladestab_markers", [])
+        if fmt == "png" and points:
+            metadata["bladestab:markers_px"] = _marker_pixels(fig, ax, points)
         try:
             fig.savefig(output_path, format=fmt, dpi=DPI, metadata=metadata)
         except OSError as exc:

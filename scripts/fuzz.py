@@ -39,7 +39,8 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 NUMBER_KEYS = {
     "blade.length": [], "blade.hub_radius": [], "blade.area": [], "blade.slenderness": [],
     "blade.youngs_modulus": [], "blade.density": [], "blade.poisson": [], "blade.shear_coefficient": [],
-    "blade.stagger_deg": [], "operation.speed_rad_s": [], "load.fmax_over_fcr": [],
+    "blade.stagger_deg": [], "operation.speed_rad_s": [], "operation.tip_compression_over_fcr": [],
+    "load.fmax_over_fcr": [],
     "load.contact_time_rev": [], "load.friction": [], "load.clearance": [], "load.pulse_frequency_hz": [],
     "damping.ratio": ["damping.model=modal", "damping.ratio=0.01"],
     "model.cutoff_hz": ["model.reduction=modal"],
@@ -67,8 +68,9 @@ COMMANDS = {
              "--resolution", "--theta", "--fmax"]),
     "transient": (["--chart", "none", "--revolutions", "0.2"], ["--revolutions", "--tolerance", "--samples-per-rev"]),
     "crosscheck": (["--points", "1", "--revolutions", "6"], ["--points", "--revolutions"]),
+    "sweep": (["--key", "operation.speed_rad_s", "--values", "0:300:2", "--chart", "none"], ["--values", "--count"]),
 }
-WRITES = {"campbell", "map", "transient"}
+WRITES = {"campbell", "map", "transient", "sweep"}
 COMMON_OPTIONS = ["--max-seconds", "--max-memory"]
 
 HOSTILE_NUMBERS = ["nan", "inf", "-inf", "1e308", "-1e308", "1e-308", "-1e-308", "0", "-0", "-1", "1e30",

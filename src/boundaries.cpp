@@ -349,7 +349,7 @@ BoundaryAnalysis boundaries_with_error_estimate(const Scene& scene_in, const Bou
   // The pulses come at the θ asked for: a pulse series (not the cosine approximation) depends on it
   // through the duty t_c/T.
   if (in_load) scene.load.pulse_frequency_hz = *r.theta_rad_s / two_pi;
-  const BladeModel model = assemble_model(scene.blade, scene.model);
+  const BladeModel model = assemble_model(scene);
   const double peak = scene.load.fmax_over_fcr * model.blade.critical_load();
   const LoadSeries load = load_series(scene);
   const auto solver_for = [&](const BladeModel& m, const LoadSeries& series, double cutoff_hz) {
@@ -422,7 +422,7 @@ BoundaryAnalysis boundaries_with_error_estimate(const Scene& scene_in, const Bou
   };
   ModelSpec richer = scene.model;
   richer.terms = reference_terms(richer.basis, richer.terms);
-  BoundarySolver richer_solver = solver_for(assemble_model(scene.blade, richer), load, r.cutoff_hz);
+  BoundarySolver richer_solver = solver_for(assemble_model(scene, richer), load, r.cutoff_hz);
   compare(richer_solver, basis_tail_factor(richer.basis), &ErrorBudget::basis, "basis: no counterpart with a richer basis");
   if (solver.system().kept_modes < solver.system().all_modes) {
     BoundarySolver full = solver_for(model, load, 0);

@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "bladestab/mode_convergence.hpp"
+#include "bladestab/mode_tracking.hpp"
 #include "bladestab/speed_sweep.hpp"
 
 namespace bladestab {
@@ -23,8 +24,7 @@ int tracked_count(const BladeModel& model, const CampbellOptions& options) {
 
 // Modes solved per speed: a few more than tracked, so that modes entering from above can be followed.
 int solve_count(const BladeModel& model, const CampbellOptions& options) {
-  const int tracked = tracked_count(model, options);
-  return std::min(model.layout.size(), tracked + std::max(4, tracked / 2));
+  return tracking_candidates(tracked_count(model, options), model.layout.size());
 }
 
 // Index of the mode in `modes` most like `shape` (unit columns: MAC = |aᴴ b|²).
@@ -35,23 +35,11 @@ int most_like(const SpeedModes& modes, const Eigen::VectorXcd& shape, double* ma
   return static_cast<int>(best);
 }
 
-// Greedy assignment by largest MAC: result[i] = index in `candidates` for tracked shape i.
+// Greedy assignment by largest MAC (unit columns: MAC = |aᴴ b|²): result[i] = index in
+// `candidates` for tracked shape i.
 std::vector<int> match_by_shape(const Eigen::MatrixXcd& tracked, const Eigen::MatrixXcd& candidates,
                                 std::vector<double>& mac_out) {
-  const Eigen::Index nt = tracked.cols(), nc = candidates.cols();
-  const Eigen::MatrixXd mac = (tracked.adjoint() * candidates).cwiseAbs2();
-  std::vector<int> result(nt, -1);
-  mac_out.assign(nt, 0);
-  Eigen::MatrixXd open = mac;
-  for (Eigen::Index step = 0; step < std::min(nt, nc); ++step) {
-    Eigen::Index i = 0, j = 0;
-    open.maxCoeff(&i, &j);
-    result[i] = static_cast<int>(j);
-    mac_out[i] = mac(i, j);
-    open.row(i).setConstant(-1);
-    open.col(j).setConstant(-1);
-  }
-  return result;
+  return assign_by_correlation((tracked.adjoint() * candidates).cwiseAbs2(), mac_out);
 }
 
 // Root of g(Ω) = f(Ω) − kΩ/2π in [a, b] by the Illinois variant of regula falsi.
@@ -319,7 +307,7 @@ CampbellWithErrors campbell_with_error_estimate(const Scene& scene, const Campbe
   ModelSpec spec = scene.model;
   bool dense = false;  // set when a reduced sweep could not certify some speed
   while (true) {
-    auto model = std::make_unique<BladeModel>(assemble_model(scene.blade, spec));
+    auto model = std::make_unique<BladeModel>(assemble_model(scene, spec));
     const int count = solve_count(*model, wanted), nt = tracked_count(*model, wanted);
     // The richer models are solved densely where they are solved whole, as `modes` does (ARPACK
     // is for the lowest modes of large models, and some damped pairs defeat it).
@@ -333,7 +321,7 @@ CampbellWithErrors campbell_with_error_estimate(const Scene& scene, const Campbe
       ModelSpec richer = spec;
       richer.terms = reference_terms(spec.basis, terms.back());
       terms.push_back(richer.terms);
-      refs.push_back({std::make_unique<BladeModel>(assemble_model(scene.blade, richer)), nullptr, {}});
+      refs.push_back({std::make_unique<BladeModel>(assemble_model(scene, richer)), nullptr, {}});
     }
     const auto raise = [&](double estimate) {
       const std::optional<int> next = terms_for_tolerance(spec.basis, spec.terms, estimate, tolerance);

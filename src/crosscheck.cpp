@@ -28,7 +28,7 @@ double transient_growth(const BladeModel& model, const Scene& scene, double revo
 }  // namespace
 
 std::vector<CrosscheckPoint> crosscheck(const Scene& base, const CrosscheckOptions& o) {
-  const BladeModel model = assemble_model(base.blade, base.model);
+  const BladeModel model = assemble_model(base);
   std::vector<CrosscheckPoint> points;
   int done = 0;
   for (double fbar : o.fmax_over_fcr) {

@@ -17,13 +17,13 @@ Eigen::MatrixXd damping_matrix(const BladeModel& model, const DampingSpec& spec,
         throw InputError(fmt::format("damping.model = \"paper\": C_D = (2ζ/Ω) K_S is undefined at Ω = {} rad/s; "
                                      "use \"modal\" or \"rayleigh\" for speeds down to 0", speed));
       }
-      return (2 * spec.ratio / speed) * model.K_S;  // (37)
+      return (2 * spec.ratio / speed) * model.elastic_stiffness();  // (37)
     case DampingModel::rayleigh: {
       // ζ(ω) = α/(2ω) + βω/2 equal to ζ at ω1 and ω2.
       const double w1 = two_pi * spec.frequencies_hz[0], w2 = two_pi * spec.frequencies_hz[1];
       const double alpha = 2 * spec.ratio * w1 * w2 / (w1 + w2);
       const double beta = 2 * spec.ratio / (w1 + w2);
-      return alpha * model.M + beta * model.K_S;
+      return alpha * model.M + beta * model.elastic_stiffness();
     }
     case DampingModel::modal: {
       Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(model.stiffness(speed), model.M);

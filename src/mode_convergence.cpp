@@ -163,7 +163,7 @@ ConvergedModes modes_with_error_estimate(const Scene& scene, int count, EigenSol
   if (tolerance) check_tolerance(*tolerance);
   ModelSpec spec = scene.model;
   while (true) {
-    BladeModel model = assemble_model(scene.blade, spec);
+    BladeModel model = assemble_model(scene, spec);
     ModalSolution solution = modes_of(model, scene, count, solver);
     // Richer models: one for the Legendre basis' exponential convergence, two for the sine
     // basis' algebraic one. They need more modes so that every family is represented to the same rank.
@@ -172,7 +172,7 @@ ConvergedModes modes_with_error_estimate(const Scene& scene, int count, EigenSol
     for (int level = 0; level < (spec.basis == BasisKind::sine ? 2 : 1); ++level) {
       ModelSpec richer = spec;
       richer.terms = reference_terms(spec.basis, terms.back());
-      models.push_back(modes_of(assemble_model(scene.blade, richer), scene, 0, EigenSolverKind::dense));
+      models.push_back(modes_of(assemble_model(scene, richer), scene, 0, EigenSolverKind::dense));
       terms.push_back(richer.terms);
     }
     std::vector<double> rounding;

@@ -10,8 +10,18 @@
 #include "bladestab/basis.hpp"
 #include "bladestab/numerical_error.hpp"
 #include "bladestab/quadrature.hpp"
+#include "bladestab/static_buckling.hpp"
 
 namespace bladestab {
+
+DofLayout dof_layout(const ModelSpec& spec) {
+  DofLayout layout;
+  layout.theta_count = spec.theory == BeamTheory::timoshenko ? spec.terms : 0;
+  layout.lateral_count = spec.terms;
+  layout.axial_count = spec.axial ? spec.terms : 0;
+  return layout;
+}
+
 namespace {
 
 // ∫ c(s) a_i(s) b_j(s) ds  =  aᵀ diag(w ∘ c) b.
@@ -38,18 +48,8 @@ void check_model(const BladeModel& model, const BladeSpec& blade) {
       blade.inertia, blade.youngs_modulus, blade.density, to_string(model.spec.basis), model.spec.terms));
 }
 
-}  // namespace
-
-DofLayout dof_layout(const ModelSpec& spec) {
-  DofLayout layout;
-  layout.theta_count = spec.theory == BeamTheory::timoshenko ? spec.terms : 0;
-  layout.lateral_count = spec.terms;
-  layout.axial_count = spec.axial ? spec.terms : 0;
-  return layout;
-}
-
-BladeModel assemble_model(const BladeSpec& blade_spec, const ModelSpec& spec) {
-  BladeModel model{BladeProperties(blade_spec), spec, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}};
+BladeModel assemble_blade(const BladeSpec& blade_spec, const ModelSpec& spec) {
+  BladeModel model{BladeProperties(blade_spec), spec, {}, 0, {}, {}, {}, {}, {}, {}, {}, {}, {}};
   const BladeProperties& b = model.blade;
   const bool timoshenko = spec.theory == BeamTheory::timoshenko;
   const int N = spec.terms;
@@ -130,6 +130,21 @@ BladeModel assemble_model(const BladeSpec& blade_spec, const ModelSpec& spec) {
   model.K_C1 = symmetrized(model.K_C1);
   model.G = symmetrized(model.G);
   check_model(model, blade_spec);
+  return model;
+}
+
+}  // namespace
+
+BladeModel assemble_model(const Scene& scene) { return assemble_model(scene, scene.model); }
+
+BladeModel assemble_model(const Scene& scene, const ModelSpec& spec) {
+  BladeModel model = assemble_blade(scene.blade, spec);
+  // A static tip compression F_a = c F_cr is a constant tip tension −F_a: its geometric stiffness
+  // −F_a G joins the speed-free stiffness (SPEC (23), (40) with F(t) = −F_a), its axial push the
+  // steady load (steady_load()).
+  model.static_tip_force_n = -scene.operation.tip_compression_over_fcr * model.blade.critical_load();
+  if (model.static_tip_force_n != 0) model.K_S += model.static_tip_force_n * model.G;
+  if (std::optional<InputError> unstable = static_instability(model, scene.operation)) throw *unstable;
   return model;
 }
 

@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <vector>
+
+#include <lapacke.h>
 
 namespace bladestab {
 namespace {
@@ -47,6 +50,24 @@ Eigenpairs upper_half_plane(const Eigen::VectorXcd& values, const Eigen::MatrixX
     out.vectors.col(j) = to_dofs(mass, p);
   }
   return out;
+}
+
+// The upper half of the eigenpairs of a Hermitian matrix H of even order 2n, ascending — for
+// H = −iS, the n positive frequencies ω: LAPACK's MRRR driver zheevr for that subset. The QR
+// iteration that Eigen's SelfAdjointEigenSolver calls (zheev) accumulates its rotations into all
+// 2n complex vectors, two thirds of a parameter sweep's time (measured with perf); both are
+// backward stable, with absolute eigenvalue errors of order ε‖H‖.
+void upper_half_eigenpairs(Eigen::MatrixXcd H, Eigen::VectorXd& values, Eigen::MatrixXcd& vectors) {
+  const lapack_int order = static_cast<lapack_int>(H.rows()), n = order / 2;
+  values.resize(order);
+  vectors.resize(order, n);
+  std::vector<lapack_int> support(2 * static_cast<std::size_t>(n));
+  lapack_int found = 0;
+  const lapack_int info =
+      LAPACKE_zheevr(LAPACK_COL_MAJOR, 'V', 'I', 'L', order, H.data(), order, 0, 0, n + 1, order,
+                     LAPACKE_dlamch('S'), &found, values.data(), vectors.data(), order, support.data());
+  if (info != 0 || found != n) throw std::runtime_error("Hermitian eigenvalue iteration did not converge");
+  values.conservativeResize(n);
 }
 
 Mode describe(const BladeModel& model, std::complex<double> lambda, Eigen::VectorXcd q) {
@@ -117,11 +138,12 @@ Eigenpairs dense_eigenpairs(const SecondOrderSystem& sys) {
     if (is_skew(sys.C)) {
       // Conservative gyroscopic system: S is real skew, −iS Hermitian, its eigenvalues ω exact.
       S.bottomRightCorner(n, n) = -0.5 * (Ct - Ct.transpose());  // skew to the last bit
-      const Eigen::MatrixXcd H = std::complex<double>(0, -1) * S.cast<std::complex<double>>();
-      Eigen::SelfAdjointEigenSolver<Eigen::MatrixXcd> eig(H);
-      for (Eigen::Index k = 0; k < n; ++k) {  // eigenvalues ascend: the last n are the positive ω
-        out.values(k) = std::complex<double>(0, eig.eigenvalues()(n + k));
-        out.vectors.col(k) = to_dofs(mass, eig.eigenvectors().col(n + k).tail(n) / out.values(k));  // p = ṗ/λ
+      Eigen::VectorXd omega;
+      Eigen::MatrixXcd vectors;
+      upper_half_eigenpairs(std::complex<double>(0, -1) * S.cast<std::complex<double>>(), omega, vectors);
+      for (Eigen::Index k = 0; k < n; ++k) {
+        out.values(k) = std::complex<double>(0, omega(k));
+        out.vectors.col(k) = to_dofs(mass, vectors.col(k).tail(n) / out.values(k));  // p = ṗ/λ
       }
       return out;
     }

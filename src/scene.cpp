@@ -78,6 +78,8 @@ std::string show(const toml::node& node) {
 // unknown.
 class SectionReader {
 public:
+  using Reason = SceneKeyError::Reason;
+
   SectionReader(const toml::table& root, std::string section, std::string source)
       : section_(std::move(section)), source_(std::move(source)) {
     const toml::node* node = root.get(section_);
@@ -115,7 +117,7 @@ public:
 
   bool boolean(const std::string& key) {
     const toml::node& node = require(key);
-    if (!node.is_boolean()) fail(key, node, "must be true or false");
+    if (!node.is_boolean()) fail(key, node, "must be true or false", Reason::not_numeric);
     return node.as_boolean()->get();
   }
 
@@ -124,7 +126,7 @@ public:
     const toml::node& node = require(key);
     std::string names;
     for (const auto& [name, unused] : options) names += (names.empty() ? "" : ", ") + fmt::format("\"{}\"", name);
-    if (!node.is_string()) fail(key, node, "must be one of " + names);
+    if (!node.is_string()) fail(key, node, "must be one of " + names, Reason::not_numeric);
     const auto it = options.find(node.as_string()->get());
     if (it == options.end()) fail(key, node, "must be one of " + names);
     return it->second;
@@ -136,7 +138,8 @@ public:
     const toml::array* array = node.as_array();
     const std::string what = fmt::format("must be a list of {} finite numbers, each in {} ({})", count,
                                          allowed.text(), meaning);
-    if (array == nullptr || array->size() != count) fail(key, node, what);
+    if (array == nullptr) fail(key, node, what, Reason::not_numeric);
+    if (array->size() != count) fail(key, node, what);
     std::vector<double> values;
     for (const toml::node& item : *array) {
       std::optional<double> v;
@@ -154,13 +157,15 @@ public:
     for (const auto& [key, node] : *table_) {
       const std::string name(key.str());
       if (used_.count(name) == 0 && known_.count(name) != 0) {
-        fail_plain(fmt::format("{}.{} = {}: not used with {}", section_, name, show(node), unused_because));
+        fail_key(name, Reason::unused,
+                 fmt::format("{}.{} = {}: not used with {}", section_, name, show(node), unused_because));
       }
       if (used_.count(name) == 0) {
         std::string allowed;
         for (const auto& k : known_) allowed += (allowed.empty() ? "" : ", ") + k;
-        fail_plain(fmt::format("{}.{} = {}: unknown key (known in [{}]: {})", section_, echoed(name),
-                               show(node), section_, allowed));
+        fail_key(name, Reason::unknown,
+                 fmt::format("{}.{} = {}: unknown key (known in [{}]: {})", section_, echoed(name), show(node),
+                             section_, allowed));
       }
     }
   }
@@ -169,8 +174,11 @@ public:
     for (const char* k : keys) known_.insert(k);
   }
 
-  [[noreturn]] void fail(const std::string& key, const toml::node& node, const std::string& what) const {
-    fail_plain(fmt::format("{}.{} = {}: {}", section_, key, show(node), what));
+  // A value the key does not take: of the wrong kind for a key that takes no number
+  // (not_numeric), else not allowed.
+  [[noreturn]] void fail(const std::string& key, const toml::node& node, const std::string& what,
+                         Reason reason = Reason::not_allowed) const {
+    fail_key(key, reason, fmt::format("{}.{} = {}: {}", section_, key, show(node), what));
   }
   [[noreturn]] void fail_both(const std::string& a, const std::string& b, const std::string& what) const {
     fail_plain(fmt::format("{0}.{1} = {2} and {0}.{3} = {4}: {5}", section_, a, show(*table_->get(a)), b,
@@ -195,6 +203,9 @@ private:
 
   [[noreturn]] void fail_plain(const std::string& message) const {
     throw InputError(fmt::format("{}: {}", source_, message));
+  }
+  [[noreturn]] void fail_key(const std::string& key, Reason reason, const std::string& message) const {
+    throw SceneKeyError(fmt::format("{}: {}", source_, message), section_ + "." + key, reason);
   }
 
   std::string section_;
@@ -240,8 +251,9 @@ Scene read_scene(const toml::table& root, const std::string& source_name, const 
   for (const auto& [key, node] : root) {
     static const std::set<std::string> sections{"blade", "model", "operation", "damping", "load"};
     if (sections.count(std::string(key.str())) == 0) {
-      throw InputError(fmt::format("{}: [{}]: unknown section (known: blade, model, operation, damping, load)",
-                                   source, echoed(key.str())));
+      throw SceneKeyError(fmt::format("{}: [{}]: unknown section (known: blade, model, operation, damping, load)",
+                                      source, echoed(key.str())),
+                          std::string(key.str()), SceneKeyError::Reason::unknown);
     }
   }
 
@@ -292,13 +304,21 @@ Scene read_scene(const toml::table& root, const std::string& source_name, const 
   if (model.has("reduction_vectors")) m.reduction.vectors = model.integer("reduction_vectors", 1, 200);
   m.reduction.cutoff_hz = model.optional_number("cutoff_hz", limits::cutoff_hz, "modal cut-off in Hz").value_or(0);
   if (m.reduction.kind != ReductionKind::modal && m.reduction.cutoff_hz > 0) {
-    throw InputError(fmt::format("{}: model.cutoff_hz = {}: not used with model.reduction = \"{}\" (it needs \"modal\")",
-                                 source, m.reduction.cutoff_hz, to_string(m.reduction.kind)));
+    throw SceneKeyError(fmt::format("{}: model.cutoff_hz = {}: not used with model.reduction = \"{}\" (it needs \"modal\")",
+                                    source, m.reduction.cutoff_hz, to_string(m.reduction.kind)),
+                        "model.cutoff_hz", SceneKeyError::Reason::unused);
   }
   model.reject_unknown();
 
   SectionReader operation(root, "operation", source);
   scene.operation.speed_rad_s = operation.number("speed_rad_s", limits::speed_rad_s, "rotor speed Ω in rad/s");
+  // A static compressive tip load F_a = value · F_cr (Sinha's Fig. 9); whether the blade carries it
+  // at its speed is checked where the model is assembled (model.hpp).
+  scene.operation.tip_compression_over_fcr =
+      operation
+          .optional_number("tip_compression_over_fcr", limits::tip_compression_over_fcr,
+                           "static tip compression F_a / F_cr, compression positive; F_cr = π² E I / (4 L²)")
+          .value_or(0);
   operation.reject_unknown();
 
   SectionReader damping(root, "damping", source);

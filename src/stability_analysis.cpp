@@ -27,7 +27,7 @@ struct Fidelity {
 };
 
 PeriodicSystem system_at(const Scene& scene, const Fidelity& f) {
-  return periodic_system(assemble_model(scene.blade, f.model), scene, f.load, f.reduction);
+  return periodic_system(assemble_model(scene, f.model), scene, f.load, f.reduction);
 }
 
 // The multipliers of one fidelity: the true pulse train by its piecewise monodromy, a series by the

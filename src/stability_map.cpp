@@ -2,11 +2,12 @@
 
 #include <algorithm>
 #include <atomic>
-#include <exception>
 #include <cmath>
+#include <exception>
 #include <limits>
 #include <map>
 #include <mutex>
+#include <optional>
 #include <thread>
 #include <tuple>
 #include <unordered_map>
@@ -34,9 +35,20 @@ Scene scene_at(Scene scene, double speed, double theta, double fbar) {
   return scene;
 }
 
-// The shading integrates the automatic reduced model with the map's vectors at each point.
-PeriodicSystem system_for(const BladeModel& model, const Scene& scene, int vectors) {
-  return periodic_system(model, scene, load_series(scene), {ReductionKind::automatic, vectors, 0});
+// The Floquet multipliers at one map point, on the automatic reduced model with the map's vectors
+// (0: the whole Ritz model):
+// the load's series by the automatic method, the true pulse train (load.approximation = "exact")
+// by its piecewise monodromy — the free flight's exponential and the contact's Magnus steps
+// (pulse_monodromy.hpp).
+FloquetResult point_multipliers(const BladeModel& model, const Scene& scene, int vectors, double tolerance) {
+  const LoadSeries load = load_series(scene);
+  const ReductionSpec reduction = vectors > 0 ? ReductionSpec{ReductionKind::automatic, vectors, 0}
+                                              : ReductionSpec{ReductionKind::none, 0, 0};
+  const PeriodicSystem sys = periodic_system(model, scene, load, reduction);
+  if (load.exact_pulse) {
+    return pulse_train_multipliers(sys, pulse_train(scene), {FloquetMethod::automatic, 0, tolerance, false});
+  }
+  return floquet_multipliers(sys, {FloquetMethod::automatic, 0, tolerance, false});
 }
 
 // One model of the boundary equations: a Ritz model, its reduction, K harmonics per family.
@@ -183,6 +195,141 @@ private:
   std::vector<BoundaryCurve> curves_;
 };
 
+// Closes curves through their turning points. Where two curves of one family start (or end) on the
+// same trace line with no boundary of that family between them there, a region's boundary may
+// fold back between that line and the one before (after): the pair of boundaries coalesces at the
+// turning point and vanishes beyond it. The fold's line is found by bisection on the trace
+// parameter — the pair exists on one side only — to 2^−fold_bisections of the line spacing; the
+// curves are joined through the pair there (two boundary points a hair apart) if it did coalesce (its gap shrank tenfold: near a fold
+// it shrinks like the square root of the distance, 64× over the bisection), or if it was closer
+// than the boundary equations resolve a pair (a thin tongue, drawn as one line). In the θ plane a
+// pair on the lowest line above F̄ = 0 belongs to a region that opens on the axis, where its tip
+// is known: θ = 2ω_m/n for mode m and order n (the boundary equations at F = 0). Curves that leave
+// the window, and pairs that belong to two regions, stay open.
+constexpr int fold_bisections = 12;
+
+struct CurveEnd {
+  int curve;
+  bool at_start;
+};
+
+std::vector<BoundaryCurve> close_folds(std::vector<BoundaryCurve> curves, const std::vector<double>& trace,
+                                       bool theta_plane, double max_jump, int threads,
+                                       const std::function<std::vector<double>(int multiplier, double line)>& along,
+                                       const Eigen::VectorXd& unloaded_omega) {
+  // Points as (line value, value along the line): F̄ and θ in the θ plane, Ω and F̄ in the speed plane.
+  const auto line_value = [&](const BoundaryCurve& c, std::size_t k) { return theta_plane ? c.fbar[k] : c.x[k]; };
+  const auto value = [&](const BoundaryCurve& c, std::size_t k) { return theta_plane ? c.x[k] : c.fbar[k]; };
+  const auto end_index = [](const BoundaryCurve& c, bool start) { return start ? std::size_t{0} : c.x.size() - 1; };
+  const auto line_of = [&](const BoundaryCurve& c, bool start) {
+    return static_cast<int>(std::find(trace.begin(), trace.end(), line_value(c, end_index(c, start))) - trace.begin());
+  };
+  // Whether a boundary of the family lies strictly between u and v on the line.
+  const auto between = [&](int multiplier, double line, double u, double v) {
+    const double lo = std::min(u, v), hi = std::max(u, v);
+    for (const BoundaryCurve& c : curves) {
+      if (c.multiplier != multiplier) continue;
+      for (std::size_t k = 0; k < c.x.size(); ++k) {
+        if (line_value(c, k) == line && value(c, k) > lo && value(c, k) < hi) return true;
+      }
+    }
+    return false;
+  };
+  // Pairs of ends on one line, of one family, nearest each other with nothing between.
+  std::vector<std::pair<CurveEnd, CurveEnd>> folds;
+  std::vector<bool> taken(curves.size(), false);
+  for (std::size_t a = 0; a < curves.size(); ++a) {
+    for (const bool start : {true, false}) {
+      if (taken[a] || curves[a].x.empty()) continue;
+      const int line = line_of(curves[a], start), beyond = start ? line - 1 : line + 1;
+      if (beyond < 0 || beyond >= static_cast<int>(trace.size())) continue;
+      const double va = value(curves[a], end_index(curves[a], start));
+      int best = -1;
+      double best_gap = std::numeric_limits<double>::infinity();
+      for (std::size_t b = 0; b < curves.size(); ++b) {
+        if (b == a || taken[b] || curves[b].multiplier != curves[a].multiplier || curves[b].x.empty()) continue;
+        if (line_of(curves[b], start) != line) continue;
+        const double gap = std::abs(value(curves[b], end_index(curves[b], start)) - va);
+        if (gap < best_gap) best_gap = gap, best = static_cast<int>(b);
+      }
+      if (best < 0 || between(curves[a].multiplier, trace[line], va, value(curves[best], end_index(curves[best], start)))) {
+        continue;
+      }
+      taken[a] = taken[best] = true;
+      folds.push_back({{static_cast<int>(a), start}, {best, start}});
+    }
+  }
+  // Each fold's turning point by bisection between the line the pair is on and the one beyond.
+  // The points that join a fold's two curves, (line, value along it), boundary points all; unset
+  // where the pair is not joined.
+  using Join = std::vector<std::pair<double, double>>;
+  std::vector<std::optional<Join>> joins(folds.size());
+  parallel_for(folds.size(), threads, [&](std::size_t f) {
+    const auto& [a, b] = folds[f];
+    const int line = line_of(curves[a.curve], a.at_start);
+    double inside = trace[line], outside = trace[a.at_start ? line - 1 : line + 1];
+    double va = value(curves[a.curve], end_index(curves[a.curve], a.at_start));
+    double vb = value(curves[b.curve], end_index(curves[b.curve], b.at_start));
+    const double first_gap = std::abs(va - vb);
+    const BoundaryCurve &ca = curves[a.curve], &cb = curves[b.curve];
+    if (theta_plane && outside <= 0 && ca.mode == cb.mode && ca.order == cb.order && ca.order > 0 &&
+        ca.mode <= unloaded_omega.size()) {
+      const double tip = 2 * unloaded_omega(ca.mode - 1) / ca.order;
+      if (std::abs(tip - 0.5 * (va + vb)) <= std::max(max_jump, first_gap)) joins[f] = Join{{0.0, tip}};
+      return;
+    }
+    if (first_gap <= 1e-3 * max_jump) {  // one line to the eye: joined where the pair ends
+      joins[f] = Join{};
+      return;
+    }
+    for (int step = 0; step < fold_bisections; ++step) {
+      const double middle = 0.5 * (inside + outside);
+      const std::vector<double> found = along(curves[a.curve].multiplier, middle);
+      // Each of the pair's boundaries continued by the nearest one within a jump (or the pair's gap).
+      const double reach = std::max(max_jump, std::abs(va - vb));
+      const auto nearest = [&](double v) {
+        double best = std::numeric_limits<double>::quiet_NaN();
+        for (double x : found) {
+          if (std::abs(x - v) <= reach && (std::isnan(best) || std::abs(x - v) < std::abs(best - v))) best = x;
+        }
+        return best;
+      };
+      const double na = nearest(va), nb = nearest(vb);
+      if (std::isfinite(na) && std::isfinite(nb) && na != nb) {
+        inside = middle, va = na, vb = nb;
+      } else {
+        outside = middle;
+      }
+    }
+    if (std::abs(va - vb) <= 0.1 * first_gap) joins[f] = Join{{inside, va}, {inside, vb}};
+  });
+  // Joined: a reversed, the turning point, b (or the mirror for ends).
+  std::vector<bool> merged(curves.size(), false);
+  std::vector<BoundaryCurve> out;
+  for (std::size_t f = 0; f < folds.size(); ++f) {
+    if (!joins[f]) continue;
+    const auto& [a, b] = folds[f];
+    BoundaryCurve first = curves[a.curve], second = curves[b.curve];
+    if (a.at_start) {
+      std::reverse(first.x.begin(), first.x.end()), std::reverse(first.fbar.begin(), first.fbar.end());
+    } else {
+      std::reverse(second.x.begin(), second.x.end()), std::reverse(second.fbar.begin(), second.fbar.end());
+    }
+    for (const auto& [line, along_line] : *joins[f]) {
+      first.x.push_back(theta_plane ? along_line : line);
+      first.fbar.push_back(theta_plane ? line : along_line);
+    }
+    first.x.insert(first.x.end(), second.x.begin(), second.x.end());
+    first.fbar.insert(first.fbar.end(), second.fbar.begin(), second.fbar.end());
+    out.push_back(std::move(first));
+    merged[a.curve] = merged[b.curve] = true;
+  }
+  for (std::size_t c = 0; c < curves.size(); ++c) {
+    if (!merged[c]) out.push_back(std::move(curves[c]));
+  }
+  return out;
+}
+
 // Reduced-basis vectors per load level for the map: enough unloaded modes (at the window's lowest
 // speed, where they are lowest) to hold every tongue drawn. A tongue of order n ≤ max_order sits
 // near θ = 2ω/n, so modes up to ω = max_order·θ_max/2 are drawn; twice that is kept (the load
@@ -289,9 +436,8 @@ ShadingFidelity check_shading(const BladeModel& model, const MapOptions& o, int 
   std::vector<double> part(points.size(), 0);
   parallel_for(points.size(), o.threads, [&](std::size_t k) {
     const Scene at = scene_at_point(points[k].first, points[k].second);
-    const FloquetOptions options{FloquetMethod::automatic, 0, o.tolerance / 4, false};
-    const FloquetResult r = floquet_multipliers(system_for(model, at, vectors), options);
-    const FloquetResult richer = floquet_multipliers(system_for(model, at, 2 * vectors), options);
+    const FloquetResult r = point_multipliers(model, at, vectors, o.tolerance / 4);
+    const FloquetResult richer = point_multipliers(model, at, 2 * vectors, o.tolerance / 4);
     part[k] = (2 * std::abs(r.max_abs_multiplier - richer.max_abs_multiplier) + r.error_estimate + richer.error_estimate) /
               std::max(1.0, r.max_abs_multiplier);
   });
@@ -306,7 +452,7 @@ ShadingFidelity check_shading(const BladeModel& model, const MapOptions& o, int 
 }  // namespace
 
 StabilityMap stability_map(const Scene& scene, const MapOptions& o, const std::function<void(int, int)>& progress) {
-  const BladeModel model = assemble_model(scene.blade, scene.model);
+  const BladeModel model = assemble_model(scene);
   const double fcr = model.blade.critical_load();
   const bool theta_plane = o.plane == MapPlane::theta_fmax;
   const double speed = scene.operation.speed_rad_s;
@@ -314,12 +460,6 @@ StabilityMap stability_map(const Scene& scene, const MapOptions& o, const std::f
     throw InputError("map: the speed plane needs speeds > 0 (θ = kΩ must be a pulse frequency)");
   }
   const LoadSeries scene_load = load_series(scene);
-  if (scene_load.exact_pulse) {
-    // The shading takes the load's Fourier series; the true train (integrated through each
-    // contact) is not mapped yet, and its series would be the mean alone.
-    throw InputError("load.approximation = \"exact\": maps need the load as a series; use \"fourier\" (the "
-                     "pulse's own series) or \"cosine\"");
-  }
   const int nx = static_cast<int>(o.grid_x.size()), ny = static_cast<int>(o.grid_fbar.size());
   // The refinement's points are known one level at a time: the total grows as they are.
   std::atomic<int> total{nx * ny + static_cast<int>(o.trace.size())};
@@ -347,7 +487,7 @@ StabilityMap stability_map(const Scene& scene, const MapOptions& o, const std::f
                          o.approximation};
   ModelSpec richer_spec = scene.model;
   richer_spec.terms = reference_terms(richer_spec.basis, richer_spec.terms);
-  const BladeModel richer = assemble_model(scene.blade, richer_spec);
+  const BladeModel richer = assemble_model(scene, richer_spec);
   LineCache cache;
   // A pulse's own series (not the cosine approximation) puts many harmonics into the balance, and
   // its boundaries need many more harmonics, not monotonically: on the paper blade with t_c = 0.3
@@ -384,7 +524,21 @@ StabilityMap stability_map(const Scene& scene, const MapOptions& o, const std::f
     }
     tracer.add(static_cast<int>(i), shown, along, o.trace[i], theta_plane);
   }
-  map.curves = tracer.curves();
+  // The unloaded frequencies of the curves' model at the map's speed: the tips of the θ plane's
+  // regions on the F̄ = 0 axis (the speed plane has no such line).
+  const Eigen::VectorXd unloaded_omega =
+      theta_plane ? periodic_system(model, scene_at(scene, speed, two_pi, 0), load_series(scene_at(scene, speed, two_pi, 0)),
+                                    curve_model.reduction)
+                        .modal_frequencies
+                  : Eigen::VectorXd();
+  map.curves = close_folds(tracer.curves(), o.trace, theta_plane, 0.05 * window.span(), o.threads,
+                           [&](int multiplier, double line) {
+    std::vector<double> values;
+    for (const Boundary& b : window.on_line(scene, curve_model, line)) {
+      if (b.multiplier == multiplier && window.shown(b, curve_model.approximation)) values.push_back(window.along(b));
+    }
+    return values;
+  }, unloaded_omega);
   map.curves.erase(std::remove_if(map.curves.begin(), map.curves.end(), [](const BoundaryCurve& c) { return c.x.size() < 2; }),
                    map.curves.end());
 
@@ -392,17 +546,15 @@ StabilityMap stability_map(const Scene& scene, const MapOptions& o, const std::f
   const auto scene_at_point = [&](double x, double fbar) {
     return theta_plane ? scene_at(scene, speed, x, fbar) : scene_at(scene, x, o.engine_order * x, fbar);
   };
+  // Where twice the vectors would be the whole Ritz model, the whole model is used (0 vectors):
+  // the reference the check compares with, so its reduction part is 0.
   for (int vectors = window_vectors(model, scene, window);; vectors *= 2) {
+    if (6 * vectors >= model.layout.size()) {
+      map.shading_fidelity = ShadingFidelity{0, {}, 0.0, true};
+      break;
+    }
     map.shading_fidelity = check_shading(model, o, vectors, scene_at_point);
     if (map.shading_fidelity.tolerance_met) break;
-    if (6 * vectors >= model.layout.size()) {  // the check's richer model would no longer be reduced
-      const ShadingCheck& worst = *std::max_element(
-          map.shading_fidelity.checked.begin(), map.shading_fidelity.checked.end(),
-          [](const ShadingCheck& a, const ShadingCheck& b) { return a.relative_error < b.relative_error; });
-      throw NumericalError(fmt::format("map: the shading's reduced model ({} vectors per load level) differs from a "
-                                       "richer one by {:.2g} (relative) at ({:g}, F̄ = {:g}), above the map's tolerance {:g}",
-                                       vectors, worst.relative_error, worst.x, worst.fbar, o.tolerance));
-    }
   }
 
   // The scene's own point, where the window holds it: its max|ρ| on the shading's model and the
@@ -416,9 +568,8 @@ StabilityMap stability_map(const Scene& scene, const MapOptions& o, const std::f
     MapPoint p;
     p.x = scene_x;
     p.fbar = scene_fbar;
-    const FloquetResult r = floquet_multipliers(system_for(model, scene_at_point(scene_x, scene_fbar),
-                                                           map.shading_fidelity.reduction_vectors),
-                                                {FloquetMethod::automatic, 0, o.tolerance, false});
+    const FloquetResult r =
+        point_multipliers(model, scene_at_point(scene_x, scene_fbar), map.shading_fidelity.reduction_vectors, o.tolerance);
     p.max_abs_multiplier = r.max_abs_multiplier;
     const std::vector<Boundary> along = map.curve_fidelity.drawn ? window.along_fbar(scene, curve_model, speed, scene_theta)
                                                                  : std::vector<Boundary>{};
@@ -463,8 +614,7 @@ StabilityMap stability_map(const Scene& scene, const MapOptions& o, const std::f
       const double x = lattice_x(points[k].first), fbar = lattice_y(points[k].second);
       if (x > 0) {
         const Scene at = scene_at_point(x, fbar);
-        const FloquetResult r = floquet_multipliers(system_for(model, at, map.shading_fidelity.reduction_vectors),
-                                                    {FloquetMethod::automatic, 0, o.tolerance, false});
+        const FloquetResult r = point_multipliers(model, at, map.shading_fidelity.reduction_vectors, o.tolerance);
         result[k] = r.max_abs_multiplier;
         std::lock_guard<std::mutex> lock(error_lock);
         max_error = std::max(max_error, r.error_estimate / std::max(1.0, r.max_abs_multiplier));

@@ -18,7 +18,7 @@ constexpr double two_pi = 6.28318530717958647692;
 Eigen::VectorXd rotating_equilibrium(const BladeModel& model, double speed) {
   const int n = model.layout.size();
   Eigen::VectorXd x = Eigen::VectorXd::Zero(2 * n);
-  x.head(n) = model.stiffness(speed).ldlt().solve(speed * speed * model.P_cf1);
+  x.head(n) = model.stiffness(speed).ldlt().solve(model.steady_load(speed));
   return x;
 }
 
@@ -69,7 +69,7 @@ TransientResult run_transient(const BladeModel& model, const Scene& scene, const
   const Eigen::MatrixXd D = damping_matrix(model, scene.damping, speed);
   const Eigen::MatrixXd C = D + model.gyroscopic(speed);
   const Eigen::MatrixXd MiK = mass.solve(K), MiC = mass.solve(C), MiG = mass.solve(model.G);
-  const Eigen::VectorXd Mi_cf = mass.solve(Eigen::VectorXd(speed * speed * model.P_cf1));
+  const Eigen::VectorXd Mi_cf = mass.solve(model.steady_load(speed));
   const Eigen::VectorXd Mi_axial = mass.solve(Eigen::VectorXd(model.tip_axial.transpose()));
   const Eigen::VectorXd Mi_lateral = mass.solve(Eigen::VectorXd(model.tip_lateral.transpose()));
   const double mu = scene.load.friction, cos_beta = std::cos(model.blade.beta_rad);
@@ -84,8 +84,9 @@ TransientResult run_transient(const BladeModel& model, const Scene& scene, const
     return -mu * std::abs(F) * cos_beta * std::tanh(v_rel / o.friction_velocity);
   };
   // The state is x = [f; ḟ; W], W the work done on the blade since the start: the energy balance
-  // dE/dt = Ẇ = ḟᵀ(F_ax (p_u − G f) + F_lat p_v − D ḟ), E = ½ḟᵀMḟ + ½fᵀK(Ω)f − Ω²P_cfᵀf the
-  // rotating-frame energy ((55)–(58); the Coriolis forces do no work). A Runge–Kutta method keeps
+  // dE/dt = Ẇ = ḟᵀ(F_ax (p_u − G f) + F_lat p_v − D ḟ), E = ½ḟᵀMḟ + ½fᵀK(Ω)f − P_steadyᵀf the
+  // rotating-frame energy ((55)–(58); the Coriolis forces do no work; a static tip compression is
+  // in K(Ω) and P_steady, so its potential is in E). A Runge–Kutta method keeps
   // no quadratic invariant, so a step that spuriously amplifies a mode breaks E(t) − E(0) = W(t).
   const OdeFunction rhs = [&](double t, const Eigen::VectorXd& x, Eigen::VectorXd& dx) {
     const auto f = x.head(n), v = x.segment(n, n);
@@ -112,9 +113,11 @@ TransientResult run_transient(const BladeModel& model, const Scene& scene, const
   Eigen::VectorXd x(2 * n + 1);
   x << start, 0.0;
   result.static_tip_axial_m = model.tip_axial.dot(equilibrium.head(n));
+  const Eigen::VectorXd steady = model.steady_load(speed);
+  const Eigen::MatrixXd K_E = model.elastic_stiffness();
   const auto blade_energy = [&](const Eigen::VectorXd& s) {  // E, the energy the balance is about
     const auto f = s.head(n), v = s.segment(n, n);
-    return 0.5 * v.dot(model.M * v) + 0.5 * f.dot(K * f) - speed * speed * model.P_cf1.dot(f);
+    return 0.5 * v.dot(model.M * v) + 0.5 * f.dot(K * f) - steady.dot(f);
   };
   const double initial_energy = blade_energy(x);
   result.initial_vibration_energy_j = initial_energy - blade_energy(equilibrium);
@@ -161,7 +164,7 @@ TransientResult run_transient(const BladeModel& model, const Scene& scene, const
     const double F = tip_load(t, s), E = blade_energy(s), W = s(2 * n);
     result.samples.push_back({t, speed > 0 ? t * speed / two_pi : t / revolution, model.tip_lateral.dot(f),
                               model.tip_axial.dot(f), model.tip_lateral.dot(v), model.tip_axial.dot(v), F,
-                              friction(F, s), casing ? casing->overlap(t, f) : 0, 0.5 * f.dot(model.K_S * f),
+                              friction(F, s), casing ? casing->overlap(t, f) : 0, 0.5 * f.dot(K_E * f),
                               0.5 * v.dot(model.M * v), E + (casing ? casing->energy(t, f) : 0), W,
                               E - initial_energy - W});
   };

@@ -291,10 +291,6 @@ TEST_CASE("bad input: stability, boundaries and map options (bad_input)", "[bad_
     expect_rejected(with({"map", "--plane", "theta-fmax", "--theta", "-100:100:3", "--chart", "none"}),
                     {"--theta -100:100:3", "(0, 1e9]"});
   }
-  SECTION("map of the exact pulse train") {
-    expect_rejected(with({"map", "--plane", "theta-fmax", "--set", "load.approximation=exact", "--chart", "none"}),
-                    {"load.approximation = \"exact\"", "series"});
-  }
   SECTION("map --threads 0") {
     expect_rejected(with({"map", "--plane", "theta-fmax", "--threads", "0", "--chart", "none"}),
                     {"--threads 0", "[1, 256]"});
@@ -544,5 +540,64 @@ TEST_CASE("bad input: issue 11, outputs (bad_input)", "[bad_input]") {
     CHECK((WIFEXITED(o.wait_status) && WEXITSTATUS(o.wait_status) == 1));
     CHECK(std::count(o.err.begin(), o.err.end(), '\n') == 1);
     CHECK(o.err.find("stdout") != std::string::npos);
+  }
+}
+
+TEST_CASE("bad input: sweep options and the static tip compression (bad_input)", "[bad_input][sweep]") {
+  const auto sweep = [](const std::string& key, const std::string& values, std::vector<std::string> extra = {}) {
+    std::vector<std::string> args{"sweep", valid_scene, "--key", key, "--values", values, "--out", scratch().string(),
+                                  "--chart", "none"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    return args;
+  };
+  SECTION("unknown key") {
+    expect_rejected(sweep("blade.colour", "0:1:3"), {"--key blade.colour", "unknown key", "slenderness"});
+  }
+  SECTION("unknown section") {
+    expect_rejected(sweep("rotor.blades", "1:3:3"), {"--key rotor.blades", "[rotor]", "unknown section"});
+  }
+  SECTION("a key without a section") {
+    expect_rejected(sweep("slenderness", "0.01:0.1:3"), {"--key slenderness", "section.key"});
+  }
+  SECTION("a key that takes no number") {
+    expect_rejected(sweep("model.basis", "0:1:3"), {"--key model.basis", "takes no number", "\"legendre\""});
+  }
+  SECTION("a key the scene does not use") {
+    expect_rejected(sweep("damping.ratio", "0:0.1:3"), {"--key damping.ratio", "not used with damping.model"});
+  }
+  SECTION("empty range") { expect_rejected(sweep("blade.slenderness", "0.01:0.01:5"), {"--values 0.01:0.01:5", "start != stop"}); }
+  SECTION("a single value") { expect_rejected(sweep("blade.slenderness", "0.01:0.1:1"), {"--values 0.01:0.1:1", "count in [2, 100000]"}); }
+  SECTION("NaN") { expect_rejected(sweep("blade.slenderness", "nan:0.1:5"), {"--values nan:0.1:5", "finite"}); }
+  SECTION("values not a range") { expect_rejected(sweep("blade.slenderness", "0.01,0.1"), {"--values 0.01,0.1", "start:stop:count"}); }
+  SECTION("a value the key does not allow") {
+    expect_rejected(sweep("blade.slenderness", "0.5:1.5:3"), {"--values 0.5:1.5:3", "blade.slenderness = 1:", "[1e-4, 1)"});
+  }
+  SECTION("an integer key between integers") {
+    expect_rejected(sweep("model.terms", "4:9:3"), {"--values 4:9:3", "model.terms = 6.5", "integer"});
+  }
+  SECTION("--count 0") { expect_rejected(sweep("blade.slenderness", "0.01:0.1:3", {"--count", "0"}), {"--count 0", ">= 1"}); }
+  SECTION("missing --key") {
+    expect_rejected({"sweep", valid_scene, "--values", "0:1:3"}, {"--key", "required"});
+  }
+  SECTION("a negative static compression") {
+    expect_rejected(modes({"--set", "operation.tip_compression_over_fcr=-0.5"}),
+                    {"operation.tip_compression_over_fcr = -0.5", "[0, 1000)"});
+  }
+  SECTION("a non-finite static compression") {
+    expect_rejected(modes({"--set", "operation.tip_compression_over_fcr=inf"}),
+                    {"operation.tip_compression_over_fcr = inf", "finite"});
+  }
+  SECTION("a static compression that buckles the blade") {
+    expect_rejected(modes({"--set", "operation.speed_rad_s=0", "--set", "operation.tip_compression_over_fcr=1"}),
+                    {"operation.tip_compression_over_fcr = 1", "statically unstable", "buckles at 0.9992"});
+  }
+  SECTION("... in every command") {
+    for (const std::string command : {"campbell", "stability", "boundaries", "map", "transient", "crosscheck"}) {
+      std::vector<std::string> args{command, valid_scene, "--set", "operation.tip_compression_over_fcr=50"};
+      if (command == "campbell") args.insert(args.end(), {"--speeds", "0:300:3", "--out", scratch().string(), "--chart", "none"});
+      if (command == "map") args.insert(args.end(), {"--plane", "theta-fmax", "--out", scratch().string(), "--chart", "none"});
+      if (command == "transient") args.insert(args.end(), {"--chart", "none", "--out", scratch().string()});
+      DYNAMIC_SECTION(command) { expect_rejected(args, {"operation.tip_compression_over_fcr = 50", "statically unstable"}); }
+    }
   }
 }

@@ -22,7 +22,7 @@ namespace {
 
 // The reference boundaries: the paper blade with a richer model, straight from the eigenproblem.
 std::vector<Boundary> reference_loads(const Scene& s, double theta, int k) {
-  const BladeModel m = assemble_model(s.blade, s.model);
+  const BladeModel m = assemble_model(s);
   const PeriodicSystem sys = periodic_system(m, s, load_series(s), {ReductionKind::none, 0, 0});
   return boundary_loads(sys, s.load.fmax_over_fcr * m.blade.critical_load(), theta, k);
 }
@@ -45,7 +45,7 @@ TEST_CASE("boundaries at theta = 300: k is raised until converged, to the large-
   BoundaryRequest r;
   r.theta_rad_s = 300;
   const BoundaryAnalysis a = boundaries_with_error_estimate(s, r);
-  const double fcr = assemble_model(s.blade, s.model).blade.critical_load();
+  const double fcr = assemble_model(s).blade.critical_load();
   // k = 4 gives the mode-1, order-2 boundary at F̄ = 6.1594; k >= 8 gives 6.0926.
   CHECK(a.approximation >= 6);
   const std::vector<Boundary> k12 = reference_loads(s, 300, 12);
@@ -76,7 +76,7 @@ TEST_CASE("boundaries: the whole error estimate covers the true error against a 
   // convergence) with 4 harmonics more than the analysis chose.
   const Scene s = paper_scene({"model.terms=8"});
   const Scene rich = paper_scene({"model.terms=14"});
-  const double fcr = assemble_model(s.blade, s.model).blade.critical_load();
+  const double fcr = assemble_model(s).blade.critical_load();
   int compared = 0;
   for (double theta : {250.0, 300.0, 400.0}) {
     BoundaryRequest r;
@@ -100,7 +100,7 @@ TEST_CASE("boundaries: the whole error estimate covers the true error against a 
 
 TEST_CASE("boundaries: with a modal cut-off the reduction part covers the true error", "[boundaries]") {
   const Scene s = paper_scene({"model.terms=8"});
-  const double fcr = assemble_model(s.blade, s.model).blade.critical_load();
+  const double fcr = assemble_model(s).blade.critical_load();
   BoundaryRequest r;
   r.theta_rad_s = 300;
   r.cutoff_hz = 3000;  // drops the rotation modes and all but the first axial mode
@@ -124,7 +124,7 @@ TEST_CASE("boundaries: Mathieu's first two tongues with the automatic k", "[boun
     const Scene s = paper_scene({"model.theory=euler-bernoulli", "model.terms=1", "model.axial=false",
                                  "model.basis=sine", "operation.speed_rad_s=0", "load.approximation=cosine",
                                  "load.fmax_over_fcr=" + std::to_string(fbar)});
-    const BladeModel m = assemble_model(s.blade, s.model);
+    const BladeModel m = assemble_model(s);
     const double w0 = std::sqrt(m.K_S(0, 0) / m.M(0, 0));
     BoundaryRequest r;
     r.tolerance = 1e-9;
@@ -160,7 +160,7 @@ TEST_CASE("boundaries: the multiplier check tells a boundary from a point inside
   // Mathieu scene, F̄ = 0.6: the principal (−1) tongue between the edges a₁ and b₁.
   const Scene s = paper_scene({"model.theory=euler-bernoulli", "model.terms=1", "model.axial=false", "model.basis=sine",
                                "operation.speed_rad_s=0", "load.approximation=cosine", "load.fmax_over_fcr=0.6"});
-  const BladeModel m = assemble_model(s.blade, s.model);
+  const BladeModel m = assemble_model(s);
   const PeriodicSystem sys = periodic_system(m, s, load_series(s));
   const double peak = 0.6 * m.blade.critical_load();
   std::vector<Boundary> edges;
@@ -220,7 +220,7 @@ TEST_CASE("boundaries --at-theta with a pulse series: the pulses come at the the
   const Scene s = paper_scene({"model.terms=8", "load.approximation=\"fourier\"", "load.contact_time_rev=0.3"});
   BoundaryRequest r;
   r.theta_rad_s = 400;  // the scene's own θ is 300
-  const double fcr = assemble_model(s.blade, s.model).blade.critical_load();
+  const double fcr = assemble_model(s).blade.critical_load();
   r.window = std::make_pair(0.0, 3 * fcr);
   const BoundaryAnalysis a = boundaries_with_error_estimate(s, r);
   REQUIRE(!a.boundaries.empty());

@@ -66,7 +66,7 @@ BladeModel converged(const Scene& s) {
   ModelSpec spec = s.model;
   spec.basis = BasisKind::legendre;
   spec.terms = 36;
-  return assemble_model(s.blade, spec);
+  return assemble_model(s, spec);
 }
 
 struct Variant {
@@ -80,7 +80,7 @@ struct Variant {
 TEST_CASE("without Coriolis coupling, bending modes cross the first axial mode and tracking follows shapes",
           "[campbell]") {
   const Scene s = paper_scene({"model.coriolis=false"});
-  const BladeModel model = assemble_model(s.blade, s.model);
+  const BladeModel model = assemble_model(s);
   const CampbellDiagram d = campbell_diagram(model, s.damping, {linspace(0, 1500, 31), {}, 6});
   const CampbellCurve& axial = d.curves[4];
   REQUIRE(axial.family == ModeFamily::axial);
@@ -105,7 +105,7 @@ TEST_CASE("without Coriolis coupling, bending modes cross the first axial mode a
 
 TEST_CASE("with Coriolis coupling, modes veer and stay tracked", "[campbell]") {
   const Scene s = paper_scene();
-  const BladeModel model = assemble_model(s.blade, s.model);
+  const BladeModel model = assemble_model(s);
   const CampbellDiagram d = campbell_diagram(model, s.damping, {linspace(0, 1500, 61), {}, 6});
   for (const CampbellCurve& c : d.curves) {
     for (std::size_t i = 1; i < c.frequency_hz.size(); ++i) {
@@ -117,7 +117,7 @@ TEST_CASE("with Coriolis coupling, modes veer and stay tracked", "[campbell]") {
 
 TEST_CASE("engine-order crossings are refined to where the mode meets the line", "[campbell]") {
   const Scene s = paper_scene();
-  const BladeModel model = assemble_model(s.blade, s.model);
+  const BladeModel model = assemble_model(s);
   const CampbellDiagram d = campbell_diagram(model, s.damping, {linspace(0, 600, 13), {2, 3, 4, 8}, 4});
   REQUIRE(d.crossings.size() >= 5);
   for (const EngineOrderCrossing& x : d.crossings) {
@@ -149,7 +149,7 @@ TEST_CASE("the reduced sweep's frequencies are the whole Ritz model's within the
   const std::vector<double> speeds = linspace(0, 600, 61);
   for (const Variant& v : variants) {
     const Scene s = paper_scene(v.overrides);
-    const BladeModel model = assemble_model(s.blade, s.model);
+    const BladeModel model = assemble_model(s);
     CampbellOptions options{speeds, {}, v.count};
     options.reduction_tolerance = 1e-8;
     const CampbellDiagram d = campbell_diagram(model, s.damping, options);

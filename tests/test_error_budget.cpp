@@ -37,7 +37,7 @@ double reference_max_rho(Scene scene, int vectors = 3) {
   scene.model.basis = BasisKind::legendre;
   scene.model.terms = std::max(24, scene.model.terms + 8);
   if (scene.load.approximation == LoadApproximation::fourier) scene.load.approximation = LoadApproximation::exact;
-  const BladeModel model = assemble_model(scene.blade, scene.model);
+  const BladeModel model = assemble_model(scene);
   // The true train is integrated only through its contacts: the whole Ritz model.
   const bool exact = scene.load.approximation == LoadApproximation::exact;
   const PeriodicSystem sys = periodic_system(model, scene, load_series(scene),
@@ -58,7 +58,7 @@ struct Case {
 };
 
 double whole_model_max_rho(const Scene& scene, int steps) {
-  const PeriodicSystem whole = periodic_system(assemble_model(scene.blade, scene.model), scene, load_series(scene),
+  const PeriodicSystem whole = periodic_system(assemble_model(scene), scene, load_series(scene),
                                                {ReductionKind::none, 0, 0});
   const double rho = monodromy_multipliers(whole, steps).cwiseAbs().maxCoeff();
   CHECK(std::abs(monodromy_multipliers(whole, 2 * steps).cwiseAbs().maxCoeff() - rho) < 1e-10);
@@ -70,7 +70,7 @@ double whole_model_max_rho(const Scene& scene, int steps) {
 TEST_CASE("the reduced reference agrees with the whole Ritz model (N = 8, 16384 Magnus steps)", "[budget][slow]") {
   // The whole 24-dof model integrates its 64 kHz modes: the independent check of the reduction.
   const Scene scene = paper_scene({"model.terms=8"});
-  const BladeModel model = assemble_model(scene.blade, scene.model);
+  const BladeModel model = assemble_model(scene);
   const LoadSeries load = load_series(scene);
   const PeriodicSystem whole = periodic_system(model, scene, load, {ReductionKind::none, 0, 0});
   const PeriodicSystem reduced = periodic_system(model, scene, load, {ReductionKind::automatic, 3, 0});

@@ -1,6 +1,6 @@
 // A fixed corpus of hostile command lines, run through the real program: every scene key given
 // values outside every allowed range or of the wrong kind, every numeric option given malformed or
-// extreme text, and scene files that are not scene files, spread over all seven commands. Each must
+// extreme text, and scene files that are not scene files, spread over all eight commands. Each must
 // be refused the input-error way (tests/support/run_cli.hpp): exit 2, nothing on stdout, one line
 // on stderr naming the key, option or file — never a crash, a hang, a NaN or a multi-line error.
 // The corpus is generated here, deterministically; scripts/fuzz.py runs random campaigns beyond it.
@@ -27,17 +27,18 @@ struct FuzzCase {
   std::string named;  // must occur in the error line: the key, the option or the file
 };
 
-// The seven commands, each with the least it needs and its outputs in the scratch directory.
+// The eight commands, each with the least it needs and its outputs in the scratch directory.
 std::vector<std::string> command_line(int which, const std::string& scene_path) {
   const std::string out = (scratch() / "fuzz_out").string();
-  switch (which % 7) {
+  switch (which % 8) {
     case 0: return {"modes", scene_path};
     case 1: return {"campbell", scene_path, "--speeds", "0:600:3", "--out", out, "--chart", "none"};
     case 2: return {"stability", scene_path};
     case 3: return {"boundaries", scene_path};
     case 4: return {"map", scene_path, "--plane", "theta-fmax", "--out", out, "--chart", "none"};
     case 5: return {"transient", scene_path, "--out", out, "--chart", "none"};
-    default: return {"crosscheck", scene_path};
+    case 6: return {"crosscheck", scene_path};
+    default: return {"sweep", scene_path, "--key", "operation.speed_rad_s", "--values", "0:300:2", "--out", out, "--chart", "none"};
   }
 }
 
@@ -57,7 +58,8 @@ std::vector<FuzzCase> scene_key_cases() {
       {"blade.stagger_deg", {}}, {"operation.speed_rad_s", {}}, {"load.fmax_over_fcr", {}},
       {"load.contact_time_rev", {}}, {"load.friction", {}}, {"load.clearance", {}}, {"load.pulse_frequency_hz", {}},
       {"damping.ratio", modal}, {"damping.frequencies_hz", rayleigh}, {"model.cutoff_hz", {"model.reduction=modal"}},
-      {"load.intrusion", clearance}, {"load.contact_stiffness", clearance}};
+      {"load.intrusion", clearance}, {"load.contact_stiffness", clearance},
+      {"operation.tip_compression_over_fcr", {}}};
   // Outside every key's range, or not a number at all ("a\nb" is a string holding a newline).
   const std::vector<std::string> bad_numbers{"nan", "inf", "-inf", "1e308", "-1e308", "9e99", "-9e99", "\"x\"",
                                              "[1, 2]", "true", "{ a = 1 }", "1979-05-27", "\"a\\nb\""};
@@ -109,7 +111,8 @@ std::vector<FuzzCase> option_cases() {
       {4, "--max-memory", {}},
       {5, "--revolutions", {}}, {5, "--tolerance", {}}, {5, "--samples-per-rev", {}},
       {5, "--steps-per-period", {"--step", "fixed"}},
-      {6, "--points", {}}, {6, "--revolutions", {}}};
+      {6, "--points", {}}, {6, "--revolutions", {}},
+      {7, "--values", {}}, {7, "--count", {}}, {7, "--max-seconds", {}}};
   // Empty, padded, hex, not finite, beyond any range, not a number, a list where one is wanted.
   const std::vector<std::string> bad_values{"", " 1", "1 ", "0x10", "nan", "inf", "1e999", "-1e308", "abc", "1e308"};
   std::vector<FuzzCase> cases;
@@ -128,8 +131,11 @@ std::vector<FuzzCase> option_cases() {
                      "--speeds"});
   }
   for (const std::string& v : std::vector<std::string>{"", "a/b", "a\nb", "-x", ".hidden", "a b", "x\\y", "a\"b", std::string(300, 'n')}) {
-    cases.push_back({{"transient", scene, "--out", (scratch() / "fuzz_out").string(), "--chart", "none", "--name", v},
-                     "--name"});
+    for (const int which : {5, 7}) {
+      std::vector<std::string> args = command_line(which, scene);
+      args.insert(args.end(), {"--name", v});
+      cases.push_back({args, "--name"});
+    }
   }
   return cases;
 }

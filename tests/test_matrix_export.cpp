@@ -66,7 +66,7 @@ void check_export(const std::vector<std::string>& overrides, const std::string& 
   ReductionSpec reduction = scene.model.reduction;
   reduction.vectors = std::stoi(manifest_value(json, "reduction_vectors"));
   CHECK(manifest_value(json, "reduction") == to_string(reduction.kind));
-  const PeriodicSystem expected = periodic_system(assemble_model(scene.blade, spec), scene, load_series(scene), reduction);
+  const PeriodicSystem expected = periodic_system(assemble_model(scene, spec), scene, load_series(scene), reduction);
   if (expected_states > 0) CHECK(expected.state_size() == expected_states);
   CHECK(std::stoi(manifest_value(json, "states")) == expected.state_size());
   CHECK(std::stod(manifest_value(json, "theta_rad_s")) == Approx(expected.angular_frequency).epsilon(1e-15));

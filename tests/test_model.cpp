@@ -27,7 +27,7 @@ TEST_CASE("model matrices have exact symmetry, skew-symmetry and a positive defi
   for (const char* basis : {"sine", "legendre"}) {
     for (const char* theory : {"timoshenko", "euler-bernoulli"}) {
       const Scene s = paper_scene({std::string("model.basis=") + basis, std::string("model.theory=") + theory});
-      const BladeModel m = assemble_model(s.blade, s.model);
+      const BladeModel m = assemble_model(s);
       CHECK(m.M == m.M.transpose());
       CHECK(m.K_S == m.K_S.transpose());
       CHECK(m.K_C1 == m.K_C1.transpose());
@@ -42,10 +42,10 @@ TEST_CASE("model matrices have exact symmetry, skew-symmetry and a positive defi
 
 TEST_CASE("dropping fields and Coriolis shrinks the model as documented", "[model]") {
   const Scene s = paper_scene({"model.axial=false", "model.theory=euler-bernoulli", "model.terms=5"});
-  const BladeModel m = assemble_model(s.blade, s.model);
+  const BladeModel m = assemble_model(s);
   CHECK(m.layout.size() == 5);
   const Scene c = paper_scene({"model.coriolis=false"});
-  CHECK(assemble_model(c.blade, c.model).C_G1.norm() == 0);
+  CHECK(assemble_model(c).C_G1.norm() == 0);
 }
 
 TEST_CASE("sine-basis quadrature is converged to rounding", "[model]") {
@@ -66,7 +66,7 @@ TEST_CASE("static centrifugal stretch matches the closed-form spinning bar", "[m
   // EA u'' + ρAΩ² u + ρAΩ²(r + s) = 0, u(0) = 0, u'(L) = 0, with k = Ω sqrt(ρ/E):
   // u = r cos ks + b sin ks − (r + s),  b = (1 + r k sin kL) / (k cos kL).
   const Scene s = paper_scene();
-  const BladeModel m = assemble_model(s.blade, s.model);
+  const BladeModel m = assemble_model(s);
   const double W = 300, r = 0.5, L = 1.0, k = W * std::sqrt(4466.0 / 117e9);
   const double b = (1 + r * k * std::sin(k * L)) / (k * std::cos(k * L));
   const double exact = r * std::cos(k * L) + b * std::sin(k * L) - (r + L);
@@ -90,7 +90,7 @@ TEST_CASE("a model without a positive definite mass is refused naming the scene'
   Scene s = paper_scene();
   s.blade.density = 0;
   try {
-    assemble_model(s.blade, s.model);
+    assemble_model(s);
     FAIL("assemble_model accepted a zero density");
   } catch (const NumericalError& e) {
     const std::string message = e.what();
@@ -100,6 +100,6 @@ TEST_CASE("a model without a positive definite mass is refused naming the scene'
   }
   s.blade.youngs_modulus = std::nan("");
   s.blade.density = 7850;
-  CHECK_THROWS_WITH(assemble_model(s.blade, s.model), Catch::Matchers::Contains("matrices are not finite") &&
+  CHECK_THROWS_WITH(assemble_model(s), Catch::Matchers::Contains("matrices are not finite") &&
                                                            Catch::Matchers::Contains("blade.youngs_modulus = nan"));
 }

@@ -17,7 +17,7 @@ namespace {
 constexpr double pi = 3.14159265358979323846;
 
 ModalSolution modes_of(const Scene& s, int count = 0, EigenSolverKind solver = EigenSolverKind::dense) {
-  const BladeModel m = assemble_model(s.blade, s.model);
+  const BladeModel m = assemble_model(s);
   const double W = s.operation.speed_rad_s;
   return solve_modes(m, system_at(m, W, damping_matrix(m, s.damping, W)), W, count, solver);
 }
@@ -137,7 +137,7 @@ TEST_CASE("ARPACK shift-invert agrees with dense LAPACK", "[modes][arpack]") {
     const ModalSolution arpack = modes_of(s, 8, EigenSolverKind::arpack);
     REQUIRE(arpack.solver == EigenSolverKind::arpack);
     REQUIRE(arpack.modes.size() == 8);
-    const BladeModel m = assemble_model(s.blade, s.model);
+    const BladeModel m = assemble_model(s);
     for (int k = 0; k < 8; ++k) {
       INFO(damping.size() << " overrides, mode " << k + 1);
       // Shift-invert resolves the lowest modes best: measured 1e-13 on mode 1, 2e-9 on mode 8 (damped).
@@ -165,7 +165,7 @@ TEST_CASE("damping models give the damping ratios they promise", "[modes][dampin
   }
   // Paper (37): C_D = (2ζ/Ω) K_S.
   const Scene p = paper_scene({"damping.model=paper", "damping.ratio=0.01"});
-  const BladeModel m = assemble_model(p.blade, p.model);
+  const BladeModel m = assemble_model(p);
   // To rounding (the factor may be applied as one product or fused into two).
   const Eigen::MatrixXd expected = (2 * 0.01 / 300) * m.K_S;
   CHECK((damping_matrix(m, p.damping, 300) - expected).norm() <= 1e-15 * expected.norm());

@@ -96,7 +96,7 @@ std::vector<double> non_axial_lambdas(double slenderness, double speed, int term
   const Scene s = testing_support::paper_scene({"model.basis=sine", "model.terms=" + std::to_string(terms),
                                                 "blade.slenderness=" + std::to_string(slenderness),
                                                 "operation.speed_rad_s=" + std::to_string(speed)});
-  const BladeModel m = assemble_model(s.blade, s.model);
+  const BladeModel m = assemble_model(s);
   const ModalSolution sol = solve_modes(m, system_at(m, speed, damping_matrix(m, s.damping, speed)), speed, 0,
                                         EigenSolverKind::dense);
   std::vector<double> out;

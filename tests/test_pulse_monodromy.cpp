@@ -33,7 +33,7 @@ struct Setup {
 
 // The paper blade (Legendre, Timoshenko, axial, Coriolis) with `terms` per field, exact load.
 Setup setup(const Scene& s) {
-  BladeModel m = assemble_model(s.blade, s.model);
+  BladeModel m = assemble_model(s);
   PeriodicSystem sys = periodic_system(m, s, load_series(s));
   return {s, std::move(m), std::move(sys), pulse_train(s)};
 }

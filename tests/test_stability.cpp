@@ -32,7 +32,7 @@ struct Setup {
 };
 
 Setup setup(const Scene& s) {
-  BladeModel m = assemble_model(s.blade, s.model);
+  BladeModel m = assemble_model(s);
   PeriodicSystem sys = periodic_system(m, s, load_series(s));
   const double peak = s.load.fmax_over_fcr * m.blade.critical_load();
   return {std::move(m), std::move(sys), peak};

@@ -53,7 +53,7 @@ std::pair<double, double> energy_drift(const TransientResult& r) {
 
 TEST_CASE("undamped free vibration at 300 rad/s conserves the rotating-frame energy", "[transient]") {
   const Scene s = paper_scene({"model.terms=8", "load.fmax_over_fcr=0"});
-  const BladeModel m = assemble_model(s.blade, s.model);
+  const BladeModel m = assemble_model(s);
   TransientOptions o;
   o.revolutions = 10;
   o.tolerance = 1e-10;
@@ -69,7 +69,7 @@ TEST_CASE("undamped free vibration at 300 rad/s conserves the rotating-frame ene
 TEST_CASE("growth per revolution under the periodic cosine load equals the Floquet max|rho|", "[transient]") {
   // The paper's continuous cosine load (42) in the time domain: profile cosine over a whole revolution.
   const Scene s = paper_scene({"model.terms=8", "load.profile=cosine", "load.contact_time_rev=1"});
-  const BladeModel m = assemble_model(s.blade, s.model);
+  const BladeModel m = assemble_model(s);
   TransientOptions o;
   o.revolutions = 16;  // growth ×2.2 per revolution: 2.2¹⁶ ≈ 3e5 times the 1 µm start
   o.tolerance = 1e-9;
@@ -89,7 +89,7 @@ TEST_CASE("growth per revolution under the periodic cosine load equals the Floqu
 
 TEST_CASE("the paper's Fig. 10/11 single pulse: mode-1 lateral response, 2 mm stretch, first axial line", "[transient][paper]") {
   const Scene s = paper_scene({"model.terms=8", "load.pulse_count=1"});  // half-sine, F̄ = 5, t̄c = 0.01, μ = 0
-  const BladeModel m = assemble_model(s.blade, s.model);
+  const BladeModel m = assemble_model(s);
   TransientOptions o;
   o.revolutions = 20;
   o.tolerance = 1e-7;
@@ -117,7 +117,7 @@ TEST_CASE("the paper's Fig. 10/11 single pulse: mode-1 lateral response, 2 mm st
 // the chosen step keeps the growth under 1 %.
 TEST_CASE("fixed and adaptive steps agree to 1e-6 on a 5-revolution pulse-train history", "[transient]") {
   const Scene s = paper_scene({"model.terms=8"});  // endless half-sine train, F̄ = 5
-  const BladeModel m = assemble_model(s.blade, s.model);
+  const BladeModel m = assemble_model(s);
   TransientOptions adaptive, fixed, paper;
   adaptive.revolutions = fixed.revolutions = paper.revolutions = 5;
   adaptive.tolerance = 1e-9;
@@ -184,7 +184,7 @@ TEST_CASE("crosscheck: the cosine approximation's instability is real for its lo
 TEST_CASE("the follower correction adds the lateral load -F sin(psi) and keeps the axial one F cos(psi)", "[transient]") {
   // Coriolis off and no friction: only the follower's lateral term and the cos ψ factor differ.
   const Scene s = paper_scene({"model.terms=6", "model.coriolis=false", "load.pulse_count=1"});
-  const BladeModel m = assemble_model(s.blade, s.model);
+  const BladeModel m = assemble_model(s);
   TransientOptions plain, follower;
   plain.revolutions = follower.revolutions = 1;
   plain.initial_state = follower.initial_state = perturbed_equilibrium(m, 300, 1e-3, 0);  // ψ ≈ 1.4e-3
@@ -211,7 +211,7 @@ TEST_CASE("clearance mode: a slow casing distortion pushes the tip with the stat
   // revolution (47.7 Hz against the 1280 Hz axial mode: quasi-static). At its deepest the tip sits
   // where K(Ω) holds it against F, so F = −d/(1/k + 1/k_tip), k_tip = 1/(p_uᵀK(Ω)⁻¹p_u).
   const double d = 1e-4;
-  const BladeModel m = assemble_model(paper_scene().blade, paper_scene({"model.terms=8"}).model);
+  const BladeModel m = assemble_model(paper_scene({"model.terms=8"}));
   const Eigen::VectorXd p_u = m.tip_axial.transpose();
   const double k_tip = 1 / p_u.dot(m.stiffness(300).ldlt().solve(p_u));
   for (double ratio : {100.0, 1000.0}) {
@@ -237,7 +237,7 @@ TEST_CASE("clearance mode: bouncing on a still casing conserves the energy with 
   // No distortion, 0.05 mm clearance, a 0.1 mm first-axial-mode vibration started on its inward
   // swing: the tip hits the wall every cycle. Undamped, μ = 0: ½ḟᵀMḟ + ½fᵀKf − Ω²P_cfᵀf + ½k g₊² is conserved.
   const Scene s = paper_scene({"model.terms=8", "load.mode=clearance", "load.clearance=5e-5", "load.intrusion=0"});
-  const BladeModel m = assemble_model(s.blade, s.model);
+  const BladeModel m = assemble_model(s);
   TransientOptions o;
   o.revolutions = 1;
   o.tolerance = 1e-10;
@@ -254,7 +254,7 @@ TEST_CASE("clearance mode: contacts and contact time from the events match a den
   // The paper blade meeting a 3.5 mm, 3.6° half-sine distortion with 3 mm clearance: a violent rub
   // that opens and closes many times.
   const Scene s = paper_scene({"model.terms=8", "load.mode=clearance", "load.intrusion=3.5e-3"});
-  const BladeModel m = assemble_model(s.blade, s.model);
+  const BladeModel m = assemble_model(s);
   TransientOptions o;
   o.revolutions = 3;
   o.samples_per_revolution = 50000;

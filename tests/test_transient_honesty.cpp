@@ -65,7 +65,7 @@ TEST_CASE("tolerance 1e-2 on the issue's run: the capped steps stay stable and m
   // The scene as shipped (N = 16, stiffest mode 158 kHz), the endless F̄ = 5 pulse train, 2 revolutions:
   // before the cap this run printed a lateral peak of 2.15e21 mm.
   const Scene s = paper_scene();
-  const BladeModel m = assemble_model(s.blade, s.model);
+  const BladeModel m = assemble_model(s);
   TransientOptions loose, tight;
   loose.revolutions = tight.revolutions = 2;
   loose.tolerance = 1e-2;
@@ -84,7 +84,7 @@ TEST_CASE("the energy balance E(t) - E(0) = W(t) holds with friction, damping an
   // pulse, μ = 0.2, modal damping ζ = 2 %, follower correction), from 1 mm of bending mode 1.
   const Scene s = paper_scene({"model.terms=8", "load.pulse_count=1", "load.friction=0.2", "damping.model=modal",
                                "damping.ratio=0.02"});
-  const BladeModel m = assemble_model(s.blade, s.model);
+  const BladeModel m = assemble_model(s);
   TransientOptions o;
   o.revolutions = 1;
   o.tolerance = 1e-9;
@@ -110,7 +110,7 @@ TEST_CASE("the energy check flags the paper's literal fixed step, whose parasiti
   // by |R(iπ/4)| = 1 + 1.7e-4 per step, ×1e7 over 7 revolutions of the F̄ = 5 pulse train. The chosen
   // step (n = 33 here) is the control.
   const Scene s = paper_scene({"model.terms=8"});
-  const BladeModel m = assemble_model(s.blade, s.model);
+  const BladeModel m = assemble_model(s);
   TransientOptions literal, chosen;
   literal.revolutions = chosen.revolutions = 7;
   literal.adaptive = chosen.adaptive = false;
@@ -132,7 +132,7 @@ TEST_CASE("a response growing past 0.1 L is outside the small-deflection model: 
   // The cosine load (42) at F̄ = 5 is parametrically unstable, max|ρ| = 2.199 per revolution. From 1 mm
   // of bending mode 1 the tip passes 0.1 L = 100 mm after ln(100)/ln(2.199) ≈ 5.8 revolutions.
   const Scene s = paper_scene({"model.terms=8", "load.profile=cosine", "load.contact_time_rev=1"});
-  const BladeModel m = assemble_model(s.blade, s.model);
+  const BladeModel m = assemble_model(s);
   TransientOptions o;
   o.tolerance = 1e-6;
   o.initial_state = rotating_equilibrium(m, 300);
@@ -167,7 +167,7 @@ TEST_CASE("growth per revolution: the Floquet max|rho| under the cosine load, wh
   // growth is still its max|ρ|. Reference: the Floquet max|ρ| of the same model, 2.1992274
   // (monodromy at rtol 1e-12, README; the converged N = 10 model gives 2.1992297, 1e-6 away).
   const Scene s = paper_scene({"model.terms=8", "load.profile=cosine", "load.contact_time_rev=1"});
-  const BladeModel m = assemble_model(s.blade, s.model);
+  const BladeModel m = assemble_model(s);
   TransientOptions o;
   o.revolutions = 8;
   o.tolerance = 1e-6;
@@ -191,7 +191,7 @@ TEST_CASE("growth per revolution: the Floquet max|rho| under the cosine load, wh
 
 TEST_CASE("growth per revolution is omitted, with the reason, for a 2-revolution run", "[transient][honesty]") {
   const Scene s = paper_scene({"model.terms=6", "load.profile=cosine", "load.contact_time_rev=1"});
-  const BladeModel m = assemble_model(s.blade, s.model);
+  const BladeModel m = assemble_model(s);
   TransientOptions o;
   o.revolutions = 2;
   o.tolerance = 1e-6;

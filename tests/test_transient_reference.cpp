@@ -66,7 +66,7 @@ std::pair<std::vector<double>, std::vector<double>> odeint_tip_history(const Bla
 TEST_CASE("RKF45 at tolerance 1e-9 agrees with Odeint's Dormand-Prince to 1e-4 of the peak", "[transient][reference]") {
   for (const char* count : {"load.pulse_count=1", "load.pulse_count=0"}) {
     const Scene s = testing_support::paper_scene({"model.terms=4", count});
-    const BladeModel m = assemble_model(s.blade, s.model);
+    const BladeModel m = assemble_model(s);
     TransientOptions o;
     o.revolutions = 2;
     o.tolerance = 1e-9;

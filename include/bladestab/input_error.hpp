@@ -11,4 +11,25 @@ public:
   explicit InputError(const std::string& message) : std::runtime_error(message) {}
 };
 
+// An InputError about one scene key ("section.key"; a section alone for an unknown section), with
+// how it failed, so that a caller that set the key itself (`sweep --key`) can tell a key the scene
+// does not have or does not use, or one that takes no number, from a value the key does not allow.
+class SceneKeyError : public InputError {
+public:
+  enum class Reason {
+    unknown,      // no such key (or section)
+    unused,       // a known key that the other settings leave without meaning
+    not_numeric,  // the key takes a string, a boolean or a list
+    not_allowed,  // the value is of the right kind but not allowed
+  };
+  SceneKeyError(const std::string& message, std::string key, Reason reason)
+      : InputError(message), key_(std::move(key)), reason_(reason) {}
+  const std::string& key() const { return key_; }
+  Reason reason() const { return reason_; }
+
+private:
+  std::string key_;
+  Reason reason_;
+};
+
 }  // namespace bladestab

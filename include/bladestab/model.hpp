@@ -28,9 +28,12 @@ struct BladeModel {
   BladeProperties blade;
   ModelSpec spec;
   DofLayout layout;
+  // The scene's static tip force F_s [N], tension positive: a static compression F_a (scene key
+  // operation.tip_compression_over_fcr) is F_s = −F_a. It is part of K_S and of steady_load().
+  double static_tip_force_n = 0;
 
   Eigen::MatrixXd M;     // mass, symmetric positive definite
-  Eigen::MatrixXd K_S;   // speed-free stiffness, symmetric
+  Eigen::MatrixXd K_S;   // speed-free stiffness, symmetric: the elastic one plus F_s G
   Eigen::MatrixXd K_C1;  // centrifugal stiffness per Ω² (tension stiffening and spin softening), symmetric
   Eigen::MatrixXd C_G1;  // gyroscopic (Coriolis) matrix per Ω, skew-symmetric; zero without coriolis
   Eigen::MatrixXd G;     // geometric stiffness per newton of tip tension: ∫V_i' V_j'
@@ -39,14 +42,28 @@ struct BladeModel {
   Eigen::RowVectorXd tip_axial;    // u(L) = tip_axial · f
   Eigen::RowVectorXd tip_slope;    // v'(L) = tip_slope · f, the slope of the deflected axis
 
+  // K_S + Ω² K_C1 + F G: F is a tip tension on top of the static one (a pulse).
   Eigen::MatrixXd stiffness(double speed_rad_s, double tip_force_n = 0) const {
     return K_S + speed_rad_s * speed_rad_s * K_C1 + tip_force_n * G;
+  }
+  // The strain stiffness alone (bending, shear, axial; (55), (56)), without the static tip force:
+  // what stiffness-proportional damping and the strain energy are made of.
+  Eigen::MatrixXd elastic_stiffness() const { return K_S - static_tip_force_n * G; }
+  // The load that does not vary in time: Ω² P_cf1 plus the static tip force on the axial tip (SPEC §2, P_u).
+  Eigen::VectorXd steady_load(double speed_rad_s) const {
+    return speed_rad_s * speed_rad_s * P_cf1 + static_tip_force_n * tip_axial.transpose();
   }
   Eigen::MatrixXd gyroscopic(double speed_rad_s) const { return speed_rad_s * C_G1; }
 };
 
-// Throws NumericalError naming the scene's keys when the matrices come out non-finite or the mass
-// is not positive definite (the model would have no modes).
-BladeModel assemble_model(const BladeSpec& blade, const ModelSpec& spec);
+// The Ritz model of a scene: its blade, its model spec (or `spec`, e.g. a richer basis for an
+// error estimate) and its operation's static tip compression F_a, which the model carries in K_S
+// (as −F_a G) and in its steady load. Every analysis builds its model here, so every command
+// honours the compression. An InputError naming operation.tip_compression_over_fcr when the blade
+// buckles under it at the scene's speed (statically_unstable_error in static_buckling.hpp); a
+// NumericalError naming the scene's keys when the matrices come out non-finite or the mass is not
+// positive definite (the model would have no modes).
+BladeModel assemble_model(const Scene& scene);
+BladeModel assemble_model(const Scene& scene, const ModelSpec& spec);
 
 }  // namespace bladestab

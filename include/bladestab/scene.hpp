@@ -44,6 +44,10 @@ struct ModelSpec {
 
 struct OperationSpec {
   double speed_rad_s = 0;  // Ω
+  // Optional: a static compressive tip load F_a = tip_compression_over_fcr · F_cr, F_cr = π²EI/(4L²)
+  // (compression positive; Sinha's Fig. 9). It enters the stiffness through the geometric matrix,
+  // K_S − F_a G, and the steady load through the tip (model.hpp).
+  double tip_compression_over_fcr = 0;
 };
 
 enum class DampingModel { none, modal, rayleigh, paper };
@@ -93,7 +97,8 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
 inline constexpr std::size_t max_scene_bytes = 1 << 20;
 std::string read_scene_file(const std::string& path);
 
-// Same, from TOML text (used by tests and by scenes built in code).
+// Same as load_scene, from TOML text (used by tests, by scenes built in code and by sweeps that read
+// one file with many overrides).
 Scene parse_scene(const std::string& toml_text, const std::string& source_name,
                   const std::vector<std::string>& overrides = {});
 

@@ -22,6 +22,9 @@ inline const AllowedRange poisson = AllowedRange::open(-1, 0.5);
 inline const AllowedRange shear_coefficient = AllowedRange::closed(0.05, 1);
 inline const AllowedRange stagger_deg = AllowedRange::closed(-90, 90);
 inline const AllowedRange speed_rad_s = AllowedRange::closed(0, 1e5);            // ~1e6 rpm
+// F_a / F_cr: far above the static buckling load of any blade spinning below its own divergence (the
+// paper blade buckles at 0.999 F_cr at rest, 4.95 F_cr at 300 rad/s).
+inline const AllowedRange tip_compression_over_fcr = AllowedRange::below(0, 1000);
 inline const AllowedRange damping_ratio = AllowedRange::below(0, 1);
 // Rayleigh's β = 2ζ/(ω₁ + ω₂): below 1 mHz it outgrows any stiffness it multiplies.
 inline const AllowedRange damping_frequency_hz = AllowedRange::closed(1e-3, 1e9);

@@ -67,7 +67,7 @@ struct ShadingCheck {
   double x = 0, fbar = 0, relative_error = 0;
 };
 struct ShadingFidelity {
-  int reduction_vectors = 0;          // automatic reduction, vectors per load level
+  int reduction_vectors = 0;          // automatic reduction, vectors per load level; 0: the whole Ritz model
   std::vector<ShadingCheck> checked;  // the grid points checked and each one's reduction part
   double reduction_error = 0;         // the largest, relative to max(1, max|ρ|)
   bool tolerance_met = false;

@@ -1,8 +1,10 @@
 #pragma once
 // Time-domain response of the rotating blade to its tip rub (SPEC §5, (47)–(52)):
 //
-//   M f̈ + C ḟ + (K(Ω) + F(t) G) f = Ω² P_cf + F(t) p_u + R(t) p_v
+//   M f̈ + C ḟ + (K(Ω) + F(t) G) f = Ω² P_cf + F_s p_u + F(t) p_u + R(t) p_v
 //
+// (F_s: a static tip force, operation.tip_compression_over_fcr, carried by the model in K(Ω) and
+// in its steady load)
 // with the tip load F ≤ 0 on the tip (axially, p_u = W_i(L), and through the geometric stiffness
 // G): in load.mode = "force" the true pulse train F(t), in "clearance" the casing's penalty force
 // F(t, f) (casing_contact.hpp), landing on every contact closing and opening. Coulomb friction R = −μ|F| cos β · tanh(v_rel/ε) on the lateral
@@ -48,9 +50,9 @@ struct TransientSample {
   double tip_lateral_m, tip_axial_m, tip_lateral_velocity_m_s, tip_axial_velocity_m_s;
   double axial_force_n, friction_force_n;  // the tip load F (an output in clearance mode) and μ|F| cos β
   double casing_overlap_m;  // clearance mode: g, how far the tip has passed the casing (> 0 in contact); else 0
-  double strain_energy_j;   // ½ fᵀ K_S f: bending, shear and axial strain (55), (56)
+  double strain_energy_j;   // ½ fᵀ K_E f: bending, shear and axial strain (55), (56) (K_E: elastic_stiffness())
   double kinetic_energy_j;  // ½ ḟᵀ M ḟ (57), (58)
-  double total_energy_j;    // ½ ḟᵀ M ḟ + ½ fᵀ K(Ω) f − Ω² P_cfᵀ f (+ ½k g₊² in clearance mode), conserved
+  double total_energy_j;    // ½ ḟᵀ M ḟ + ½ fᵀ K(Ω) f − P_steadyᵀ f (+ ½k g₊² in clearance mode), conserved
                             // without pulses, damping and casing motion
   double work_j;            // W: the work of the tip load (the casing's too), the friction and the damping since
                             // the start, ∫ ḟᵀ(F_ax (p_u − G f) + F_lat p_v − D ḟ) dt, integrated with the state
@@ -80,7 +82,8 @@ struct TransientResult {
   GrowthFit growth;  // of revolution_change: the growth per revolution, when meaningful
 };
 
-// The steady rotating equilibrium: K(Ω) f = Ω² P_cf, ḟ = 0.
+// The steady rotating equilibrium: K(Ω) f = Ω² P_cf + F_s p_u (steady_load(): a static tip force F_s
+// included), ḟ = 0.
 Eigen::VectorXd rotating_equilibrium(const BladeModel& model, double speed_rad_s);
 
 // The fixed step (54): Δt = (1/n)(2π/ω_max), ω_max the stiffest mode of M f̈ + K f = 0, n ≥ 8 steps

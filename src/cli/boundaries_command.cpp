@@ -233,7 +233,7 @@ Command register_boundaries(CLI::App& app) {
         command->count("--range") > 0 ? std::optional(parse_window(*range)) : std::nullopt;
     const Scene scene = options->load();
     if (in_load) check_pulse_fits(scene, *at_theta);
-    const BladeModel model = assemble_model(scene.blade, scene.model);
+    const BladeModel model = assemble_model(scene);
     if (window) {
       const double unit = in_load ? model.blade.critical_load() : 1.0;  // F̄_max → N
       request->window = std::make_pair(window->first * unit, window->second * unit);

@@ -15,5 +15,6 @@ Command register_boundaries(CLI::App& app);
 Command register_map(CLI::App& app);
 Command register_transient(CLI::App& app);
 Command register_crosscheck(CLI::App& app);
+Command register_sweep(CLI::App& app);
 
 }  // namespace bladestab::cli

@@ -19,7 +19,7 @@ namespace {
 // Two transients per point (the cosine load and the true pulse, adaptive RKF45 at 1e-8) dominate:
 // their steps never exceed the stiffest mode's cap (transient.hpp).
 void check_crosscheck_work(const Scene& scene, std::size_t points, double revolutions) {
-  const BladeModel model = assemble_model(scene.blade, scene.model);
+  const BladeModel model = assemble_model(scene);
   TransientOptions o;
   const double duration = revolutions * 6.28318530717958647692 / scene.operation.speed_rad_s;
   const double steps = 2 * points * duration / transient_step(model, scene, o, duration).step_s;

@@ -65,6 +65,7 @@ int main(int argc, char** argv) {
   run["map"] = register_map(app);
   run["transient"] = register_transient(app);
   run["crosscheck"] = register_crosscheck(app);
+  run["sweep"] = register_sweep(app);
   if (argc < 2) {
     return report("error", fmt::format("a command is required: {} (see bladestab --help)", command_names(run)), 2);
   }

@@ -249,7 +249,7 @@ Command register_map(CLI::App& app) {
     check_output_directory("--out", *out);
     const Scene scene = options->load();
     o.engine_order = *order > 0 ? *order : scene.load.pulses_per_rev;
-    const BladeModel model = assemble_model(scene.blade, scene.model);
+    const BladeModel model = assemble_model(scene);
     if (theta_plane) {
       if (scene.operation.speed_rad_s <= 0 && scene.damping.model == DampingModel::paper) {
         throw InputError("damping.model = \"paper\" needs operation.speed_rad_s > 0");
@@ -302,12 +302,15 @@ Command register_map(CLI::App& app) {
                                                                   : "",
                      describe_error_budget(f.budget), f.tolerance_met ? "" : fmt::format(" — above --tolerance {}", o.tolerance));
         }
+        const ShadingFidelity& sf = m.shading_fidelity;
         fmt::print("shading   {} of {} grid points unstable; refined to {} × {} cells with {} Floquet points; "
-                   "max|ρ| relative error ≤ {:.1e} (method, every point) + {:.1e} (reduction to {} vectors per load "
-                   "level, {} grid points checked against twice as many)\n",
+                   "max|ρ| relative error ≤ {:.1e} (method, every point){}\n",
                    unstable, points, m.cells_x, m.cells_y, m.samples.size(), m.max_error_estimate,
-                   m.shading_fidelity.reduction_error, m.shading_fidelity.reduction_vectors,
-                   m.shading_fidelity.checked.size());
+                   sf.reduction_vectors > 0
+                       ? fmt::format(" + {:.1e} (reduction to {} vectors per load level, {} grid points checked "
+                                     "against twice as many)", sf.reduction_error, sf.reduction_vectors,
+                                     sf.checked.size())
+                       : std::string("; the whole Ritz model (fewer vectors missed the tolerance)"));
         if (m.scene_point) {
           const MapPoint& p = *m.scene_point;
           fmt::print("scene     ({:g}, F̄ = {:g}): max|ρ| = {:.6g}{}\n", p.x, p.fbar, p.max_abs_multiplier,

@@ -45,6 +45,7 @@ void print_modes(const SceneOptions& options, const Scene& scene, const Converge
           .value("speed_rad_s", speed)
           .value("speed_rpm", speed * rpm_per_rad_s)
           .value("nondimensional_speed", result.model.blade.nondimensional_speed(speed))
+          .value("tip_compression_over_fcr", scene.operation.tip_compression_over_fcr)
           .begin_object("model")
           .value("theory", to_string(result.model.spec.theory))
           .value("basis", to_string(result.model.spec.basis))

@@ -36,19 +36,23 @@ void add_scene_options(CLI::App& command, SceneOptions& options) {
   add_work_limit_options(command);
 }
 
-std::vector<double> parse_range(const std::string& option, const std::string& text, const AllowedRange& values) {
+std::vector<double> parse_range(const std::string& option, const std::string& text, const AllowedRange& values,
+                                RangeOrder order) {
   constexpr long max_count = 100000;
+  const bool either = order == RangeOrder::either_way;
   const auto refuse = [&] {
-    throw InputError(fmt::format("{} {}: must be start:stop:count with start < stop, both in {}, and an integer "
-                                 "count in [2, {}]", option, echoed(text), values.text(), max_count));
+    const bool bounded = std::isfinite(values.lo) || std::isfinite(values.hi);
+    throw InputError(fmt::format("{} {}: must be start:stop:count with finite start {} stop{}, and an integer count "
+                                 "in [2, {}]", option, echoed(text), either ? "!=" : "<",
+                                 bounded ? ", both in " + values.text() : "", max_count));
   };
   const std::size_t first = text.find(':'), second = first == std::string::npos ? first : text.find(':', first + 1);
   if (second == std::string::npos) refuse();
   const std::optional<double> start = read_decimal(text.substr(0, first));
   const std::optional<double> stop = read_decimal(text.substr(first + 1, second - first - 1));
   const std::optional<long> count = read_integer(text.substr(second + 1));
-  if (!start || !stop || !count || !(*start < *stop) || !values.contains(*start) || !values.contains(*stop) ||
-      *count < 2 || *count > max_count) {
+  if (!start || !stop || !count || !(either ? *start != *stop : *start < *stop) || !values.contains(*start) ||
+      !values.contains(*stop) || *count < 2 || *count > max_count) {
     refuse();
   }
   std::vector<double> grid(*count);
@@ -63,9 +67,13 @@ int significant_digits(double error) {
 
 std::string describe_model(const BladeModel& model) {
   const ModelSpec& s = model.spec;
-  return fmt::format("{}, {} basis, {} terms/field ({} dofs), axial {}, coriolis {}", to_string(s.theory),
+  const std::string compression =
+      model.static_tip_force_n == 0
+          ? ""
+          : fmt::format(", static tip compression {:.6g} F_cr", -model.static_tip_force_n / model.blade.critical_load());
+  return fmt::format("{}, {} basis, {} terms/field ({} dofs), axial {}, coriolis {}{}", to_string(s.theory),
                      to_string(s.basis), s.terms, model.layout.size(), s.axial ? "on" : "off",
-                     s.coriolis ? "on" : "off");
+                     s.coriolis ? "on" : "off", compression);
 }
 
 std::string scene_title(const Scene& scene) {

@@ -29,13 +29,16 @@ struct SceneOptions {
 void add_scene_options(CLI::App& command, SceneOptions& options);
 
 // "start:stop:count" → count evenly spaced values, start and stop in `values`; InputError naming
-// `option` otherwise.
-std::vector<double> parse_range(const std::string& option, const std::string& text, const AllowedRange& values);
+// `option` otherwise. Increasing (start < stop) unless `order` allows either way (start != stop).
+enum class RangeOrder { increasing, either_way };
+std::vector<double> parse_range(const std::string& option, const std::string& text, const AllowedRange& values,
+                                RangeOrder order = RangeOrder::increasing);
 
 // Significant digits worth printing for a value with relative error `error` (3 to 12).
 int significant_digits(double error);
 
-// One line describing the model, e.g. "timoshenko, legendre basis, 16 terms/field (48 dofs), axial on, coriolis on".
+// One line describing the model, e.g. "timoshenko, legendre basis, 16 terms/field (48 dofs), axial on, coriolis on",
+// with ", static tip compression 0.5 F_cr" when the scene has one.
 std::string describe_model(const BladeModel& model);
 
 // "sinha2005/blade" for stability_maps/sinha2005/blade.toml: the scene's name in chart titles.

@@ -7,6 +7,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <regex>
 
 #include <fmt/format.h>
 
@@ -30,6 +31,15 @@ std::string temporary_for(const std::string& path) {
 }
 
 }  // namespace
+
+void check_file_stem(const std::string& name) {
+  static const std::regex stem("[A-Za-z0-9_+][A-Za-z0-9._+-]*");
+  if (name.size() > 200 || !std::regex_match(name, stem)) {
+    throw InputError(fmt::format("--name {}: must be a file stem of at most 200 letters, digits, '.', '_', '+' and "
+                                 "'-', not starting with '.' or '-' (no '/', spaces or control characters)",
+                                 echoed(name)));
+  }
+}
 
 void check_output_directory(const std::string& option, const std::string& dir) {
   const std::string shown = fmt::format("{} {}", option, echoed(dir, 240));

@@ -12,6 +12,10 @@ namespace bladestab::cli {
 // can be created in it. Commands call it before computing, so a bad --out costs nothing.
 void check_output_directory(const std::string& option, const std::string& dir);
 
+// --name STEM names files: letters, digits, '.', '_', '+' and '-', not starting with '.' or '-'
+// (a hidden file, an option); no '/', spaces, quotes or control characters. InputError otherwise.
+void check_file_stem(const std::string& name);
+
 class OutputFiles {
 public:
   OutputFiles() = default;

@@ -87,6 +87,7 @@ void print(const SceneOptions& options, const Scene& scene, const StabilityAnswe
           .value("scene", scene.source)
           .value("speed_rad_s", scene.operation.speed_rad_s)
           .value("fmax_over_fcr", fbar)
+          .value("tip_compression_over_fcr", scene.operation.tip_compression_over_fcr)
           .value("theta_rad_s", a.theta_rad_s)
           .value("load_approximation", to_string(scene.load.approximation))
           .value("load_harmonics", load.harmonics())
@@ -129,8 +130,12 @@ void print(const SceneOptions& options, const Scene& scene, const StabilityAnswe
                  scene.source, to_string(a.model.theory), to_string(a.model.basis), a.model.terms, a.reference_terms,
                  a.model.axial ? "on" : "off", a.model.coriolis ? "on" : "off");
       fmt::print("reduction  {}\n", describe_reduction(a));
-      fmt::print("operation  Ω = {:.6g} rad/s, F̄_max = {:.6g}, θ = {:.6g} rad/s; load: {}\n",
-                 scene.operation.speed_rad_s, fbar, a.theta_rad_s,
+      fmt::print("operation  Ω = {:.6g} rad/s, {}F̄_max = {:.6g}, θ = {:.6g} rad/s; load: {}\n",
+                 scene.operation.speed_rad_s,
+                 scene.operation.tip_compression_over_fcr == 0
+                     ? std::string()
+                     : fmt::format("static tip compression F_a = {:.6g} F_cr, ", scene.operation.tip_compression_over_fcr),
+                 fbar, a.theta_rad_s,
                  load.cosine_approximation ? std::string("cosine approximation (42)")
                 : load.exact_pulse
                     ? fmt::format("the true {} pulse train, integrated through each contact", to_string(scene.load.profile))
@@ -174,7 +179,7 @@ void check_export_path(const std::string& path) {
 // The system the answer's Floquet analysis integrated (its basis, reduction and load series), in
 // Matrix Market files, and a manifest with everything else a reader needs; all four or none.
 void export_matrices(const std::string& path, const Scene& scene, const StabilityAnswer& a, double tolerance) {
-  const PeriodicSystem sys = periodic_system(assemble_model(scene.blade, a.model), scene, a.load, a.reduction);
+  const PeriodicSystem sys = periodic_system(assemble_model(scene, a.model), scene, a.load, a.reduction);
   const ExportedArrays files = matrix_market_files(std::filesystem::path(path).replace_extension().string());
   OutputFiles output;
   write_matrix_market(sys, {output.reserve(files.A0), output.reserve(files.B), output.reserve(files.load)});

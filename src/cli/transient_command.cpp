@@ -1,6 +1,5 @@
 // bladestab transient SCENE: time response to the rub, CSV of the history, JSON summary, chart.
 
-#include <regex>
 
 #include <fmt/format.h>
 
@@ -152,17 +151,6 @@ std::string summary_json(const Scene& scene, const BladeModel& model, const Tran
   return json.str();
 }
 
-// --name STEM names files: letters, digits, '.', '_', '+' and '-', not starting with '.' or '-'
-// (a hidden file, an option); no '/', spaces, quotes or control characters.
-void check_file_stem(const std::string& name) {
-  static const std::regex stem("[A-Za-z0-9_+][A-Za-z0-9._+-]*");
-  if (name.size() > 200 || !std::regex_match(name, stem)) {
-    throw InputError(fmt::format("--name {}: must be a file stem of at most 200 letters, digits, '.', '_', '+' and "
-                                 "'-', not starting with '.' or '-' (no '/', spaces or control characters)",
-                                 echoed(name)));
-  }
-}
-
 // The run's work before it starts: RKF45 never steps beyond the cap of the stiffest mode
 // (transient.hpp): duration/cap steps (adaptive runs take up to twice as many, each cheaper than
 // rkf45_seconds assumes); the history holds samples-per-rev × revolutions samples.
@@ -217,7 +205,7 @@ Command register_transient(CLI::App& app) {
     if (scene.operation.speed_rad_s <= 0) {
       throw InputError("operation.speed_rad_s = 0: the transient is counted in revolutions; give a speed > 0");
     }
-    const BladeModel model = assemble_model(scene.blade, scene.model);
+    const BladeModel model = assemble_model(scene);
     TransientOptions o;
     o.revolutions = *revolutions;
     o.adaptive = *step == "adaptive";

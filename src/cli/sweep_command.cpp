@@ -1,0 +1,173 @@
+// bladestab sweep SCENE --key section.key --values a:b:n: natural frequencies against any numeric
+// scene key, modes tracked by shape; table, JSON, CSV and a chart.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <fmt/format.h>
+
+#include "bladestab/message_text.hpp"
+#include "bladestab/mode_convergence.hpp"
+#include "bladestab/parameter_sweep.hpp"
+#include "chart.hpp"
+#include "commands.hpp"
+#include "json_writer.hpp"
+#include "number_options.hpp"
+#include "options.hpp"
+#include "output_files.hpp"
+#include "progress.hpp"
+#include "work_limits.hpp"
+
+namespace bladestab::cli {
+namespace {
+
+bool constant(const std::vector<double>& values) {
+  return std::all_of(values.begin(), values.end(), [&](double v) { return v == values.front(); });
+}
+
+std::string sweep_title(const Scene& scene, const ParameterSweep& s) {
+  const std::string speed =
+      constant(s.speeds_rad_s) ? fmt::format(", Ω = {:g} rad/s", s.speeds_rad_s.front()) : std::string();
+  return fmt::format("{} — natural frequencies against {}{}", scene_title(scene), s.key, speed);
+}
+
+std::string sweep_json(const Scene& scene, const ParameterSweep& s) {
+  JsonWriter json;
+  json.begin_object()
+      .value("title", sweep_title(scene, s))
+      .value("scene", scene.source)
+      .value("key", s.key)
+      .numbers("values", s.values)
+      .numbers("speeds_rad_s", s.speeds_rad_s)
+      .value("model", describe_model(s.model))
+      .numbers("dofs", s.dofs)
+      .numbers("reference_terms", s.reference_terms)
+      .value("damping", to_string(scene.damping.model))
+      .value("solver", to_string(s.solver))
+      .begin_array("matched_by");
+  for (ModeMatch m : s.matched_by) json.value(nullptr, to_string(m));
+  json.end_array().value("min_correlation", s.min_correlation()).value("error_estimate", s.max_error_estimate());
+  json.begin_array("modes");
+  for (const SweptMode& m : s.modes) {
+    json.begin_object().value("index", m.index).value("family", to_string(m.family)).begin_array("families");
+    for (ModeFamily f : m.families) json.value(nullptr, to_string(f));
+    json.end_array()
+        .numbers("frequency_hz", m.frequency_hz)
+        .numbers("lambda", m.lambda)
+        .numbers("damping_ratio", m.damping_ratio)
+        .numbers_or_null("correlation", m.correlation)
+        .numbers("error_estimate", m.error_estimate)
+        .end_object();
+  }
+  json.end_array().end_object();
+  return json.str();
+}
+
+std::string sweep_csv(const ParameterSweep& s) {
+  std::string csv = s.key;
+  for (const char* unit : {"hz", "lambda"}) {
+    for (const SweptMode& m : s.modes) csv += fmt::format(",mode_{}_{}_{}", m.index, to_string(m.family), unit);
+  }
+  csv += "\n";
+  for (std::size_t v = 0; v < s.values.size(); ++v) {
+    csv += fmt::format("{}", s.values[v]);
+    for (const SweptMode& m : s.modes) csv += fmt::format(",{}", m.frequency_hz[v]);
+    for (const SweptMode& m : s.modes) csv += fmt::format(",{}", m.lambda[v]);
+    csv += "\n";
+  }
+  return csv;
+}
+
+void print_table(const Scene& scene, const ParameterSweep& s, const std::vector<std::string>& files) {
+  const std::size_t nv = s.values.size();
+  const auto by_order = std::count(s.matched_by.begin(), s.matched_by.end(), ModeMatch::order);
+  fmt::print("scene     {}\nmodel     {} (at the first value)\n", scene.source, describe_model(s.model));
+  fmt::print("sweep     {}: {} values from {:.6g} to {:.6g}; {}damping {}; solver {}\n", s.key, nv, s.values.front(),
+             s.values.back(),
+             constant(s.speeds_rad_s) ? fmt::format("speed {:.6g} rad/s; ", s.speeds_rad_s.front()) : std::string(),
+             to_string(scene.damping.model), to_string(s.solver));
+  fmt::print("tracking  by shape (mass-weighted MAC), lowest {:.3f}{}\n", s.min_correlation(),
+             by_order == 0 ? std::string()
+                           : fmt::format("; by frequency order at {} values where the dofs change", by_order));
+  fmt::print("error     {:.1e} relative, largest over the points (basis against richer models, and rounding, as `modes`)\n\n",
+             s.max_error_estimate());
+  const std::size_t width = std::max<std::size_t>(12, s.key.size());
+  fmt::print("{:>{}}", s.key, width);
+  for (const SweptMode& m : s.modes) fmt::print(" {:>14}", fmt::format("{} {}", m.index, to_string(m.family)));
+  fmt::print("\n{:>{}}", "", width);
+  for (std::size_t k = 0; k < s.modes.size(); ++k) fmt::print(" {:>14}", "[Hz]");
+  fmt::print("\n");
+  for (std::size_t v = 0; v < nv; ++v) {
+    fmt::print("{:>{}.6g}", s.values[v], width);
+    for (const SweptMode& m : s.modes) {
+      fmt::print(" {:>#14.{}g}", m.frequency_hz[v], std::min(10, significant_digits(m.error_estimate[v])));
+    }
+    fmt::print("\n");
+  }
+  if (!files.empty()) fmt::print("\nwritten: {}\n", fmt::join(files, ", "));
+}
+
+// Each value solves its model and the richer one of the error estimate whole (modes_with_error_estimate):
+// two dense eigensolves of the first-order system. A sweep of model.terms is estimated at its
+// largest value.
+void check_sweep_work(const Scene& scene, const ParameterSweepOptions& o) {
+  ModelSpec spec = scene.model;
+  if (o.key == "model.terms") spec.terms = static_cast<int>(*std::max_element(o.values.begin(), o.values.end()));
+  ModelSpec richer = spec;
+  richer.terms = reference_terms(spec.basis, spec.terms);
+  double flops = 0, bytes = 0;
+  for (const ModelSpec& s : {spec, richer}) {
+    const double states = 2.0 * dof_layout(s).size();
+    flops += o.values.size() * 25 * states * states * states;
+    bytes = std::max(bytes, 6 * 8 * states * states);
+  }
+  check_work(fmt::format("--values {} with model.terms = {}", echoed(o.values_text), spec.terms),
+             fmt::format("{} whole eigensolves", 2 * o.values.size()), flops / dense_flops_per_second, bytes);
+}
+
+}  // namespace
+
+Command register_sweep(CLI::App& app) {
+  auto* command = app.add_subcommand("sweep", "natural frequencies against any numeric scene key, modes tracked by shape");
+  auto options = std::make_shared<SceneOptions>();
+  auto key = std::make_shared<std::string>();
+  auto values = std::make_shared<std::string>();
+  auto count = std::make_shared<int>(8);
+  auto out = std::make_shared<std::string>(".");
+  auto chart = std::make_shared<std::string>("png");
+  auto name = std::make_shared<std::string>("sweep");
+  add_scene_options(*command, *options);
+  command->add_option("--key", *key, "the scene key to vary, section.key (e.g. blade.slenderness)")->required();
+  command->add_option("--values", *values, "its values as start:stop:count (either direction), e.g. 0.005:0.1:20")
+      ->required();
+  add_integer_option(*command, "--count", *count, 1, max_int, "modes to track: the lowest at the first value (default 8)");
+  add_chart_options(*command, *out, *chart, "directory for NAME.csv, NAME.json and the chart");
+  command->add_option("--name", *name, "stem of the output files (default sweep)");
+  return [=] {
+    ParameterSweepOptions o;
+    o.key = *key;
+    o.values_text = *values;
+    // The key's own range is the scene's to check, value by value.
+    constexpr double inf = std::numeric_limits<double>::infinity();
+    o.values = parse_range("--values", *values, AllowedRange::open(-inf, inf), RangeOrder::either_way);
+    o.mode_count = *count;
+    o.solver = options->eigen_solver();
+    check_file_stem(*name);
+    check_output_directory("--out", *out);
+    const Scene scene = options->load();
+    check_sweep_work(scene, o);
+    const bool for_people = options->output_format() == OutputFormat::table;
+    const ParameterSweep sweep = parameter_sweep(read_scene_file(options->path), options->path, options->overrides, o,
+                                                 progress_reporter("sweep: values", for_people));
+    const std::string json = sweep_json(scene, sweep);
+    const std::vector<std::string> files =
+        write_outputs(*out, *name, {{*name + ".csv", sweep_csv(sweep)}}, json, "sweep", *chart);
+    switch (options->output_format()) {
+      case OutputFormat::json: fmt::print("{}", json); break;
+      case OutputFormat::csv: fmt::print("{}", sweep_csv(sweep)); break;
+      case OutputFormat::table: print_table(scene, sweep, files); break;
+    }
+  };
+}
+
+}  // namespace bladestab::cli
