@@ -36,7 +36,7 @@
 #include <nvector/nvector_serial.h>
 #include <sundials/sundials_context.h>
 
-#include "bladestab/blas_threads.hpp"
+#include "blas_threads.hpp"
 #include "bladestab/damping.hpp"
 #include "bladestab/model.hpp"
 #include "bladestab/periodic_load.hpp"

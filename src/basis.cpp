@@ -1,11 +1,11 @@
-#include "bladestab/basis.hpp"
+#include "basis.hpp"
 
 #include <cmath>
 
+#include "bladestab/constants.hpp"
+
 namespace bladestab {
 namespace {
-
-constexpr double pi = 3.14159265358979323846;
 
 // Paper basis (18a–c).
 void sample_sine(FieldRole role, int terms, double L, const Eigen::VectorXd& s, BasisSamples& out) {

@@ -2,15 +2,13 @@
 
 #include <cmath>
 
-namespace bladestab {
+#include "bladestab/constants.hpp"
 
-namespace {
-constexpr double pi = 3.14159265358979323846;
-}
+namespace bladestab {
 
 BladeProperties::BladeProperties(const BladeSpec& s)
     : L(s.length), r(s.hub_radius), A(s.area), I(s.inertia), E(s.youngs_modulus),
-      G(s.youngs_modulus / (2 * (1 + s.poisson))), rho(s.density), nu(s.poisson),
+      shear_modulus(s.youngs_modulus / (2 * (1 + s.poisson))), rho(s.density), nu(s.poisson),
       kappa(s.shear_coefficient), beta_rad(s.stagger_deg * pi / 180) {}
 
 double BladeProperties::slenderness() const { return std::sqrt(I / (A * L * L)); }

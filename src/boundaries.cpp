@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 #include <lapacke.h>
 
+#include "bladestab/constants.hpp"
 #include "bladestab/floquet.hpp"
 #include "bladestab/mode_convergence.hpp"
 #include "bladestab/numerical_error.hpp"
@@ -177,8 +178,6 @@ void add_family(const PeriodicSystem& sys, int multiplier, int approximation, do
     if (classify(p, eig.vectors.col(j).head(N), approximation, b)) out.push_back(b);
   }
 }
-
-constexpr double two_pi = 6.28318530717958647692;
 constexpr double check_rtol = 1e-10;  // RKF45 tolerance of the multiplier check
 // The check keeps the modes below check_reach·order·θ/2π: RKF45's cost grows like the fastest
 // kept frequency times the period (≈ 2π·check_reach·order radians a period); at 20 the paper

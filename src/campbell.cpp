@@ -6,14 +6,13 @@
 #include <memory>
 #include <optional>
 
+#include "bladestab/constants.hpp"
 #include "bladestab/mode_convergence.hpp"
 #include "bladestab/mode_tracking.hpp"
 #include "bladestab/speed_sweep.hpp"
 
 namespace bladestab {
 namespace {
-
-constexpr double two_pi = 6.28318530717958647692;
 // A richer model's mode is the counterpart of a base mode if their shapes correlate at least this
 // well (MAC); below it nothing is known about that point's basis error.
 constexpr double counterpart_mac = 0.5;

@@ -5,6 +5,7 @@
 #include "bladestab/floquet.hpp"
 #include "bladestab/response_analysis.hpp"
 #include "bladestab/transient.hpp"
+#include "bladestab/undamped_modes.hpp"
 
 namespace bladestab {
 namespace {
@@ -15,8 +16,7 @@ double transient_growth(const BladeModel& model, const Scene& scene, double revo
   const double speed = scene.operation.speed_rad_s;
   const int n = model.layout.size();
   Eigen::VectorXd x = rotating_equilibrium(model, speed);
-  const Eigen::VectorXd mode =
-      Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd>(model.stiffness(speed), model.M).eigenvectors().col(0);
+  const Eigen::VectorXd mode = undamped_modes(model, speed, 0, 1).shapes.col(0);
   x.head(n) += 1e-6 / model.tip_lateral.dot(mode) * mode;
   TransientOptions o;
   o.revolutions = revolutions;

@@ -2,13 +2,14 @@
 
 #include <fmt/format.h>
 
+#include "bladestab/constants.hpp"
 #include "bladestab/input_error.hpp"
+#include "bladestab/undamped_modes.hpp"
 
 namespace bladestab {
 
 Eigen::MatrixXd damping_matrix(const BladeModel& model, const DampingSpec& spec, double speed) {
   const int n = model.layout.size();
-  constexpr double two_pi = 6.28318530717958647692;
   switch (spec.model) {
     case DampingModel::none:
       return Eigen::MatrixXd::Zero(n, n);
@@ -26,15 +27,15 @@ Eigen::MatrixXd damping_matrix(const BladeModel& model, const DampingSpec& spec,
       return alpha * model.M + beta * model.elastic_stiffness();
     }
     case DampingModel::modal: {
-      Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(model.stiffness(speed), model.M);
-      if (eig.info() != Eigen::Success || eig.eigenvalues().minCoeff() <= 0) {
+      const UndampedModes modes = undamped_modes(model, speed);
+      if (modes.omega2(0) <= 0) {
         throw InputError(fmt::format("damping.model = \"modal\": the stiffness at operation.speed_rad_s = {} is not "
                                      "positive definite (the blade of blade.length = {:g} m, blade.youngs_modulus = "
                                      "{:g} Pa is statically unstable there), so modal damping is undefined",
                                      speed, model.blade.L, model.blade.E));
       }
-      const Eigen::MatrixXd MPhi = model.M * eig.eigenvectors();  // Φ is M-orthonormal
-      const Eigen::VectorXd two_zeta_omega = 2 * spec.ratio * eig.eigenvalues().cwiseSqrt();
+      const Eigen::MatrixXd MPhi = model.M * modes.shapes;  // Φ is M-orthonormal
+      const Eigen::VectorXd two_zeta_omega = 2 * spec.ratio * modes.omega2.cwiseSqrt();
       Eigen::MatrixXd C = MPhi * two_zeta_omega.asDiagonal() * MPhi.transpose();
       return 0.5 * (C + C.transpose());
     }

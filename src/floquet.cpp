@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "bladestab/constants.hpp"
 #include "bladestab/input_error.hpp"
 #include "bladestab/magnus.hpp"
 #include "bladestab/numerical_error.hpp"
@@ -53,7 +54,7 @@ Eigen::MatrixXd real_hill_matrix(const PeriodicSystem& sys, int q) {
 std::optional<double> log_decrement(cplx rho, double T) {
   const cplx lambda = std::log(rho) / T;
   if (lambda.imag() == 0) return std::nullopt;
-  return -2 * 3.14159265358979323846 * lambda.real() / std::abs(lambda.imag());
+  return -two_pi * lambda.real() / std::abs(lambda.imag());
 }
 
 struct Attempt {

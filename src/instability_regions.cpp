@@ -6,12 +6,11 @@
 #include <map>
 
 #include "bladestab/blade_properties.hpp"
+#include "bladestab/constants.hpp"
 #include "bladestab/stability_analysis.hpp"
 
 namespace bladestab {
 namespace {
-
-constexpr double two_pi = 6.28318530717958647692;
 
 }  // namespace
 

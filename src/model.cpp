@@ -7,9 +7,9 @@
 
 #include <fmt/format.h>
 
-#include "bladestab/basis.hpp"
+#include "basis.hpp"
 #include "bladestab/numerical_error.hpp"
-#include "bladestab/quadrature.hpp"
+#include "quadrature.hpp"
 #include "bladestab/static_buckling.hpp"
 
 namespace bladestab {
@@ -83,7 +83,7 @@ BladeModel assemble_blade(const BladeSpec& blade_spec, const ModelSpec& spec) {
   model.tip_slope = Eigen::RowVectorXd::Zero(n);
 
   const double cos_beta = std::cos(b.beta_rad);
-  const double kGA = b.kappa * b.G * b.A;
+  const double kGA = b.kappa * b.shear_modulus * b.A;
 
   // Lateral field v.
   model.M.block(lv, lv, N, N) = gram(w * (b.rho * b.A), V.value, V.value);

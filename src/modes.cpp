@@ -7,10 +7,10 @@
 
 #include <lapacke.h>
 
+#include "bladestab/constants.hpp"
+
 namespace bladestab {
 namespace {
-
-constexpr double two_pi = 6.28318530717958647692;
 
 bool is_skew(const Eigen::MatrixXd& C) { return (C + C.transpose()).cwiseAbs().maxCoeff() == 0; }
 

@@ -4,13 +4,13 @@
 
 #include <fmt/format.h>
 
+#include "bladestab/constants.hpp"
 #include "bladestab/input_error.hpp"
 
 namespace bladestab {
 namespace {
 
 using cplx = std::complex<double>;
-constexpr double pi = 3.14159265358979323846;
 
 // φ1(z) = (e^z − 1)/z and ψ(z) = ∫₀¹ u e^{zu} du = (e^z (z − 1) + 1)/z², by series near 0.
 cplx phi1(cplx z) {

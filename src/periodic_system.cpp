@@ -4,13 +4,13 @@
 
 #include <fmt/format.h>
 
+#include "bladestab/constants.hpp"
 #include "bladestab/damping.hpp"
 #include "bladestab/numerical_error.hpp"
 
 namespace bladestab {
 
 namespace {
-constexpr double two_pi = 6.28318530717958647692;
 }
 
 double PeriodicSystem::period() const { return two_pi / angular_frequency; }

@@ -1,15 +1,16 @@
 // Gauss–Legendre nodes by Newton's method on P_n from the Tricomi initial guesses; weights from
 // P_n'. Accurate to a few ulp for the n (< 1000) used here.
-#include "bladestab/quadrature.hpp"
+#include "quadrature.hpp"
 
 #include <cmath>
 #include <stdexcept>
+
+#include "bladestab/constants.hpp"
 
 namespace bladestab {
 
 QuadratureRule gauss_legendre(int n, double a, double b) {
   if (n < 1) throw std::invalid_argument("gauss_legendre: n must be >= 1");
-  const double pi = 3.14159265358979323846;
   QuadratureRule rule{Eigen::VectorXd(n), Eigen::VectorXd(n)};
   for (int i = 0; i < (n + 1) / 2; ++i) {
     double x = std::cos(pi * (i + 0.75) / (n + 0.5));

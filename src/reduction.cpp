@@ -1,50 +1,15 @@
 #include "bladestab/reduction.hpp"
 
 #include <cmath>
-#include <vector>
 
 #include <fmt/format.h>
-#include <lapacke.h>
 
+#include "bladestab/constants.hpp"
 #include "bladestab/input_error.hpp"
-#include "bladestab/numerical_error.hpp"
+#include "bladestab/undamped_modes.hpp"
 
 namespace bladestab {
 namespace {
-
-constexpr double two_pi = 6.28318530717958647692;
-
-// The modes of the loaded blade failed to converge: within the scene's limits this does not happen.
-NumericalError modes_failed(double speed, double force) {
-  return NumericalError(fmt::format("the modes of the loaded blade did not converge at operation.speed_rad_s = {:g} "
-                                    "with a tip load of {:.6g} N (load.fmax_over_fcr); the stiffness K(Ω) + F G is "
-                                    "not finite or not symmetric there",
-                                    speed, force));
-}
-
-struct LowestModes {
-  Eigen::VectorXd omega2;  // ascending
-  Eigen::MatrixXd shapes;  // M-orthonormal columns
-};
-
-// The `count` lowest modes of K(Ω) + F G with respect to M by LAPACK's subset driver dsygvx
-// (tridiagonalization, bisection, inverse iteration): the automatic reduction needs a few modes of
-// each load level, and the whole decomposition (all 48 vectors of the default scene by implicit QR)
-// was a tenth of a map's time, one reduction per Floquet point.
-LowestModes lowest_modes(const BladeModel& model, double speed, double force, int count) {
-  Eigen::MatrixXd K = model.stiffness(speed, force), M = model.M;
-  const lapack_int n = static_cast<lapack_int>(K.rows());
-  count = std::min<int>(count, n);
-  LowestModes modes{Eigen::VectorXd(n), Eigen::MatrixXd(n, count)};
-  std::vector<lapack_int> failed(n);
-  lapack_int found = 0;
-  const lapack_int info = LAPACKE_dsygvx(LAPACK_COL_MAJOR, 1, 'V', 'I', 'L', n, K.data(), n, M.data(), n, 0, 0, 1,
-                                         count, 0.0, &found, modes.omega2.data(), modes.shapes.data(), n,
-                                         failed.data());
-  if (info != 0 || found != count) throw modes_failed(speed, force);
-  modes.omega2.conservativeResize(count);
-  return modes;
-}
 
 // An M-orthonormal basis of span(W): unit M-norm columns, then the eigenvectors of the Gram
 // matrix WᵀMW; directions whose Gram eigenvalue is below 1e-10 are (nearly) dependent and dropped.
@@ -87,24 +52,24 @@ ReducedSystem reduce(const BladeModel& model, double speed, const Eigen::MatrixX
   const int m = spec.vectors > 0 ? spec.vectors : default_reduction_vectors;
   // A model no larger than the reduced one would be is kept whole.
   if (spec.kind == ReductionKind::automatic && 3 * m < dofs) {
-    const LowestModes unloaded = lowest_modes(model, speed, 0, m);
+    // A few modes of each load level (a subset solve: the whole decomposition at every map point
+    // was a tenth of a map's time).
+    const UndampedModes unloaded = undamped_modes(model, speed, 0, m);
     if (unloaded.omega2(0) <= 0) throw statically_unstable();
     const Eigen::MatrixXd corrections = model.stiffness(speed).ldlt().solve(C * unloaded.shapes);
     Eigen::MatrixXd W(dofs, 3 * m);
-    W << unloaded.shapes, lowest_modes(model, speed, min_force_n, m).shapes, corrections;
+    W << unloaded.shapes, undamped_modes(model, speed, min_force_n, m).shapes, corrections;
     V = m_orthonormal(std::move(W), model.M);
   } else {
-    // Modes of K(Ω) with respect to M, M-orthonormal, by ascending ω².
-    const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> unloaded(model.stiffness(speed), model.M);
-    if (unloaded.info() != Eigen::Success) throw modes_failed(speed, 0);
-    if (unloaded.eigenvalues()(0) <= 0) throw statically_unstable();
+    const UndampedModes unloaded = undamped_modes(model, speed);
+    if (unloaded.omega2(0) <= 0) throw statically_unstable();
     int kept = dofs;
     if (spec.kind == ReductionKind::modal && spec.cutoff_hz > 0) {  // else every mode
-      const Eigen::VectorXd f = unloaded.eigenvalues().cwiseSqrt() / two_pi;
+      const Eigen::VectorXd f = unloaded.omega2.cwiseSqrt() / two_pi;
       kept = 1;
       while (kept < dofs && f(kept) < spec.cutoff_hz) ++kept;
     }
-    V = unloaded.eigenvectors().leftCols(kept);
+    V = unloaded.shapes.leftCols(kept);
   }
   ReducedSystem r;
   r.K = V.transpose() * model.stiffness(speed) * V;

@@ -9,13 +9,14 @@
 #include <fmt/format.h>
 #include <unsupported/Eigen/FFT>
 
+#include "bladestab/constants.hpp"
+
 namespace bladestab {
 
 Spectrum amplitude_spectrum(const std::vector<double>& signal, double rate) {
   const std::size_t n = signal.size();
   if (n < 4) throw std::invalid_argument("a spectrum needs at least 4 samples");
   const double mean = std::accumulate(signal.begin(), signal.end(), 0.0) / n;
-  const double pi = 3.14159265358979323846;
   std::vector<double> windowed(n);
   double gain = 0;
   for (std::size_t k = 0; k < n; ++k) {

@@ -16,6 +16,7 @@
 #include <fmt/format.h>
 #include <toml++/toml.h>
 
+#include "bladestab/constants.hpp"
 #include "bladestab/input_error.hpp"
 #include "bladestab/message_text.hpp"
 #include "bladestab/scene_limits.hpp"
@@ -367,7 +368,7 @@ Scene read_scene(const toml::table& root, const std::string& source_name, const 
   l.pulse_frequency_hz = load.optional_number("pulse_frequency_hz", limits::pulse_frequency_hz, "pulse frequency in Hz");
   if (l.pulse_frequency_hz && scene.operation.speed_rad_s > 0) {
     // t̄_c is a fraction of a revolution; the pulses come at their own frequency (pulse_train).
-    const double contact_s = l.contact_time_rev * 6.28318530717958647692 / scene.operation.speed_rad_s;
+    const double contact_s = l.contact_time_rev * two_pi / scene.operation.speed_rad_s;
     if (contact_s * *l.pulse_frequency_hz > 1 + 1e-12) {
       load.fail_both("pulse_frequency_hz", "contact_time_rev",
                      fmt::format("the contact ({:.3g} s at operation.speed_rad_s = {}) outlasts the pulse period "

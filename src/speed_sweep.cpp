@@ -8,13 +8,12 @@
 #include <fmt/format.h>
 #include <lapacke.h>
 
+#include "bladestab/constants.hpp"
 #include "bladestab/damping.hpp"
 #include "bladestab/mode_convergence.hpp"
 
 namespace bladestab {
 namespace {
-
-constexpr double two_pi = 6.28318530717958647692;
 constexpr double unbounded = std::numeric_limits<double>::infinity();
 // Rounds of basis enrichment before the reduced sweep gives up on a speed (each adds that
 // speed's exact modes, so the bound there becomes rounding; far more than the paper blade needs).

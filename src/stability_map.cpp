@@ -15,6 +15,7 @@
 #include <fmt/format.h>
 
 #include "bladestab/boundaries.hpp"
+#include "bladestab/constants.hpp"
 #include "bladestab/input_error.hpp"
 #include "bladestab/numerical_error.hpp"
 #include "bladestab/mode_convergence.hpp"
@@ -22,8 +23,6 @@
 
 namespace bladestab {
 namespace {
-
-constexpr double two_pi = 6.28318530717958647692;
 // The most harmonics per family the curves are raised to.
 constexpr int max_curve_approximation = 20;
 

@@ -6,13 +6,14 @@
 #include <fmt/format.h>
 
 #include "bladestab/casing_contact.hpp"
+#include "bladestab/constants.hpp"
 #include "bladestab/damping.hpp"
 #include "bladestab/input_error.hpp"
 #include "bladestab/response_analysis.hpp"
+#include "bladestab/undamped_modes.hpp"
 
 namespace bladestab {
 namespace {
-constexpr double two_pi = 6.28318530717958647692;
 }
 
 Eigen::VectorXd rotating_equilibrium(const BladeModel& model, double speed) {
@@ -26,8 +27,7 @@ FixedStep choose_fixed_step(const Eigen::MatrixXd& K, const Eigen::MatrixXd& M, 
   if (steps_per_period != 0 && steps_per_period < 8) {
     throw std::invalid_argument("steps per period below the paper's bound (54) of 8");
   }
-  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(K, M, Eigen::EigenvaluesOnly);
-  const double omega_max = std::sqrt(eig.eigenvalues().maxCoeff());
+  const double omega_max = std::sqrt(generalized_modes(K, M, 0, false).omega2.maxCoeff());
   const auto growth = [&](int n) {
     const double y = two_pi / n;  // ω_max Δt
     return std::pow(std::abs(rkf45_stability_function({0, y})), duration * omega_max / y);

@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "bladestab/periodic_load.hpp"
-#include "bladestab/quadrature.hpp"
+#include "quadrature.hpp"
 #include "support/scenes.hpp"
 
 using namespace bladestab;

@@ -5,7 +5,9 @@
 namespace bladestab {
 
 struct BladeProperties {
-  double L, r, A, I, E, G, rho, nu, kappa;  // SI; G = E / (2(1 + ν))
+  double L, r, A, I, E;     // SI: span, hub radius, area, second moment, Young's modulus
+  double shear_modulus;     // E / (2(1 + ν)); the model's G is the geometric stiffness
+  double rho, nu, kappa;    // density, Poisson's ratio, shear coefficient κ
   double beta_rad;                          // stagger angle β
 
   explicit BladeProperties(const BladeSpec& spec);

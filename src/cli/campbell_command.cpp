@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include "bladestab/campbell.hpp"
+#include "bladestab/constants.hpp"
 #include "bladestab/input_error.hpp"
 #include "bladestab/mode_convergence.hpp"
 #include "bladestab/scene_limits.hpp"
@@ -20,7 +21,7 @@
 namespace bladestab::cli {
 namespace {
 
-constexpr double rpm_per_rad_s = 60 / 6.28318530717958647692;
+constexpr double rpm_per_rad_s = 60 / two_pi;
 
 std::string campbell_json(const Scene& scene, const CampbellWithErrors& r) {
   const CampbellDiagram& d = r.diagram;

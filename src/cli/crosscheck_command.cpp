@@ -1,6 +1,7 @@
 // bladestab crosscheck SCENE: frequency domain against time domain, point by point.
 #include <fmt/format.h>
 
+#include "bladestab/constants.hpp"
 #include "bladestab/crosscheck.hpp"
 #include "bladestab/input_error.hpp"
 #include "bladestab/scene_limits.hpp"
@@ -21,7 +22,7 @@ namespace {
 void check_crosscheck_work(const Scene& scene, std::size_t points, double revolutions) {
   const BladeModel model = assemble_model(scene);
   TransientOptions o;
-  const double duration = revolutions * 6.28318530717958647692 / scene.operation.speed_rad_s;
+  const double duration = revolutions * two_pi / scene.operation.speed_rad_s;
   const double steps = 2 * points * duration / transient_step(model, scene, o, duration).step_s;
   check_work(fmt::format("--points with {} values and --revolutions {:g} with model.terms = {}", points, revolutions,
                          scene.model.terms),

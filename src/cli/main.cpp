@@ -14,7 +14,7 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
-#include "bladestab/blas_threads.hpp"
+#include "blas_threads.hpp"
 #include "bladestab/input_error.hpp"
 #include "bladestab/message_text.hpp"
 #include "commands.hpp"

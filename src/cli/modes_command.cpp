@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "bladestab/constants.hpp"
 #include "bladestab/input_error.hpp"
 #include "bladestab/mode_convergence.hpp"
 #include "commands.hpp"
@@ -18,7 +19,7 @@
 namespace bladestab::cli {
 namespace {
 
-constexpr double rpm_per_rad_s = 60 / 6.28318530717958647692;
+constexpr double rpm_per_rad_s = 60 / two_pi;
 
 void require_finite(const Scene& scene, const ConvergedModes& result) {
   const FiniteResults check("modes");

@@ -1,8 +1,8 @@
 // bladestab transient SCENE: time response to the rub, CSV of the history, JSON summary, chart.
 
-
 #include <fmt/format.h>
 
+#include "bladestab/constants.hpp"
 #include "bladestab/input_error.hpp"
 #include "bladestab/message_text.hpp"
 #include "bladestab/response_analysis.hpp"
@@ -155,7 +155,7 @@ std::string summary_json(const Scene& scene, const BladeModel& model, const Tran
 // (transient.hpp): duration/cap steps (adaptive runs take up to twice as many, each cheaper than
 // rkf45_seconds assumes); the history holds samples-per-rev × revolutions samples.
 void check_transient_work(const BladeModel& model, const Scene& scene, const TransientOptions& o) {
-  const double duration = o.revolutions * 6.28318530717958647692 / scene.operation.speed_rad_s;
+  const double duration = o.revolutions * two_pi / scene.operation.speed_rad_s;
   const FixedStep step = transient_step(model, scene, o, duration);
   const double steps = duration / step.step_s;
   const double seconds = rkf45_seconds(steps, model.layout.size());
@@ -217,7 +217,7 @@ Command register_transient(CLI::App& app) {
     o.progress = progress_reporter("transient: revolutions", for_people);
     check_transient_work(model, scene, o);
     const TransientResult r = run_transient(model, scene, o);
-    const double sample_rate = *samples * scene.operation.speed_rad_s / 6.28318530717958647692;
+    const double sample_rate = *samples * scene.operation.speed_rad_s / two_pi;
     const Summary s = summarize(r, sample_rate);
     if (const auto failure = transient_failure(s.checks, scene.blade.length)) {
       // A numerical failure (exit 1), not a result: no files, no numbers.
