@@ -98,8 +98,12 @@ CheckOutcome rub_outcome(const Scene& scene, const RubStabilityResult& r) {
   } else if (r.tip) {
     o.detail = fmt::format(
         "undamped: the region of mode {}, order {} (multiplier {}) touches F̄ = 0 at its tip 2ω_{}/{} = {}·Ω, "
-        "Ω = {:.9g} rad/s, inside the range, so a rub of any load opens it (onset 0); {}; {}",
-        r.mode, r.order, sign_text(r.multiplier), r.mode, r.order, r.pulses_per_rev, r.speed_rad_s, floquet, scope);
+        "Ω = {:.9g} rad/s, inside the range, so a rub of any load opens it (onset 0); {}{}; {}",
+        r.mode, r.order, sign_text(r.multiplier), r.mode, r.order, r.pulses_per_rev, r.speed_rad_s, floquet,
+        r.check_stable ? " (a region of order > 1 bends away from its tip's speed as F̄ grows, so this point is "
+                         "outside it: no confirmation)"
+                       : "",
+        scope);
   } else if (r.onset_fmax_over_fcr && *r.onset_fmax_over_fcr <= r.required) {
     o.detail = fmt::format("a region of mode {}, order {} (multiplier {}) opens at F̄ = {:.8g} (error estimate {:.1e}) "
                            "at {:.9g} rad/s, within the required {:g}; {}; {}",
