@@ -9,6 +9,7 @@
 #include "bladestab/constants.hpp"
 #include "bladestab/mode_convergence.hpp"
 #include "bladestab/mode_tracking.hpp"
+#include "bladestab/scalar_search.hpp"
 #include "bladestab/speed_sweep.hpp"
 
 namespace bladestab {
@@ -41,24 +42,10 @@ std::vector<int> match_by_shape(const Eigen::MatrixXcd& tracked, const Eigen::Ma
   return assign_by_correlation((tracked.adjoint() * candidates).cwiseAbs2(), mac_out);
 }
 
-// Root of g(Ω) = f(Ω) − kΩ/2π in [a, b] by the Illinois variant of regula falsi.
-double refine_crossing(const std::function<double(double)>& g, double a, double ga, double b, double gb) {
-  int side = 0;
-  for (int iter = 0; iter < 60 && std::abs(b - a) > 1e-12 * std::max(1.0, std::abs(b)); ++iter) {
-    const double c = (a * gb - b * ga) / (gb - ga);
-    const double gc = g(c);
-    if (gc == 0) return c;
-    if ((gc > 0) == (gb > 0)) {
-      b = c, gb = gc;
-      if (side == -1) ga *= 0.5;
-      side = -1;
-    } else {
-      a = c, ga = gc;
-      if (side == 1) gb *= 0.5;
-      side = 1;
-    }
-  }
-  return std::abs(ga) < std::abs(gb) ? a : b;
+// The sweep's frequency [Hz] at `speed` of the mode most like `shape`: the curve between the speeds.
+double frequency_of(SpeedSweep& sweep, const Eigen::VectorXcd& shape, double speed) {
+  const SpeedModes modes = sweep.at(speed, false);
+  return modes.frequency_hz[most_like(modes, shape)];
 }
 
 // The sweep's modes at every speed and, per curve, which of them it follows.
@@ -133,11 +120,8 @@ void find_crossings(SpeedSweep& sweep, const Tracked& t, CampbellDiagram& d, std
         // A pair that does not oscillate at either end (heavy damping) meets no line.
         if (curve.frequency_hz[s] <= 0 || curve.frequency_hz[s + 1] <= 0) continue;
         const Eigen::VectorXcd shape = t.modes[s].shapes.col(t.pick[i][s]);
-        const auto g = [&](double speed) {
-          const SpeedModes modes = sweep.at(speed, false);
-          return modes.frequency_hz[most_like(modes, shape)] - line * speed;
-        };
-        const double root = g1 == 0 ? speeds[s + 1] : refine_crossing(g, speeds[s], g0, speeds[s + 1], g1);
+        const auto g = [&](double speed) { return frequency_of(sweep, shape, speed) - line * speed; };
+        const double root = g1 == 0 ? speeds[s + 1] : illinois_root(g, speeds[s], g0, speeds[s + 1], g1);
         // Slope of g by a central difference on the sweep's modes.
         const double h = 1e-4 * (speeds[s + 1] - speeds[s]);
         const double lo = std::max(speeds[s], root - h), hi = std::min(speeds[s + 1], root + h);
@@ -169,6 +153,55 @@ void find_crossings(SpeedSweep& sweep, const Tracked& t, CampbellDiagram& d, std
   }
 }
 
+// Each curve's closest approach to each engine-order line (EngineOrderApproach), after the
+// crossings. `shapes` receives, per approach, the shape it followed.
+void find_closest_approaches(SpeedSweep& sweep, const Tracked& t, CampbellDiagram& d,
+                             std::vector<Eigen::VectorXcd>& shapes) {
+  const auto& speeds = d.speeds_rad_s;
+  const int ns = static_cast<int>(speeds.size());
+  d.approaches.clear();
+  shapes.clear();
+  for (int k : d.engine_orders) {
+    const double line = k / two_pi;  // Hz per rad/s
+    for (std::size_t i = 0; i < d.curves.size(); ++i) {
+      const CampbellCurve& curve = d.curves[i];
+      EngineOrderApproach a;
+      a.engine_order = k;
+      a.mode = curve.mode;
+      const auto crossing = std::find_if(d.crossings.begin(), d.crossings.end(), [&](const EngineOrderCrossing& x) {
+        return x.engine_order == k && x.mode == curve.mode;
+      });
+      // The speed of least |f − kΩ/2π| / f among those where the pair oscillates.
+      int nearest = -1;
+      double least = 0;
+      for (int s = 0; s < ns; ++s) {
+        const double f = curve.frequency_hz[s];
+        if (f <= 0) continue;
+        const double distance = std::abs(f - line * speeds[s]) / f;
+        if (nearest < 0 || distance < least) nearest = s, least = distance;
+      }
+      if (nearest < 0) continue;  // overdamped throughout: it meets no line
+      Eigen::VectorXcd shape = t.modes[nearest].shapes.col(t.pick[i][nearest]);
+      if (crossing != d.crossings.end()) {
+        a.speed_rad_s = crossing->speed_rad_s;
+        a.frequency_hz = crossing->frequency_hz;
+        a.distance = 0;
+      } else {
+        const auto distance = [&](double speed) {
+          const double f = frequency_of(sweep, shape, speed);
+          return f > 0 ? std::abs(f - line * speed) / f : 1.0;
+        };
+        const double lo = speeds[std::max(0, nearest - 1)], hi = speeds[std::min(ns - 1, nearest + 1)];
+        a.speed_rad_s = golden_minimum(distance, lo, hi, 1e-10 * std::max(1.0, hi));
+        a.frequency_hz = sweep.whole_frequency(a.speed_rad_s, shape);
+        a.distance = std::abs(a.frequency_hz - line * a.speed_rad_s) / a.frequency_hz;
+      }
+      d.approaches.push_back(a);
+      shapes.push_back(std::move(shape));
+    }
+  }
+}
+
 // The diagram from one sweep; a reduced sweep that cannot certify some speed gives way to the
 // dense one.
 CampbellDiagram diagram_from(const BladeModel& model, const DampingSpec& damping, const CampbellOptions& options,
@@ -186,6 +219,7 @@ CampbellDiagram diagram_from(const BladeModel& model, const DampingSpec& damping
   }
   std::vector<Eigen::VectorXcd> shapes;
   find_crossings(*sweep, t, d, shapes);
+  if (options.closest_approaches) find_closest_approaches(*sweep, t, d, shapes);
   return d;
 }
 
@@ -408,29 +442,49 @@ CampbellWithErrors campbell_with_error_estimate(const Scene& scene, const Campbe
         continue;
       }
 
+      // The budget of the frequency followed by `shape` at `speed` (relative).
+      const auto frequency_budget = [&](double speed, const Eigen::VectorXcd& shape) {
+        const SpeedModes here = base->at(speed, true);
+        std::vector<SpeedModes> there;
+        for (Reference& r : refs) there.push_back(r.sweep->at(speed, true));
+        for (std::size_t r = 0; r < refs.size(); ++r) at[r] = &there[r];
+        const int j = most_like(here, shape);
+        return point_budget(here, j, here.shapes.col(j), refs, at, terms);
+      };
       std::vector<Eigen::VectorXcd> shapes;
       find_crossings(*base, t, diagram, shapes);
       std::vector<ErrorBudget> crossing_budget;
       for (std::size_t c = 0; c < shapes.size(); ++c) {
         const EngineOrderCrossing& x = diagram.crossings[c];
-        const SpeedModes here = base->at(x.speed_rad_s, true);
-        std::vector<SpeedModes> there;
-        for (Reference& r : refs) there.push_back(r.sweep->at(x.speed_rad_s, true));
-        for (std::size_t r = 0; r < refs.size(); ++r) at[r] = &there[r];
-        const int j = most_like(here, shapes[c]);
-        const ErrorBudget f = point_budget(here, j, here.shapes.col(j), refs, at, terms);
+        const ErrorBudget f = frequency_budget(x.speed_rad_s, shapes[c]);
         ErrorBudget b;
         b.basis = x.amplification * f.basis;
         b.reduction = x.amplification * x.residual;
         b.method = x.amplification * f.method;
         crossing_budget.push_back(b);
       }
+      std::vector<ErrorBudget> approach_budget;
+      if (wanted.closest_approaches) {
+        find_closest_approaches(*base, t, diagram, shapes);
+        for (std::size_t c = 0; c < shapes.size(); ++c) {
+          const EngineOrderApproach& a = diagram.approaches[c];
+          // distance = |1 − kΩ/(2πf)|: a relative error ε of f moves it by (kΩ/2πf)·ε.
+          const double sensitivity = a.engine_order * a.speed_rad_s / (two_pi * a.frequency_hz);
+          const ErrorBudget f = frequency_budget(a.speed_rad_s, shapes[c]);
+          ErrorBudget b;
+          b.basis = sensitivity * f.basis;
+          b.reduction = sensitivity * f.reduction;
+          b.method = sensitivity * f.method;
+          approach_budget.push_back(b);
+        }
+      }
       return CampbellWithErrors{std::move(*model),
                                 std::move(diagram),
                                 tolerance,
                                 std::vector<int>(terms.begin() + 1, terms.end()),
                                 std::move(budget),
-                                std::move(crossing_budget)};
+                                std::move(crossing_budget),
+                                std::move(approach_budget)};
     } catch (const ReducedSweepUnavailable&) {
       dense = true;
     }

@@ -1,5 +1,6 @@
 #include "bladestab/periodic_system.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -69,6 +70,15 @@ PeriodicSystem periodic_system(const BladeModel& model, const Scene& scene, cons
                                const ReductionSpec& reduction) {
   const double speed = scene.operation.speed_rad_s;
   return periodic_system(model, speed, damping_matrix(model, scene.damping, speed), load, reduction);
+}
+
+int tongue_vectors(const BladeModel& model, const Scene& scene, double theta_max, int max_order) {
+  Scene unloaded = scene;
+  unloaded.load.fmax_over_fcr = 0;
+  unloaded.load.pulse_frequency_hz = theta_max / two_pi;
+  const Eigen::VectorXd omega =
+      periodic_system(model, unloaded, load_series(unloaded), {ReductionKind::none, 0, 0}).modal_frequencies;
+  return std::max(2, static_cast<int>((omega.array() < max_order * theta_max).count()));
 }
 
 }  // namespace bladestab

@@ -4,6 +4,7 @@
 
 #include <sys/stat.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
@@ -152,6 +153,24 @@ public:
     return values;
   }
 
+  // A non-empty list of distinct integers, each in [lo, hi].
+  std::vector<int> distinct_integer_list(const std::string& key, long lo, long hi, const std::string& meaning) {
+    const toml::node& node = require(key);
+    const toml::array* array = node.as_array();
+    const std::string what =
+        fmt::format("must be a non-empty list of distinct integers, each in [{}, {}] ({})", lo, hi, meaning);
+    if (array == nullptr) fail(key, node, what, Reason::not_numeric);
+    if (array->empty()) fail(key, node, what);
+    std::vector<int> values;
+    for (const toml::node& item : *array) {
+      if (!item.is_integer()) fail(key, node, what);
+      const long v = static_cast<long>(item.as_integer()->get());
+      if (v < lo || v > hi || std::find(values.begin(), values.end(), v) != values.end()) fail(key, node, what);
+      values.push_back(static_cast<int>(v));
+    }
+    return values;
+  }
+
   // Reports keys that were present but never read: unknown ones, and known ones that the other
   // settings make meaningless (`unused_because` says which setting).
   void reject_unknown(const std::string& unused_because = "") const {
@@ -245,14 +264,46 @@ void apply_override(toml::table& root, const std::string& assignment, const std:
   table->insert_or_assign(key, *parsed.get("value"));
 }
 
+// The optional [requirements] of `bladestab check`: each key optional, but a margin or a load.
+RequirementsSpec read_requirements(const toml::table& root, const std::string& source) {
+  SectionReader section(root, "requirements", source);
+  section.known({"speed_range_rad_s", "engine_orders", "frequency_margin", "max_fmax_over_fcr"});
+  RequirementsSpec r;
+  if (!section.has("speed_range_rad_s")) {
+    section.fail_missing("speed_range_rad_s", "the operating range [lo, hi] in rad/s is required");
+  }
+  const std::vector<double> range = section.number_list("speed_range_rad_s", 2, limits::speed_rad_s,
+                                                        "operating range [lo, hi] in rad/s, lo < hi");
+  if (!(range[0] < range[1])) {
+    section.fail_derived("speed_range_rad_s", "must be [lo, hi] with lo < hi (the operating range in rad/s)");
+  }
+  r.speed_lo_rad_s = range[0];
+  r.speed_hi_rad_s = range[1];
+  if (section.has("engine_orders")) {
+    r.engine_orders = section.distinct_integer_list("engine_orders", 1, limits::max_engine_order,
+                                                    "engine orders k of the lines f = kΩ/2π");
+  }
+  r.frequency_margin = section.optional_number(
+      "frequency_margin", limits::frequency_margin, "least |f − kΩ/2π| / f inside the range");
+  r.max_fmax_over_fcr = section.optional_number(
+      "max_fmax_over_fcr", limits::max_fmax_over_fcr, "largest rub load F_max / F_cr that must be stable");
+  if (!r.frequency_margin && !r.max_fmax_over_fcr) {
+    section.fail_missing("frequency_margin",
+                         "give requirements.frequency_margin, requirements.max_fmax_over_fcr or both");
+  }
+  section.reject_unknown();
+  return r;
+}
+
 // `source` is the scene's name as messages show it.
 Scene read_scene(const toml::table& root, const std::string& source_name, const std::string& source) {
   Scene scene;
   scene.source = source_name;
   for (const auto& [key, node] : root) {
-    static const std::set<std::string> sections{"blade", "model", "operation", "damping", "load"};
+    static const std::set<std::string> sections{"blade", "model", "operation", "damping", "load", "requirements"};
     if (sections.count(std::string(key.str())) == 0) {
-      throw SceneKeyError(fmt::format("{}: [{}]: unknown section (known: blade, model, operation, damping, load)",
+      throw SceneKeyError(fmt::format("{}: [{}]: unknown section (known: blade, model, operation, damping, load, "
+                                      "requirements)",
                                       source, echoed(key.str())),
                           std::string(key.str()), SceneKeyError::Reason::unknown);
     }
@@ -393,6 +444,7 @@ Scene read_scene(const toml::table& root, const std::string& source_name, const 
                    fmt::format("pulses overlap; t̄_c must be <= 1/pulses_per_rev = {:.6g}", 1.0 / l.pulses_per_rev));
   }
   load.reject_unknown("load.mode = \"force\"");
+  if (root.contains("requirements")) scene.requirements = read_requirements(root, source);
   return scene;
 }
 

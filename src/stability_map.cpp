@@ -329,18 +329,13 @@ std::vector<BoundaryCurve> close_folds(std::vector<BoundaryCurve> curves, const 
   return out;
 }
 
-// Reduced-basis vectors per load level for the map: enough unloaded modes (at the window's lowest
-// speed, where they are lowest) to hold every tongue drawn. A tongue of order n ≤ max_order sits
-// near θ = 2ω/n, so modes up to ω = max_order·θ_max/2 are drawn; twice that is kept (the load
-// lowers the frequencies it couples), and never fewer than two. Each use checks its choice
-// (check_curves, check_shading) and raises it where the check fails.
+// Reduced-basis vectors per load level for the map: enough to hold every tongue drawn
+// (tongue_vectors, at the window's lowest speed). Each use checks its choice (check_curves,
+// check_shading) and raises it where the check fails.
 int window_vectors(const BladeModel& model, const Scene& scene, const CurveWindow& w) {
   const double slowest = w.theta_plane ? w.speed : w.x_lo;
   const double theta_max = w.theta_plane ? w.x_hi : w.engine_order * w.x_hi;
-  const Scene at = scene_at(scene, slowest, theta_max, 0);
-  const Eigen::VectorXd omega = periodic_system(model, at, load_series(at), {ReductionKind::none, 0, 0}).modal_frequencies;
-  const int drawn = static_cast<int>((omega.array() < w.max_order * theta_max).count());
-  return std::max(2, drawn);
+  return tongue_vectors(model, scene_at(scene, slowest, theta_max, 0), theta_max, w.max_order);
 }
 
 // Boundaries of the check lines, kept across the fidelity's iterations: most models compared

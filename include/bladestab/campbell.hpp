@@ -21,6 +21,7 @@ struct CampbellOptions {
   int mode_count = 8;
   EigenSolverKind solver = EigenSolverKind::automatic;  // automatic: the reduced sweep where it applies
   double reduction_tolerance = 1e-8;  // relative bound wanted on the reduced model's frequencies
+  bool closest_approaches = false;    // also find each curve's closest approach to each line
 };
 
 struct CampbellCurve {
@@ -47,11 +48,25 @@ struct EngineOrderCrossing {
   double amplification = 1;
 };
 
+// How near a curve comes to an engine-order line inside the diagram's speeds: the least relative
+// distance min over Ω of |f(Ω) − kΩ/2π| / f(Ω), 0 where they cross. Located on the continuous
+// curve (the mode followed by its shape between the speeds): a crossing where there is one, else
+// the least of the speeds refined by golden-section search between its neighbours; the distance
+// is the whole Ritz model's there.
+struct EngineOrderApproach {
+  int engine_order = 0;
+  int mode = 0;
+  double speed_rad_s = 0;
+  double frequency_hz = 0;
+  double distance = 0;  // |f − kΩ/2π| / f
+};
+
 struct CampbellDiagram {
   std::vector<double> speeds_rad_s;
   std::vector<int> engine_orders;
   std::vector<CampbellCurve> curves;
   std::vector<EngineOrderCrossing> crossings;  // sorted by speed
+  std::vector<EngineOrderApproach> approaches;  // per engine order and curve, when asked for
   EigenSolverKind solver = EigenSolverKind::dense;
   bool reduced = false;                     // the reduced sweep served the diagram
   int basis_vectors = 0;                    // its size (the dofs when solved whole)
@@ -74,6 +89,9 @@ struct CampbellWithErrors {
   // Per crossing (same order), relative on its speed and frequency: the frequency's budget at the
   // crossing times the amplification; the reduction part is what the whole-model check left.
   std::vector<ErrorBudget> crossing_budget;
+  // Per approach (same order), absolute on its distance: the frequency's budget there times
+  // kΩ/(2πf), the distance's sensitivity to a relative error of f.
+  std::vector<ErrorBudget> approach_budget;
 
   ErrorBudget worst() const;                       // each part the largest over points and crossings
   ErrorBudget worst_at(std::size_t speed) const;   // each part the largest over the curves there

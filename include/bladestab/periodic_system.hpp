@@ -48,4 +48,11 @@ PeriodicSystem periodic_system(const BladeModel& model, double speed_rad_s, cons
 PeriodicSystem periodic_system(const BladeModel& model, const Scene& scene, const LoadSeries& load,
                                const ReductionSpec& reduction = {});
 
+// Modes per load level of an automatic reduction that holds every region of instability of order
+// n ≤ max_order with θ ≤ theta_max (θ ≈ 2ω/n): the unloaded modes of `scene` at its speed with
+// ω < max_order·θ_max — twice the highest ω such a region sits at, since the load lowers the
+// frequencies it couples — and never fewer than two. Take the slowest speed of a range, where the
+// modes are lowest.
+int tongue_vectors(const BladeModel& model, const Scene& scene, double theta_max, int max_order);
+
 }  // namespace bladestab

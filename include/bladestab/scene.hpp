@@ -80,6 +80,17 @@ struct LoadSpec {
   std::optional<double> pulse_frequency_hz;  // default: pulses_per_rev · Ω / 2π
 };
 
+// Optional [requirements]: what a blade design must meet over its operating range, for
+// `bladestab check` (requirements_check.hpp). Every other command ignores it.
+struct RequirementsSpec {
+  double speed_lo_rad_s = 0, speed_hi_rad_s = 0;  // the operating range, lo < hi
+  std::vector<int> engine_orders{1, 2, 3, 4, 5, 6};
+  // |f − kΩ/2π| ≥ frequency_margin · f for every mode f and engine order k inside the range.
+  std::optional<double> frequency_margin;
+  // Stable for every rub load F̄_max ∈ [0, max_fmax_over_fcr] inside the range (θ = pulses_per_rev · Ω).
+  std::optional<double> max_fmax_over_fcr;
+};
+
 struct Scene {
   std::string source;  // file name, for messages
   BladeSpec blade;
@@ -87,6 +98,7 @@ struct Scene {
   OperationSpec operation;
   DampingSpec damping;
   LoadSpec load;
+  std::optional<RequirementsSpec> requirements;
 };
 
 // Reads `path`, applies `overrides` ("section.key=value", value in TOML syntax or a bare word),

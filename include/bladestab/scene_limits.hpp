@@ -38,5 +38,9 @@ inline const AllowedRange friction = AllowedRange::closed(0, 2);
 inline const AllowedRange clearance_m = AllowedRange::closed(0, 10);
 inline const AllowedRange intrusion_m = AllowedRange::closed(0, 10);
 inline const AllowedRange contact_stiffness_n_m = AllowedRange::closed(1e-3, 1e15);
+// [requirements]: the operating range lies within speed_rad_s; engine orders as pulses_per_rev.
+inline constexpr long max_engine_order = 1000;
+inline const AllowedRange frequency_margin = AllowedRange::open(0, 1);
+inline const AllowedRange max_fmax_over_fcr = fmax_over_fcr;
 
 }  // namespace bladestab::scene_limits

@@ -8,6 +8,10 @@ namespace bladestab::cli {
 
 using Command = std::function<void()>;
 
+// Thrown by a command whose answer is printed and complete but negative (`check`: a requirement
+// not met): exit status 1, with no error line.
+struct AnswerIsNegative {};
+
 Command register_modes(CLI::App& app);
 Command register_campbell(CLI::App& app);
 Command register_stability(CLI::App& app);
@@ -16,5 +20,6 @@ Command register_map(CLI::App& app);
 Command register_transient(CLI::App& app);
 Command register_crosscheck(CLI::App& app);
 Command register_sweep(CLI::App& app);
+Command register_check(CLI::App& app);
 
 }  // namespace bladestab::cli

@@ -1,6 +1,7 @@
 // bladestab: dynamic stability of rotating blades whose tips rub the casing.
 //
-// Exit status: 0 with the answer on stdout; 2 for bad input (InputError: a scene key, an option, a
+// Exit status: 0 with the answer on stdout (1 where the answer is negative: `check` with a requirement
+// not met); 2 for bad input (InputError: a scene key, an option, a
 // limit of work), one line on stderr naming it; 1 when a computation fails its own checks
 // (NumericalError) or anything else fails, also one line; 128 + n when stopped by signal n
 // (interruption.hpp). Nothing non-finite is ever printed as an answer.
@@ -66,6 +67,7 @@ int main(int argc, char** argv) {
   run["transient"] = register_transient(app);
   run["crosscheck"] = register_crosscheck(app);
   run["sweep"] = register_sweep(app);
+  run["check"] = register_check(app);
   if (argc < 2) {
     return report("error", fmt::format("a command is required: {} (see bladestab --help)", command_names(run)), 2);
   }
@@ -87,6 +89,9 @@ int main(int argc, char** argv) {
   stop_after(work_limits().seconds, fmt::format("--max-seconds {:g}", work_limits().seconds));
   try {
     run.at(app.get_subcommands().front()->get_name())();
+  } catch (const AnswerIsNegative&) {
+    finish_stdout();  // a failed write says so; the status is 1 either way
+    return 1;
   } catch (const bladestab::InputError& e) {
     return report("error", e.what(), 2);
   } catch (const std::bad_alloc&) {

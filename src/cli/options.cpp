@@ -25,12 +25,17 @@ EigenSolverKind SceneOptions::eigen_solver() const {
   return EigenSolverKind::automatic;
 }
 
-void add_scene_options(CLI::App& command, SceneOptions& options) {
+void add_scene_options(CLI::App& command, SceneOptions& options, const std::vector<std::string>& formats) {
   command.add_option("scene", options.path, "scene file (TOML)")->required();
   command.add_option("--set", options.overrides, "override a scene key: section.key=value (repeatable)")
       ->type_name("KEY=VALUE");
-  command.add_option("--format", options.format, "output: table (default), json or csv")
-      ->check(CLI::IsMember({"table", "json", "csv"}));
+  std::string others;
+  for (std::size_t i = 1; i < formats.size(); ++i) {
+    others += (i == 1 ? "" : i + 1 == formats.size() ? " or " : ", ") + formats[i];
+  }
+  options.format = formats.front();
+  command.add_option("--format", options.format, fmt::format("output: {} (default), {}", formats.front(), others))
+      ->check(CLI::IsMember(formats));
   command.add_option("--solver", options.solver, "eigensolver: auto (default), dense (LAPACK) or arpack")
       ->check(CLI::IsMember({"auto", "dense", "arpack"}));
   add_work_limit_options(command);

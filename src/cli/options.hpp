@@ -25,8 +25,10 @@ struct SceneOptions {
   EigenSolverKind eigen_solver() const;
 };
 
-// Adds SCENE, --set, --format and --solver to a subcommand.
-void add_scene_options(CLI::App& command, SceneOptions& options);
+// Adds SCENE, --set, --format and --solver to a subcommand; --format takes one of `formats`, the
+// first the default (a command with outputs of its own, like `check`, lists them).
+void add_scene_options(CLI::App& command, SceneOptions& options,
+                       const std::vector<std::string>& formats = {"table", "json", "csv"});
 
 // "start:stop:count" → count evenly spaced values, start and stop in `values`; InputError naming
 // `option` otherwise. Increasing (start < stop) unless `order` allows either way (start != stop).

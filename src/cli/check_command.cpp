@@ -1,0 +1,301 @@
+// bladestab check SCENE: does the blade meet the [requirements] of its scene over its operating
+// range (requirements_check.hpp)? A table, JSON or JUnit XML for CI servers; exit 0 when every
+// requirement holds, 1 when one fails, 2 on bad input.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <optional>
+
+#include <fmt/format.h>
+
+#include "bladestab/input_error.hpp"
+#include "bladestab/mode_convergence.hpp"
+#include "bladestab/requirements_check.hpp"
+#include "commands.hpp"
+#include "json_writer.hpp"
+#include "number_options.hpp"
+#include "options.hpp"
+#include "progress.hpp"
+#include "work_limits.hpp"
+
+namespace bladestab::cli {
+namespace {
+
+// One requirement's verdict as every format shows it.
+struct CheckOutcome {
+  std::string name;
+  bool passed = false;
+  std::string summary;  // the worst point in one line, for the table
+  std::string detail;   // what was found and how, in sentences
+  double seconds = 0;
+  std::function<void(JsonWriter&)> write_worst;  // the "worst" object's fields and the check's extras
+};
+
+std::string orders_text(const std::vector<int>& orders) { return fmt::format("{}", fmt::join(orders, ", ")); }
+
+CheckOutcome margin_outcome(const Scene& scene, const FrequencyMarginResult& m) {
+  const RequirementsSpec& req = *scene.requirements;
+  const EngineOrderApproach& w = m.worst;
+  CheckOutcome o;
+  o.name = "campbell_margin";
+  o.passed = m.passed;
+  o.summary = fmt::format("margin {:.4g} (required {:g}): mode {}, engine order {} at {:.6g} rad/s, {:.6g} Hz",
+                          w.distance, m.required, w.mode, w.engine_order, w.speed_rad_s, w.frequency_hz);
+  const std::string scope = fmt::format(
+      "{} mode{} below {:.6g} Hz against engine orders {} over {:g} to {:g} rad/s ({} speeds, {} terms/field, "
+      "frequencies to {:g})",
+      m.modes_checked, m.modes_checked == 1 ? "" : "s", m.threshold_hz, orders_text(req.engine_orders),
+      req.speed_lo_rad_s, req.speed_hi_rad_s, m.speeds, m.terms, m.tolerance);
+  if (w.distance == 0) {
+    o.detail = fmt::format("mode {} crosses engine order {} at {:.9g} rad/s ({:.9g} Hz) inside the range: margin 0 < "
+                           "{:g}; checked {}",
+                           w.mode, w.engine_order, w.speed_rad_s, w.frequency_hz, m.required, scope);
+  } else {
+    o.detail = fmt::format("closest: mode {} to engine order {} at {:.9g} rad/s ({:.9g} Hz), |f - kΩ/2π|/f = {:.6g} "
+                           "(error estimate {:.1e}), {} the required {:g}; checked {}",
+                           w.mode, w.engine_order, w.speed_rad_s, w.frequency_hz, w.distance, m.error_estimate,
+                           m.passed ? "at least" : "below", m.required, scope);
+  }
+  o.write_worst = [m](JsonWriter& json) {
+    json.begin_object("worst")
+        .value("mode", m.worst.mode)
+        .value("engine_order", m.worst.engine_order)
+        .value("speed_rad_s", m.worst.speed_rad_s)
+        .value("frequency_hz", m.worst.frequency_hz)
+        .value("margin", m.worst.distance)
+        .end_object()
+        .value("required", m.required)
+        .value("error_estimate", m.error_estimate)
+        .value("modes_checked", m.modes_checked)
+        .value("threshold_hz", m.threshold_hz)
+        .value("terms", m.terms);
+  };
+  return o;
+}
+
+const char* sign_text(int multiplier) { return multiplier < 0 ? "-1" : "+1"; }
+
+CheckOutcome rub_outcome(const Scene& scene, const RubStabilityResult& r) {
+  const RequirementsSpec& req = *scene.requirements;
+  CheckOutcome o;
+  o.name = "rub_stability";
+  o.passed = r.passed;
+  const std::string onset = r.onset_fmax_over_fcr ? fmt::format("{:.6g}", *r.onset_fmax_over_fcr)
+                                                  : fmt::format("> {:g}", r.window_fmax_over_fcr);
+  o.summary = fmt::format("lowest onset F̄ = {} (required stable to {:g}) at {:.6g} rad/s; max|ρ| = {:.6g} at F̄ = {:.4g}",
+                          onset, r.required, r.speed_rad_s, r.max_abs_multiplier, r.check_fmax_over_fcr);
+  const std::string scope = fmt::format(
+      "θ = {}·Ω over {:g} to {:g} rad/s, load {} ({}), damping {}; regions of order <= {} sought up to F̄ = {:g} "
+      "from the boundary equations at {} speeds",
+      r.pulses_per_rev, req.speed_lo_rad_s, req.speed_hi_rad_s, to_string(scene.load.profile),
+      to_string(scene.load.approximation), to_string(scene.damping.model), r.max_order, r.window_fmax_over_fcr,
+      r.speeds_scanned);
+  const std::string floquet =
+      fmt::format("Floquet at {:.9g} rad/s, F̄ = {:.6g}: max|ρ| = {:.8g} ({})", r.check_speed_rad_s,
+                  r.check_fmax_over_fcr, r.max_abs_multiplier, r.check_stable ? "stable" : "unstable");
+  if (r.required == 0) {
+    o.detail = "max_fmax_over_fcr = 0: only the unloaded blade, which no rub excites";
+  } else if (r.tip) {
+    o.detail = fmt::format(
+        "undamped: the region of mode {}, order {} (multiplier {}) touches F̄ = 0 at its tip 2ω_{}/{} = {}·Ω, "
+        "Ω = {:.9g} rad/s, inside the range, so a rub of any load opens it (onset 0); {}{}; {}",
+        r.mode, r.order, sign_text(r.multiplier), r.mode, r.order, r.pulses_per_rev, r.speed_rad_s, floquet,
+        r.check_stable ? " (a region of order > 1 bends away from its tip's speed as F̄ grows, so this point is "
+                         "outside it: no confirmation)"
+                       : "",
+        scope);
+  } else if (r.onset_fmax_over_fcr && *r.onset_fmax_over_fcr <= r.required) {
+    o.detail = fmt::format("a region of mode {}, order {} (multiplier {}) opens at F̄ = {:.8g} (error estimate {:.1e}) "
+                           "at {:.9g} rad/s, within the required {:g}; {}; {}",
+                           r.mode, r.order, sign_text(r.multiplier), *r.onset_fmax_over_fcr, r.onset_error_estimate,
+                           r.speed_rad_s, r.required, floquet, scope);
+  } else if (!r.check_stable) {
+    o.detail = fmt::format("no ±1 region opens below F̄ = {} in the range, but {}: a combination resonance "
+                           "(multipliers leaving the unit circle away from ±1); {}",
+                           onset, floquet, scope);
+  } else {
+    o.detail = fmt::format("the lowest onset, F̄ = {}{} at {:.9g} rad/s{}, is above the required {:g}; {}; {}", onset,
+                           r.onset_fmax_over_fcr ? fmt::format(" (error estimate {:.1e})", r.onset_error_estimate) : "",
+                           r.speed_rad_s,
+                           r.onset_fmax_over_fcr ? fmt::format(" (mode {}, order {}, multiplier {})", r.mode, r.order,
+                                                               sign_text(r.multiplier))
+                                                 : "",
+                           r.required, floquet, scope);
+  }
+  o.write_worst = [r](JsonWriter& json) {
+    json.begin_object("worst").value("speed_rad_s", r.speed_rad_s);
+    if (r.onset_fmax_over_fcr) {
+      json.value("onset_fmax_over_fcr", *r.onset_fmax_over_fcr);
+    } else {
+      json.null_value("onset_fmax_over_fcr");
+    }
+    json.value("mode", r.mode)
+        .value("order", r.order)
+        .value("multiplier", r.multiplier)
+        .value("tip", r.tip)
+        .value("check_speed_rad_s", r.check_speed_rad_s)
+        .value("check_fmax_over_fcr", r.check_fmax_over_fcr)
+        .value("max_abs_multiplier", r.max_abs_multiplier)
+        .end_object()
+        .value("required", r.required)
+        .value("error_estimate", r.onset_error_estimate)
+        .value("window_fmax_over_fcr", r.window_fmax_over_fcr)
+        .value("approximation", r.approximation)
+        .value("speeds_scanned", r.speeds_scanned);
+  };
+  return o;
+}
+
+bool all_passed(const std::vector<CheckOutcome>& checks) {
+  return std::all_of(checks.begin(), checks.end(), [](const CheckOutcome& c) { return c.passed; });
+}
+
+std::string check_json(const Scene& scene, double tolerance, const std::vector<CheckOutcome>& checks) {
+  JsonWriter json;
+  json.begin_object().value("passed", all_passed(checks)).value("scene", scene.source).value("tolerance", tolerance);
+  json.begin_array("checks");
+  for (const CheckOutcome& c : checks) {
+    json.begin_object().value("name", c.name).value("passed", c.passed);
+    c.write_worst(json);
+    json.value("detail", c.detail).value("seconds", c.seconds).end_object();
+  }
+  json.end_array().end_object();
+  return json.str() + "\n";
+}
+
+// Text for XML attributes and content: the five special characters escaped, and the control
+// characters XML 1.0 does not allow dropped.
+std::string xml_escaped(const std::string& text) {
+  std::string out;
+  for (const char c : text) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      case '\'': out += "&apos;"; break;
+      default:
+        if (static_cast<unsigned char>(c) >= 0x20 || c == '\n' || c == '\t') out += c;
+    }
+  }
+  return out;
+}
+
+// One <testsuite> with a <testcase> per requirement, as JUnit's XML (read by GitLab, Jenkins and
+// the GitHub Actions reporters); a failed requirement carries a <failure>.
+std::string check_junit(const Scene& scene, const std::vector<CheckOutcome>& checks) {
+  double seconds = 0;
+  int failures = 0;
+  for (const CheckOutcome& c : checks) seconds += c.seconds, failures += c.passed ? 0 : 1;
+  std::string xml = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
+  xml += fmt::format("<testsuite name=\"bladestab check\" tests=\"{}\" failures=\"{}\" errors=\"0\" time=\"{:.3f}\">\n",
+                     checks.size(), failures, seconds);
+  for (const CheckOutcome& c : checks) {
+    xml += fmt::format("  <testcase classname=\"{}\" name=\"{}\" time=\"{:.3f}\">\n", xml_escaped(scene_title(scene)),
+                       c.name, c.seconds);
+    if (!c.passed) {
+      xml += fmt::format("    <failure message=\"{}\">{}</failure>\n", xml_escaped(c.summary), xml_escaped(c.detail));
+    }
+    xml += fmt::format("    <system-out>{}</system-out>\n  </testcase>\n", xml_escaped(c.detail));
+  }
+  return xml + "</testsuite>\n";
+}
+
+void print_table(const Scene& scene, const std::vector<CheckOutcome>& checks) {
+  const RequirementsSpec& req = *scene.requirements;
+  fmt::print("scene   {}\nrange   {:g} to {:g} rad/s\n\n", scene.source, req.speed_lo_rad_s, req.speed_hi_rad_s);
+  fmt::print("{:<16} {:<6} {}\n", "requirement", "result", "worst");
+  for (const CheckOutcome& c : checks) fmt::print("{:<16} {:<6} {}\n", c.name, c.passed ? "pass" : "FAIL", c.summary);
+  fmt::print("\n");
+  for (const CheckOutcome& c : checks) fmt::print("{}: {}\n", c.name, c.detail);
+  const long failed = std::count_if(checks.begin(), checks.end(), [](const CheckOutcome& c) { return !c.passed; });
+  fmt::print("\n{}\n", failed == 0 ? "all requirements hold"
+                                   : fmt::format("{} of {} requirements not met", failed, checks.size()));
+}
+
+// The dense eigensolves the checks cannot do without, before they start: the Campbell diagram's
+// whole-model solves of the scene's model and its richer reference at three sample speeds
+// (~25 (2n)³ flops each), and the converged boundary equations at the worst speed, both families
+// at k = 2 and 4 on the whole model and at k = 2 on the richer one (~26 N³ flops for N = h·n
+// unknowns, h harmonics). A lower bound: the scan and the Floquet checks come on top.
+void check_requirements_work(const Scene& scene) {
+  const RequirementsSpec& req = *scene.requirements;
+  ModelSpec richer = scene.model;
+  richer.terms = reference_terms(scene.model.basis, scene.model.terms);
+  const double n = dof_layout(scene.model).size(), nr = dof_layout(richer).size();
+  double flops = 0, bytes = 0;
+  if (req.frequency_margin) {
+    for (const double dofs : {n, nr}) {
+      flops += 3 * 25 * std::pow(2 * dofs, 3);
+      bytes = std::max(bytes, 6 * 8 * std::pow(2 * dofs, 2));
+    }
+  }
+  if (req.max_fmax_over_fcr) {
+    for (const auto& [k, dofs] : {std::pair{2, n}, {4, n}, {2, nr}}) {
+      for (const int harmonics : {2 * k, 2 * k + 1}) {
+        const double unknowns = harmonics * dofs;
+        flops += 26 * unknowns * unknowns * unknowns;
+        bytes = std::max(bytes, 32 * unknowns * unknowns);
+      }
+    }
+  }
+  check_work(fmt::format("the requirements with model.terms = {}", scene.model.terms),
+             "the whole-model eigensolves of the checks", flops / dense_flops_per_second, bytes);
+}
+
+template <class Run>
+auto timed(double& seconds, Run run) {
+  const auto start = std::chrono::steady_clock::now();
+  auto result = run();
+  seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace
+
+Command register_check(CLI::App& app) {
+  auto* command = app.add_subcommand("check", "does the blade meet the scene's [requirements]? (for CI; exit 1 if not)");
+  auto options = std::make_shared<SceneOptions>();
+  auto tolerance = std::make_shared<double>(1e-6);
+  add_scene_options(*command, *options, {"table", "json", "junit"});
+  add_number_option(*command, "--tolerance", *tolerance, AllowedRange::open(0, 1),
+                    "wanted relative error of the Campbell frequencies; the terms are raised until it is met "
+                    "(default 1e-6)");
+  return [=] {
+    check_tolerance(*tolerance);
+    const Scene scene = options->load();
+    if (!scene.requirements) {
+      throw InputError(fmt::format("{}: [requirements]: missing section; `check` needs one with "
+                                   "speed_range_rad_s and frequency_margin and/or max_fmax_over_fcr",
+                                   scene.source));
+    }
+    check_requirements_work(scene);
+    const bool for_people = options->format == "table";
+    std::vector<CheckOutcome> checks;
+    if (scene.requirements->frequency_margin) {
+      double seconds = 0;
+      const FrequencyMarginResult m = timed(seconds, [&] {
+        return check_frequency_margin(scene, *tolerance, progress_reporter("check: Campbell speeds", for_people));
+      });
+      checks.push_back(margin_outcome(scene, m));
+      checks.back().seconds = seconds;
+    }
+    if (scene.requirements->max_fmax_over_fcr) {
+      double seconds = 0;
+      const RubStabilityResult r =
+          timed(seconds, [&] { return check_rub_stability(scene, progress_reporter("check: rub speeds", for_people)); });
+      checks.push_back(rub_outcome(scene, r));
+      checks.back().seconds = seconds;
+    }
+    if (options->format == "json") {
+      fmt::print("{}", check_json(scene, *tolerance, checks));
+    } else if (options->format == "junit") {
+      fmt::print("{}", check_junit(scene, checks));
+    } else {
+      print_table(scene, checks);
+    }
+    if (!all_passed(checks)) throw AnswerIsNegative{};
+  };
+}
+
+}  // namespace bladestab::cli

@@ -1,0 +1,210 @@
+// `bladestab check`: the requirements of a blade design over its operating range
+// (requirements_check.hpp), against references computed here: the frequencies by dense whole-model
+// eigensolves with a bisection and a golden search of this file's own, the stability onset by
+// Floquet multipliers either side of it, and the example scenes end to end.
+#include <sys/wait.h>
+
+#include <cmath>
+#include <functional>
+#include <string>
+
+#include <catch2/catch.hpp>
+
+#include "bladestab/damping.hpp"
+#include "bladestab/model.hpp"
+#include "bladestab/modes.hpp"
+#include "bladestab/requirements_check.hpp"
+#include "bladestab/stability_analysis.hpp"
+#include "support/json.hpp"
+#include "support/run_cli.hpp"
+
+namespace {
+
+using namespace bladestab;
+using namespace testing_support;
+
+constexpr double two_pi = 6.28318530717958647692;
+
+std::string example(const std::string& name) {
+  return std::string(BLADESTAB_SOURCE_DIR) + "/stability_maps/ci/" + name + ".toml";
+}
+
+// f_mode(Ω) [Hz] of the whole Ritz model of `terms` terms by a dense solve (modes sorted by size;
+// the low modes of the paper blade do not cross inside the ranges used here).
+double dense_frequency(const Scene& scene, int terms, int mode, double speed) {
+  ModelSpec spec = scene.model;
+  spec.terms = terms;
+  const BladeModel model = assemble_model(scene, spec);
+  const Eigen::MatrixXd damping = damping_matrix(model, scene.damping, speed);
+  const ModalSolution s = solve_modes(model, system_at(model, speed, damping), speed, 0, EigenSolverKind::dense);
+  return s.modes.at(mode - 1).frequency_hz;
+}
+
+int exit_code(const Outcome& o) { return WIFEXITED(o.wait_status) ? WEXITSTATUS(o.wait_status) : -1; }
+
+std::size_t count_of(const std::string& text, const std::string& what) {
+  std::size_t n = 0;
+  for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
+}
+
+}  // namespace
+
+TEST_CASE("check: the Campbell margin's worst point against dense solves", "[check]") {
+  SECTION("a crossing inside the range: margin 0 at the root of f = kΩ/2π") {
+    const Scene scene = load_scene(example("fails"));
+    const FrequencyMarginResult m = check_frequency_margin(scene, 1e-6);
+    REQUIRE_FALSE(m.passed);
+    REQUIRE(m.worst.distance == 0);
+    // The reference: bisection of f(Ω) − kΩ/2π on dense solves over the range.
+    const double line = m.worst.engine_order / two_pi;
+    const auto g = [&](double speed) { return dense_frequency(scene, m.terms, m.worst.mode, speed) - line * speed; };
+    double a = scene.requirements->speed_lo_rad_s, b = scene.requirements->speed_hi_rad_s;
+    REQUIRE(g(a) * g(b) < 0);
+    while (b - a > 1e-9 * b) {
+      const double c = 0.5 * (a + b);
+      (g(a) * g(c) <= 0 ? b : a) = c;
+    }
+    CHECK(m.worst.speed_rad_s == Approx(0.5 * (a + b)).epsilon(1e-8));
+    CHECK(m.worst.frequency_hz == Approx(line * 0.5 * (a + b)).epsilon(1e-8));
+  }
+  SECTION("no crossing: the least relative distance over the range") {
+    const Scene scene = load_scene(example("passes"));
+    const FrequencyMarginResult m = check_frequency_margin(scene, 1e-6);
+    REQUIRE(m.passed);
+    // The reference: golden search of |f − kΩ/2π|/f on dense solves, for every mode checked and
+    // every engine order, each from the least of 21 speeds.
+    const RequirementsSpec& req = *scene.requirements;
+    double least = 1e300, where = 0;
+    for (int mode = 1; mode <= m.modes_checked; ++mode) {
+      for (int k : req.engine_orders) {
+        const auto distance = [&](double speed) {
+          const double f = dense_frequency(scene, m.terms, mode, speed);
+          return std::abs(f - k * speed / two_pi) / f;
+        };
+        double best = req.speed_lo_rad_s, best_value = distance(best);
+        const double step = (req.speed_hi_rad_s - req.speed_lo_rad_s) / 20;
+        for (int s = 1; s <= 20; ++s) {
+          const double v = distance(req.speed_lo_rad_s + s * step);
+          if (v < best_value) best = req.speed_lo_rad_s + s * step, best_value = v;
+        }
+        double a = std::max(req.speed_lo_rad_s, best - step), b = std::min(req.speed_hi_rad_s, best + step);
+        const double r = 0.5 * (std::sqrt(5.0) - 1);
+        while (b - a > 1e-7 * b) {
+          const double c = b - r * (b - a), d = a + r * (b - a);
+          if (distance(c) <= distance(d)) {
+            b = d;
+          } else {
+            a = c;
+          }
+        }
+        for (double x : {a, b}) {
+          if (distance(x) < least) least = distance(x), where = x;
+        }
+      }
+    }
+    CHECK(m.worst.distance == Approx(least).margin(1e-6));
+    CHECK(m.worst.speed_rad_s == Approx(where).epsilon(1e-5));
+    CHECK(m.error_estimate < 1e-5);
+  }
+}
+
+TEST_CASE("check: the stability onset at the worst speed against Floquet either side", "[check]") {
+  // Damped, so the regions lift off F̄ = 0 and the onset is a boundary: max|ρ| ≤ 1 just below it,
+  // > 1 just above.
+  Scene scene = load_scene(example("passes"),
+                           {"requirements.max_fmax_over_fcr=2.0", "damping.model=modal", "damping.ratio=0.01"});
+  const RubStabilityResult r = check_rub_stability(scene);
+  REQUIRE(r.onset_fmax_over_fcr);
+  REQUIRE_FALSE(r.tip);
+  const double onset = *r.onset_fmax_over_fcr;
+  INFO("onset F̄ = " << onset << " at " << r.speed_rad_s << " rad/s");
+  const auto max_rho = [&](double fbar) {
+    Scene at = scene;
+    at.operation.speed_rad_s = r.speed_rad_s;
+    at.load.pulse_frequency_hz = scene.load.pulses_per_rev * r.speed_rad_s / two_pi;
+    at.load.fmax_over_fcr = fbar;
+    return analyse_stability(at, {FloquetMethod::monodromy, 0, 1e-8}).floquet.max_abs_multiplier;
+  };
+  CHECK(max_rho(onset * (1 - 1e-3)) <= 1 + 1e-7);
+  CHECK(max_rho(onset * (1 + 1e-3)) > 1 + 1e-7);
+  CHECK(r.passed == (onset > 2.0));
+}
+
+TEST_CASE("check: the example scenes end to end", "[check]") {
+  SECTION("passes.toml: exit 0, JSON") {
+    const Outcome o = run_bladestab({"check", example("passes"), "--format", "json"}, {120});
+    INFO(describe(o) << "\n" << o.err);
+    REQUIRE(exit_code(o) == 0);
+    const Json j = parse_json(o.out);
+    CHECK(j["passed"].boolean);
+    REQUIRE(j["checks"].size() == 2);
+    for (std::size_t c = 0; c < 2; ++c) CHECK(j["checks"][c]["passed"].boolean);
+    CHECK(j["checks"][0]["name"].text == "campbell_margin");
+    CHECK(j["checks"][0]["worst"]["margin"].number >= 0.1);
+    CHECK(j["checks"][1]["name"].text == "rub_stability");
+  }
+  SECTION("fails.toml: exit 1, JSON and JUnit") {
+    const Outcome o = run_bladestab({"check", example("fails"), "--format", "json"}, {120});
+    INFO(describe(o) << "\n" << o.err);
+    REQUIRE(exit_code(o) == 1);
+    CHECK(o.err.empty());
+    const Json j = parse_json(o.out);
+    CHECK_FALSE(j["passed"].boolean);
+    REQUIRE(j["checks"].size() == 2);
+    CHECK_FALSE(j["checks"][0]["passed"].boolean);
+    CHECK(j["checks"][0]["worst"]["margin"].number == 0);
+    CHECK_FALSE(j["checks"][1]["passed"].boolean);
+    CHECK(j["checks"][1]["worst"]["onset_fmax_over_fcr"].number == 0);
+    const Outcome x = run_bladestab({"check", example("fails"), "--format", "junit"}, {120});
+    REQUIRE(exit_code(x) == 1);
+    CHECK(x.out.rfind("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuite name=\"bladestab check\"", 0) == 0);
+    CHECK(count_of(x.out, "<testsuite ") == 1);
+    CHECK(count_of(x.out, "</testsuite>") == 1);
+    CHECK(count_of(x.out, "<testcase ") == 2);
+    CHECK(count_of(x.out, "</testcase>") == 2);
+    CHECK(count_of(x.out, "<failure message=") == 2);
+    CHECK(count_of(x.out, "</failure>") == 2);
+    CHECK(x.out.find("tests=\"2\" failures=\"2\"") != std::string::npos);
+    // Every '&' starts an entity, and no '<' is loose inside text.
+    for (std::size_t at = x.out.find('&'); at != std::string::npos; at = x.out.find('&', at + 1)) {
+      const std::string entity = x.out.substr(at, 6);
+      CHECK((entity.rfind("&amp;", 0) == 0 || entity.rfind("&lt;", 0) == 0 || entity.rfind("&gt;", 0) == 0 ||
+             entity.rfind("&quot;", 0) == 0 || entity.rfind("&apos;", 0) == 0));
+    }
+  }
+}
+
+TEST_CASE("check: bad input is one line naming the key", "[check]") {
+  const std::string scene = read_text(example("passes"));
+  const auto with = [&](const std::string& name, const std::string& requirements) {
+    const std::string base = scene.substr(0, scene.find("[requirements]"));
+    const auto path = scratch() / (name + ".toml");
+    std::FILE* f = std::fopen(path.c_str(), "w");
+    std::fputs((base + requirements).c_str(), f);
+    std::fclose(f);
+    return path.string();
+  };
+  const std::string range = "[requirements]\nspeed_range_rad_s = [220.0, 270.0]\n";
+  expect_rejected({"check", with("none", "")}, {"[requirements]", "missing"});
+  expect_rejected({"check", with("unknown", range + "frequency_margin = 0.1\nmargin = 2\n")},
+                  {"requirements.margin", "unknown key"});
+  expect_rejected({"check", with("reversed", "[requirements]\nspeed_range_rad_s = [270.0, 220.0]\nfrequency_margin = 0.1\n")},
+                  {"requirements.speed_range_rad_s", "lo < hi"});
+  expect_rejected({"check", with("equal", "[requirements]\nspeed_range_rad_s = [220.0, 220.0]\nfrequency_margin = 0.1\n")},
+                  {"requirements.speed_range_rad_s", "lo < hi"});
+  expect_rejected({"check", with("empty_orders", range + "engine_orders = []\nfrequency_margin = 0.1\n")},
+                  {"requirements.engine_orders", "non-empty"});
+  expect_rejected({"check", with("duplicate_orders", range + "engine_orders = [1, 2, 2]\nfrequency_margin = 0.1\n")},
+                  {"requirements.engine_orders", "distinct"});
+  expect_rejected({"check", with("nan", range + "frequency_margin = nan\n")}, {"requirements.frequency_margin", "nan"});
+  expect_rejected({"check", with("margin_one", range + "frequency_margin = 1.0\n")},
+                  {"requirements.frequency_margin", "(0, 1)"});
+  expect_rejected({"check", with("no_requirement", range)}, {"requirements.frequency_margin", "max_fmax_over_fcr"});
+  expect_rejected({"check", with("load", range + "max_fmax_over_fcr = -1\n")},
+                  {"requirements.max_fmax_over_fcr", "[0, 1000]"});
+  expect_rejected({"check", example("passes"), "--format", "csv"}, {"--format"});
+  // Other commands accept a scene with [requirements] and ignore it.
+  const Outcome o = run_bladestab({"modes", example("passes"), "--count", "2"});
+  CHECK(exit_code(o) == 0);
+}
