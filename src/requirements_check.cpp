@@ -8,6 +8,7 @@
 
 #include "bladestab/blade_properties.hpp"
 #include "bladestab/boundaries.hpp"
+#include "bladestab/constants.hpp"
 #include "bladestab/damping.hpp"
 #include "bladestab/input_error.hpp"
 #include "bladestab/instability_regions.hpp"
@@ -20,7 +21,6 @@
 namespace bladestab {
 namespace {
 
-constexpr double two_pi = 6.28318530717958647692;
 // Speeds of the Campbell diagram over the range, and of the onset's scan.
 constexpr int margin_speeds = 201;
 constexpr int scan_speeds = 41;
