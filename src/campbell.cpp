@@ -11,6 +11,7 @@
 #include "bladestab/mode_tracking.hpp"
 #include "bladestab/scalar_search.hpp"
 #include "bladestab/speed_sweep.hpp"
+#include "bladestab/worker_threads.hpp"
 
 namespace bladestab {
 namespace {
@@ -366,7 +367,7 @@ CampbellWithErrors campbell_with_error_estimate(const Scene& scene, const Campbe
       // its own; BLAS runs single-threaded and is thread-safe).
       const EigenSolverKind richer_solver =
           wanted.solver == EigenSolverKind::arpack ? EigenSolverKind::dense : wanted.solver;
-      auto richer_sweeps = std::async(std::launch::async, [&] {
+      auto richer_sweeps = std::async(beside_or_deferred(wanted.threads), [&] {
         for (Reference& r : refs) {
           r.sweep = reduced_sweep_applies(*r.model, scene.damping) ? sweep_of(*r.model, count, richer_solver)
                                                                    : sweep_of(*r.model, count, EigenSolverKind::dense);
@@ -376,7 +377,7 @@ CampbellWithErrors campbell_with_error_estimate(const Scene& scene, const Campbe
       try {
         base = sweep_of(*model, count, wanted.solver);
       } catch (...) {
-        richer_sweeps.wait();
+        if (worker_threads(wanted.threads) > 1) richer_sweeps.wait();
         throw;
       }
       richer_sweeps.get();
@@ -409,14 +410,14 @@ CampbellWithErrors campbell_with_error_estimate(const Scene& scene, const Campbe
 
       CampbellDiagram diagram;
       std::vector<std::vector<SpeedModes>> richer(refs.size());
-      auto richer_solved = std::async(std::launch::async, [&] {
+      auto richer_solved = std::async(beside_or_deferred(wanted.threads), [&] {
         for (std::size_t r = 0; r < refs.size(); ++r) richer[r] = refs[r].sweep->solve(speeds);
       });
       Tracked t;
       try {
         t = track(*base, *model, wanted, diagram, progress);
       } catch (...) {
-        richer_solved.wait();
+        if (worker_threads(wanted.threads) > 1) richer_solved.wait();
         throw;
       }
       richer_solved.get();

@@ -13,6 +13,7 @@
 #include "bladestab/mode_convergence.hpp"
 #include "bladestab/mode_tracking.hpp"
 #include "bladestab/scene.hpp"
+#include "bladestab/worker_threads.hpp"
 
 namespace bladestab {
 namespace {
@@ -172,12 +173,11 @@ ParameterSweep parameter_sweep(const std::string& text, const std::string& sourc
     reference_terms.push_back(here.reference_terms);
   };
 
-  // The values are independent: solved a batch at a time, one per core (BLAS runs single-threaded;
+  // The values are independent: solved a batch at a time, one per worker thread (BLAS runs single-threaded;
   // ARPACK keeps its state in Fortran SAVE variables, so it runs alone), then tracked in order; a
   // batch bounds the memory held for large models. The first value that fails, in the order
   // given, is the one reported.
-  const int cores = static_cast<int>(std::thread::hardware_concurrency());
-  const int workers = o.solver == EigenSolverKind::arpack ? 1 : std::max(1, std::min(nv, cores));
+  const int workers = o.solver == EigenSolverKind::arpack ? 1 : std::min(nv, worker_threads(o.threads));
   for (int start = 0; start < nv; start += workers) {
     const int batch = std::min(workers, nv - start);
     std::vector<std::optional<Scene>> scenes(batch);

@@ -13,6 +13,7 @@
 #include "bladestab/mode_convergence.hpp"
 #include "bladestab/periodic_system.hpp"
 #include "bladestab/reduction.hpp"
+#include "bladestab/worker_threads.hpp"
 
 namespace bladestab {
 namespace {
@@ -83,12 +84,14 @@ struct BudgetVariants {
   double basis_factor = 1, reduction_factor = 1;
 };
 
-BudgetVariants start_variants(const Scene& scene, const Fidelity& f, double tol) {
+// With `threads` = t, the first t − 1 variants run beside the answer and the others when their
+// result is asked for, on the caller's thread: never more than t at once.
+BudgetVariants start_variants(const Scene& scene, const Fidelity& f, double tol, int threads) {
   const double variant_tol = tol / 8;
-  const auto run = [&scene, variant_tol](Fidelity variant) {
-    return std::async(std::launch::async, [&scene, variant_tol, variant] {
-      return variant_max_rho(scene, variant, variant_tol);
-    });
+  int beside = worker_threads(threads) - 1;
+  const auto run = [&scene, variant_tol, &beside](Fidelity variant) {
+    const std::launch policy = beside-- > 0 ? std::launch::async : std::launch::deferred;
+    return std::async(policy, [&scene, variant_tol, variant] { return variant_max_rho(scene, variant, variant_tol); });
   };
   BudgetVariants v;
   Fidelity richer_basis = f;
@@ -154,7 +157,7 @@ StabilityAnswer analyse_stability(const Scene& scene, const StabilityRequest& re
   const double tol = request.tolerance;
   StabilityAnswer a;
   while (true) {
-    BudgetVariants variants = start_variants(scene, f, tol);
+    BudgetVariants variants = start_variants(scene, f, tol, request.threads);
     const PeriodicSystem sys = system_at(scene, f);
     a.floquet = floquet_of(scene, f, sys, {request.method, request.harmonics, tol / 4, true});
     a.budget = budget_of(a.floquet, variants);

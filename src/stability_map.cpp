@@ -20,6 +20,7 @@
 #include "bladestab/numerical_error.hpp"
 #include "bladestab/mode_convergence.hpp"
 #include "bladestab/reduction.hpp"
+#include "bladestab/worker_threads.hpp"
 
 namespace bladestab {
 namespace {
@@ -141,7 +142,7 @@ void parallel_for(std::size_t count, int threads, const std::function<void(std::
     }
   };
   std::vector<std::thread> pool;
-  for (int t = 0; t < std::max(1, threads); ++t) pool.emplace_back(worker);
+  for (int t = 0; t < worker_threads(threads); ++t) pool.emplace_back(worker);
   for (std::thread& t : pool) t.join();
   if (failure) std::rethrow_exception(failure);
 }

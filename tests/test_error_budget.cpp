@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "bladestab/campbell.hpp"
 #include "bladestab/floquet.hpp"
 #include "bladestab/numerical_error.hpp"
 #include "bladestab/periodic_system.hpp"
@@ -169,4 +170,34 @@ TEST_CASE("the first release's wrong answers are right now (issue table)", "[bud
   CHECK(buckled.floquet.multipliers(0).real() == Approx(-4.56e8).epsilon(2e-3));
   CHECK(analyse_stability(paper_scene({"model.terms=8", "load.fmax_over_fcr=3"}), {FloquetMethod::koopman_hill, 0, 1e-3})
             .stable);
+}
+
+TEST_CASE("answers do not depend on --threads: stability's budget and campbell's estimate, 1 against 2", "[budget][threads]") {
+  SECTION("stability: the variants in turn or beside the answer") {
+    const Scene scene = paper_scene();
+    StabilityAnswer a[2];
+    for (int t = 1; t <= 2; ++t) a[t - 1] = analyse_stability(scene, {FloquetMethod::automatic, 0, 1e-6, t});
+    CHECK(a[0].floquet.max_abs_multiplier == a[1].floquet.max_abs_multiplier);
+    CHECK(a[0].budget.basis == a[1].budget.basis);
+    CHECK(a[0].budget.reduction == a[1].budget.reduction);
+    CHECK(a[0].budget.method == a[1].budget.method);
+    CHECK(a[0].model.terms == a[1].model.terms);
+  }
+  SECTION("campbell: the richer models in turn or on a second thread") {
+    CampbellOptions o;
+    for (int k = 0; k < 21; ++k) o.speeds_rad_s.push_back(30.0 * k);
+    o.engine_orders = {1, 2, 3};
+    o.mode_count = 4;
+    const auto with_threads = [&o](int t) {
+      o.threads = t;
+      return campbell_with_error_estimate(paper_scene(), o, 1e-6);
+    };
+    const CampbellWithErrors c[2] = {with_threads(1), with_threads(2)};
+    REQUIRE(c[0].diagram.curves.size() == c[1].diagram.curves.size());
+    for (std::size_t m = 0; m < c[0].diagram.curves.size(); ++m) {
+      CHECK(c[0].diagram.curves[m].frequency_hz == c[1].diagram.curves[m].frequency_hz);
+      for (std::size_t s = 0; s < c[0].budget[m].size(); ++s) CHECK(c[0].budget[m][s].total() == c[1].budget[m][s].total());
+    }
+    CHECK(c[0].diagram.crossings.size() == c[1].diagram.crossings.size());
+  }
 }

@@ -22,6 +22,7 @@ struct CampbellOptions {
   EigenSolverKind solver = EigenSolverKind::automatic;  // automatic: the reduced sweep where it applies
   double reduction_tolerance = 1e-8;  // relative bound wanted on the reduced model's frequencies
   bool closest_approaches = false;    // also find each curve's closest approach to each line
+  int threads = 0;                    // the richer models of the estimate beside the base model unless 1 (0: per core)
 };
 
 struct CampbellCurve {

@@ -24,6 +24,7 @@ struct ParameterSweepOptions {
   std::vector<double> values;
   int mode_count = 8;
   EigenSolverKind solver = EigenSolverKind::automatic;
+  int threads = 0;  // values solved at once (0: one per core)
 };
 
 // How the modes at a value were matched to the previous value's.

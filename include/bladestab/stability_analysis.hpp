@@ -27,6 +27,7 @@ struct StabilityRequest {
   FloquetMethod method = FloquetMethod::automatic;
   int harmonics = 0;        // Hill methods' q; 0 = raised to the tolerance
   double tolerance = 1e-6;  // on max|ρ|, relative above 1
+  int threads = 0;          // the budget's variants beside the answer: at most this many at once (0: one per core)
 };
 
 struct StabilityAnswer {

@@ -30,7 +30,7 @@ struct MapOptions {
   int max_order = 4;                      // boundary curves of orders n ≤ max_order (θ ≈ 2ω/n)
   double tolerance = 1e-3;                // on max|ρ| of the shading and on the curves (CurveFidelity)
   int resolution_x = 400, resolution_y = 200;  // effective cells of the refined shading (at least)
-  int threads = 2;
+  int threads = 0;  // worker threads (0: one per core)
 };
 
 // One evaluated shading point.

@@ -175,6 +175,8 @@ Command register_campbell(CLI::App& app) {
   add_integer_option(*command, "--count", *count, 1, max_int, "modes to track, lowest first (default 8)");
   add_number_option(*command, "--tolerance", *tolerance, AllowedRange::open(0, 1),
                     "wanted relative error of every frequency; the terms are raised until it is met (default 1e-6)");
+  auto threads = std::make_shared<int>();
+  add_threads_option(*command, *threads);
   add_chart_options(*command, *out, *chart, "directory for campbell.csv, campbell_crossings.csv, campbell.json and the chart");
   return [=] {
     const std::vector<double> speed_list = parse_range("--speeds", *speeds, scene_limits::speed_rad_s);
@@ -183,6 +185,7 @@ Command register_campbell(CLI::App& app) {
     const Scene scene = options->load();
     check_campbell_work(scene, speed_list.size(), options->eigen_solver());
     CampbellOptions campbell{speed_list, *orders, *count, options->eigen_solver()};
+    campbell.threads = *threads;
     const bool for_people = options->output_format() == OutputFormat::table;
     const CampbellWithErrors result =
         campbell_with_error_estimate(scene, campbell, *tolerance, progress_reporter("campbell: speeds", for_people));

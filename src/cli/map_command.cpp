@@ -229,8 +229,8 @@ Command register_map(CLI::App& app) {
                      "converge them");
   add_number_option(*command, "--tolerance", *tolerance, AllowedRange::open(0, 1),
                     "accuracy of max|ρ| in the shading (default 1e-3)");
-  auto threads = std::make_shared<int>(std::max(1u, std::thread::hardware_concurrency()));
-  add_integer_option(*command, "--threads", *threads, 1, 256, "worker threads (default: the machine's cores)");
+  auto threads = std::make_shared<int>();
+  add_threads_option(*command, *threads);
   auto resolution = std::make_shared<std::string>("400x200");
   command->add_option("--resolution", *resolution,
                       "effective cells NXxNY of the refined shading (default 400x200; the grid's cells are split "

@@ -8,6 +8,7 @@
 
 #include "bladestab/input_error.hpp"
 #include "bladestab/message_text.hpp"
+#include "bladestab/worker_threads.hpp"
 #include "number_options.hpp"
 #include "work_limits.hpp"
 
@@ -39,6 +40,12 @@ void add_scene_options(CLI::App& command, SceneOptions& options, const std::vect
   command.add_option("--solver", options.solver, "eigensolver: auto (default), dense (LAPACK) or arpack")
       ->check(CLI::IsMember({"auto", "dense", "arpack"}));
   add_work_limit_options(command);
+}
+
+void add_threads_option(CLI::App& command, int& threads) {
+  threads = worker_threads(0);
+  add_integer_option(command, "--threads", threads, 1, 256,
+                     fmt::format("worker threads (default: one per core, {} here)", threads));
 }
 
 std::vector<double> parse_range(const std::string& option, const std::string& text, const AllowedRange& values,

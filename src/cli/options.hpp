@@ -30,6 +30,9 @@ struct SceneOptions {
 void add_scene_options(CLI::App& command, SceneOptions& options,
                        const std::vector<std::string>& formats = {"table", "json", "csv"});
 
+// --threads N for a command that runs parts side by side; `threads` starts at one per core.
+void add_threads_option(CLI::App& command, int& threads);
+
 // "start:stop:count" → count evenly spaced values, start and stop in `values`; InputError naming
 // `option` otherwise. Increasing (start < stop) unless `order` allows either way (start != stop).
 enum class RangeOrder { increasing, either_way };

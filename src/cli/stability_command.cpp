@@ -226,7 +226,9 @@ Command register_stability(CLI::App& app) {
   auto tolerance = std::make_shared<double>(1e-6);
   auto cutoff = std::make_shared<double>(0);
   auto export_path = std::make_shared<std::string>();
+  auto threads = std::make_shared<int>();
   add_scene_options(*command, *options);
+  add_threads_option(*command, *threads);
   command->add_option("--method", *method, "hill, koopman-hill, monodromy (Magnus), monodromy-rkf45 or auto (default)")
       ->check(CLI::IsMember({"hill", "koopman-hill", "monodromy", "monodromy-rkf45", "auto"}));
   add_integer_option(*command, "--harmonics", *harmonics, 1, 60,
@@ -249,7 +251,7 @@ Command register_stability(CLI::App& app) {
                                    "pulse and has no series to export; use \"cosine\" or \"fourier\"",
                                    echoed(*export_path, 240)));
     }
-    const StabilityAnswer answer = analyse_stability(scene, {parse_method(*method), *harmonics, *tolerance});
+    const StabilityAnswer answer = analyse_stability(scene, {parse_method(*method), *harmonics, *tolerance, *threads});
     if (exporting) export_matrices(*export_path, scene, answer, *tolerance);
     print(*options, scene, answer);
   };

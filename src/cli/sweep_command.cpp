@@ -141,6 +141,8 @@ Command register_sweep(CLI::App& app) {
   command->add_option("--values", *values, "its values as start:stop:count (either direction), e.g. 0.005:0.1:20")
       ->required();
   add_integer_option(*command, "--count", *count, 1, max_int, "modes to track: the lowest at the first value (default 8)");
+  auto threads = std::make_shared<int>();
+  add_threads_option(*command, *threads);
   add_chart_options(*command, *out, *chart, "directory for NAME.csv, NAME.json and the chart");
   command->add_option("--name", *name, "stem of the output files (default sweep)");
   return [=] {
@@ -152,6 +154,7 @@ Command register_sweep(CLI::App& app) {
     o.values = parse_range("--values", *values, AllowedRange::open(-inf, inf), RangeOrder::either_way);
     o.mode_count = *count;
     o.solver = options->eigen_solver();
+    o.threads = *threads;
     check_file_stem(*name);
     check_output_directory("--out", *out);
     const Scene scene = options->load();
