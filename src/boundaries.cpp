@@ -95,7 +95,7 @@ RealMatrixEigenpairs real_eigenpairs(Eigen::MatrixXd a) {
   // dgeev on NaN or infinity may not return at all (the fuzzer found crashes and hangs there).
   if (!a.allFinite()) {
     throw NumericalError("the boundary equations are not finite: the scene's load, speed or pulse frequency put "
-                         "them beyond the double range (load.fmax_over_fcr, operation.speed_rad_s, --at-theta)");
+                         "them beyond the double range (load.fmax_over_fcr, operation.speed_rad_s, the pulse frequency θ)");
   }
   const lapack_int n = static_cast<lapack_int>(a.rows());
   Eigen::VectorXd re(n), im(n);
@@ -363,7 +363,7 @@ BoundaryAnalysis boundaries_with_error_estimate(const Scene& scene_in, const Bou
   for (int k = r.first_approximation;; k += 2) {
     if (k + 4 > r.max_approximation) {
       throw std::runtime_error(fmt::format(
-          "boundaries: not converged to --tolerance {} with up to {} harmonics per family{}", r.tolerance,
+          "boundaries: not converged to the tolerance {} with up to {} harmonics per family{}", r.tolerance,
           r.max_approximation,
           result.checks.empty() ? "" : fmt::format(" (the multiplier check failed: |ρ ∓ 1| = {:.2g} > {:.2g})",
                                                    result.checks.back().gap, result.checks.back().allowed)));

@@ -243,18 +243,18 @@ FloquetChecks check_monodromy(const Eigen::MatrixXd& phi, const Eigen::VectorXcd
   const double allowed = std::max(10 * tol, 1e-8);
   if (c.determinant_error > allowed + 1e-13 / rcond) {
     throw NumericalError(fmt::format("monodromy check failed: det Φ(T) is off Liouville's exp(∫tr A) by {:.2g}; "
-                                     "lower --tolerance", c.determinant_error));
+                                     "lower the tolerance", c.determinant_error));
   }
   // The partner 1/ρ of a large ρ is known only to the rounding of Φ, ~1e-13‖Φ‖ with ‖Φ‖ ~ max|ρ|;
   // ρ times it then carries 1e-13 max|ρ|² (measured 2e-13 at max|ρ| = 2.6e5): a margin of 100.
   if (c.reciprocal_error > allowed + 1e-11 * max_abs(rho) * max_abs(rho)) {
     throw NumericalError(fmt::format("monodromy check failed: the undamped multipliers are not reciprocal pairs "
-                                     "(|ρ ρ' − 1| = {:.2g}); lower --tolerance", c.reciprocal_error));
+                                     "(|ρ ρ' − 1| = {:.2g}); lower the tolerance", c.reciprocal_error));
   }
   // RKF45's global error over the many oscillations of a period reaches ~1e2–1e3 rtol.
   if (c.residual > allowed + 1e3 * rtol) {
     throw NumericalError(fmt::format("monodromy check failed: an independent RKF45 integration of the dominant "
-                                     "Floquet vector disagrees by {:.2g}; lower --tolerance", c.residual));
+                                     "Floquet vector disagrees by {:.2g}; lower the tolerance", c.residual));
   }
   return c;
 }
@@ -409,15 +409,15 @@ FloquetResult floquet_multipliers(const PeriodicSystem& sys, const FloquetOption
         // like rows³ (q = 60 on the paper blade's 24 states: 2904 rows, most of an hour).
         const int rows = sys.state_size() * (2 * q + 1);
         if (rows > max_hill_rows) {
-          throw InputError(fmt::format("--harmonics {}: the Hill matrix would have {} rows ({} states × {} harmonics), "
-                                       "beyond the {} its methods are held to; use fewer harmonics or --method monodromy",
+          throw ParameterError("harmonics", fmt::format("{}: the Hill matrix would have {} rows ({} states × {} harmonics), "
+                                       "beyond the {} its methods are held to; use fewer harmonics or the monodromy method",
                                        q, rows, sys.state_size(), 2 * q + 1, max_hill_rows));
         }
         const Eigen::VectorXcd current = method(sys, q), coarser = method(sys, std::max(1, q - 2));
         attempt = {current, multiplier_set_distance(current, coarser), q, 0, {}};
       } else if (!refine_harmonics(sys, method, 2, max_q, max_hill_rows, tol, attempt)) {
         throw NumericalError(fmt::format("{}: the multipliers did not settle to {:g} up to q = {} ({} rows); use "
-                                         "--method monodromy", to_string(options.method), tol, attempt.harmonics,
+                                         "the monodromy method", to_string(options.method), tol, attempt.harmonics,
                                          sys.state_size() * (2 * attempt.harmonics + 1)));
       }
       // The kept exponents must agree with the monodromy's (sorting can pick wrong ones).
@@ -426,7 +426,7 @@ FloquetResult floquet_multipliers(const PeriodicSystem& sys, const FloquetOption
       const double disagreement = std::abs(max_abs(attempt.multipliers) - max_abs(reference.multipliers));
       if (disagreement > attempt.error + reference.error + tol * std::max(1.0, max_abs(reference.multipliers))) {
         throw NumericalError(fmt::format("{} (q = {}): max|ρ| = {:.8g} disagrees with the monodromy's {:.8g}{}; use "
-                                         "--method monodromy", to_string(options.method), attempt.harmonics,
+                                         "the monodromy method", to_string(options.method), attempt.harmonics,
                                          max_abs(attempt.multipliers), max_abs(reference.multipliers),
                                          options.method == FloquetMethod::hill
                                              ? " (the classical sorting kept the wrong exponents)"

@@ -137,23 +137,23 @@ std::optional<int> terms_for_tolerance(BasisKind basis, int terms, double estima
 }
 
 void check_tolerance(double tolerance) {
-  if (!(tolerance > 0 && tolerance < 1)) throw InputError(fmt::format("--tolerance {}: must be in (0, 1)", tolerance));
+  if (!(tolerance > 0 && tolerance < 1)) throw ParameterError("tolerance", fmt::format("{}: must be in (0, 1)", tolerance));
   if (tolerance <= eigensolver_rounding) {
-    throw InputError(fmt::format("--tolerance {}: must be above {:g}, the eigensolver's rounding that every "
-                                 "estimate includes",
-                                 tolerance, eigensolver_rounding));
+    throw ParameterError("tolerance", fmt::format("{}: must be above {:g}, the eigensolver's rounding that every "
+                                                  "estimate includes",
+                                                  tolerance, eigensolver_rounding));
   }
 }
 
-InputError tolerance_not_met(double tolerance, const ModelSpec& spec, double estimate) {
-  return InputError(fmt::format("--tolerance {}: not met with {} terms per field (estimated error {:.2g}); "
+ParameterError tolerance_not_met(double tolerance, const ModelSpec& spec, double estimate) {
+  return ParameterError("tolerance", fmt::format("{}: not met with {} terms per field (estimated error {:.2g}); "
                                 "{}a looser tolerance",
                                 tolerance, spec.terms, estimate,
                                 spec.basis == BasisKind::sine ? "use model.basis = \"legendre\" (for model.basis = \"sine\") or " : ""));
 }
 
-InputError tolerance_below_rounding(double tolerance, double rounding) {
-  return InputError(fmt::format("--tolerance {}: below the rounding of these frequencies, {:.2g} (the stiffness "
+ParameterError tolerance_below_rounding(double tolerance, double rounding) {
+  return ParameterError("tolerance", fmt::format("{}: below the rounding of these frequencies, {:.2g} (the stiffness "
                                 "form of a slender blade's low modes cancels); more terms do not lower it",
                                 tolerance, rounding));
 }

@@ -23,7 +23,7 @@ constexpr double not_matched_by_shape = std::numeric_limits<double>::quiet_NaN()
 void check_key_form(const std::string& key) {
   const auto dot = key.find('.');
   if (dot == std::string::npos || dot == 0 || dot + 1 == key.size() || key.find('=') != std::string::npos) {
-    throw InputError(fmt::format("--key {}: must be section.key, a scene key that takes a number (e.g. "
+    throw ParameterError("key", fmt::format("{}: must be section.key, a scene key that takes a number (e.g. "
                                  "blade.slenderness, operation.tip_compression_over_fcr)",
                                  key));
   }
@@ -40,15 +40,15 @@ Scene scene_at(const std::string& text, const std::string& source, std::vector<s
     switch (e.reason()) {
       case SceneKeyError::Reason::unknown:
       case SceneKeyError::Reason::unused:
-        throw InputError(fmt::format("--key {}: {}", o.key, e.what()));
+        throw ParameterError("key", fmt::format("{}: {}", o.key, e.what()));
       case SceneKeyError::Reason::not_numeric:
-        throw InputError(fmt::format("--key {}: takes no number: {}", o.key, e.what()));
+        throw ParameterError("key", fmt::format("{}: takes no number: {}", o.key, e.what()));
       case SceneKeyError::Reason::not_allowed:
         break;
     }
-    throw InputError(fmt::format("--values {}: {}", o.values_text, e.what()));
+    throw ParameterError("values", fmt::format("{}: {}", o.values_text, e.what()));
   } catch (const InputError& e) {
-    throw InputError(fmt::format("--values {}: {}", o.values_text, e.what()));
+    throw ParameterError("values", fmt::format("{}: {}", o.values_text, e.what()));
   }
 }
 
@@ -60,7 +60,7 @@ ConvergedModes modes_at(const Scene& scene, const ParameterSweepOptions& o) {
   try {
     return modes_with_error_estimate(scene, candidates, o.solver);
   } catch (const InputError& e) {  // e.g. a static compression the blade cannot carry
-    throw InputError(fmt::format("--values {}: {}", o.values_text, e.what()));
+    throw ParameterError("values", fmt::format("{}: {}", o.values_text, e.what()));
   }
 }
 
@@ -110,8 +110,8 @@ ParameterSweep parameter_sweep(const std::string& text, const std::string& sourc
                                const std::vector<std::string>& overrides, const ParameterSweepOptions& o,
                                const std::function<void(int, int)>& progress) {
   check_key_form(o.key);
-  if (o.mode_count < 1) throw InputError(fmt::format("--count {}: must be an integer >= 1", o.mode_count));
-  if (o.values.size() < 2) throw InputError(fmt::format("--values {}: needs at least 2 values", o.values_text));
+  if (o.mode_count < 1) throw ParameterError("count", fmt::format("{}: must be an integer >= 1", o.mode_count));
+  if (o.values.size() < 2) throw ParameterError("values", fmt::format("{}: needs at least 2 values", o.values_text));
   parse_scene(text, source, overrides);  // the scene itself, before the key is touched
 
   const int nv = static_cast<int>(o.values.size());
@@ -154,7 +154,7 @@ ParameterSweep parameter_sweep(const std::string& text, const std::string& sourc
       matched_by.push_back(ModeMatch::order);
     }
     if (std::any_of(pick.begin(), pick.end(), [&](int k) { return k < 0 || k >= available; })) {
-      throw InputError(fmt::format("--count {}: the model at {} = {} has only {} modes", o.mode_count, o.key,
+      throw ParameterError("count", fmt::format("{}: the model at {} = {} has only {} modes", o.mode_count, o.key,
                                    scene_value_text(o.values[v]), available));
     }
     for (std::size_t i = 0; i < pick.size(); ++i) {

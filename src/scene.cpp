@@ -235,18 +235,18 @@ private:
   std::set<std::string> known_;
 };
 
-void apply_override(toml::table& root, const std::string& assignment, const std::string& source) {
+void apply_override(toml::table& root, const std::string& assignment) {
   const std::string shown = echoed(assignment);
   const auto eq = assignment.find('=');
   const auto dot = assignment.find('.');
   if (eq == std::string::npos || dot == std::string::npos || dot > eq || dot == 0 || dot + 1 == eq) {
-    throw InputError(fmt::format("{}: --set {}: must have the form section.key=value", source, shown));
+    throw ParameterError("set", fmt::format("{}: must have the form section.key=value", shown));
   }
   const std::string section = assignment.substr(0, dot);
   const std::string key = assignment.substr(dot + 1, eq - dot - 1);
   const std::string text = assignment.substr(eq + 1);
   if (text.empty()) {
-    throw InputError(fmt::format("{}: --set {}: the value is empty", source, shown));
+    throw ParameterError("set", fmt::format("{}: the value is empty", shown));
   }
   toml::table parsed;
   try {
@@ -260,7 +260,7 @@ void apply_override(toml::table& root, const std::string& assignment, const std:
     node = root.get(section);
   }
   toml::table* table = node->as_table();
-  if (table == nullptr) throw InputError(fmt::format("{}: --set {}: {} is not a table", source, shown, echoed(section)));
+  if (table == nullptr) throw ParameterError("set", fmt::format("{}: {} is not a table", shown, echoed(section)));
   table->insert_or_assign(key, *parsed.get("value"));
 }
 
@@ -461,7 +461,7 @@ Scene parse_scene(const std::string& toml_text, const std::string& source_name,
     throw InputError(fmt::format("{}:{}:{}: not valid TOML: {}", source, where.line, where.column,
                                  echoed(e.description(), 200)));
   }
-  for (const std::string& assignment : overrides) apply_override(root, assignment, source);
+  for (const std::string& assignment : overrides) apply_override(root, assignment);
   return read_scene(root, source_name, source);
 }
 

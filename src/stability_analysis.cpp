@@ -36,8 +36,9 @@ PeriodicSystem system_at(const Scene& scene, const Fidelity& f) {
 FloquetResult floquet_of(const Scene& scene, const Fidelity& f, const PeriodicSystem& sys, const FloquetOptions& o) {
   if (!f.load.exact_pulse) return floquet_multipliers(sys, o);
   if (o.method == FloquetMethod::hill || o.method == FloquetMethod::koopman_hill) {
-    throw InputError(fmt::format("--method {}: Hill methods need a Fourier load; load.approximation = \"exact\" is "
-                                 "integrated through each pulse (use monodromy or auto)", to_string(o.method)));
+    throw ParameterError("method", fmt::format("{}: Hill methods need a Fourier load; load.approximation = \"exact\" is "
+                                               "integrated through each pulse (use monodromy or auto)",
+                                               to_string(o.method)));
   }
   return pulse_train_multipliers(sys, pulse_train(scene), o);
 }

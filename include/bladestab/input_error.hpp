@@ -11,6 +11,20 @@ public:
   explicit InputError(const std::string& message) : std::runtime_error(message) {}
 };
 
+// An InputError about a parameter of an analysis, a field of its options ("tolerance", "harmonics",
+// "method", a sweep's "key", "values" and "count", a scene's override "set"), not a scene key. The
+// message starts with the parameter's name and value, "tolerance 1e-13: …"; a program that gives
+// the parameter another name (bladestab's options are "--" and the name) rewrites that start.
+class ParameterError : public InputError {
+public:
+  ParameterError(std::string parameter, const std::string& rest)
+      : InputError(parameter + " " + rest), parameter_(std::move(parameter)) {}
+  const std::string& parameter() const { return parameter_; }
+
+private:
+  std::string parameter_;
+};
+
 // An InputError about one scene key ("section.key"; a section alone for an unknown section), with
 // how it failed, so that a caller that set the key itself (`sweep --key`) can tell a key the scene
 // does not have or does not use, or one that takes no number, from a value the key does not allow.

@@ -70,9 +70,9 @@ std::optional<int> terms_for_tolerance(BasisKind basis, int terms, double estima
 void check_tolerance(double tolerance);
 
 // The one-line InputError for a tolerance that raising the terms cannot meet.
-InputError tolerance_not_met(double tolerance, const ModelSpec& spec, double estimate);
+ParameterError tolerance_not_met(double tolerance, const ModelSpec& spec, double estimate);
 // ... and for one below the rounding of the frequencies themselves (more terms do not lower it).
-InputError tolerance_below_rounding(double tolerance, double rounding);
+ParameterError tolerance_below_rounding(double tolerance, double rounding);
 
 // Modes of `scene` at its speed with their error estimates. With a tolerance, the number of terms
 // starts at the scene's and grows until every one of the `count` lowest modes has a whole

@@ -86,12 +86,16 @@ int main(int argc, char** argv) {
   } catch (const bladestab::InputError& e) {  // a number option's value (number_options.hpp)
     return report("error", e.what(), 2);
   }
+  // The library names an analysis's parameter ("tolerance 1e-13: …"); here it is the option --tolerance.
+  const auto as_option = [](const bladestab::ParameterError& e) { return "--" + std::string(e.what()); };
   stop_after(work_limits().seconds, fmt::format("--max-seconds {:g}", work_limits().seconds));
   try {
     run.at(app.get_subcommands().front()->get_name())();
   } catch (const AnswerIsNegative&) {
     finish_stdout();  // a failed write says so; the status is 1 either way
     return 1;
+  } catch (const bladestab::ParameterError& e) {
+    return report("error", as_option(e), 2);
   } catch (const bladestab::InputError& e) {
     return report("error", e.what(), 2);
   } catch (const std::bad_alloc&) {
