@@ -337,6 +337,8 @@ CampbellWithErrors campbell_with_error_estimate(const Scene& scene, const Campbe
   const std::vector<double>& speeds = options.speeds_rad_s;
   const double lo = speeds.front(), hi = speeds.back();
   CampbellOptions wanted = options;
+  // The richer models' solves beside the base model's, or in turn where one thread is allowed.
+  const std::launch richer_policy = beside_or_deferred(options.threads);
   wanted.reduction_tolerance = tolerance / 20;
   ModelSpec spec = scene.model;
   bool dense = false;  // set when a reduced sweep could not certify some speed
@@ -367,7 +369,7 @@ CampbellWithErrors campbell_with_error_estimate(const Scene& scene, const Campbe
       // its own; BLAS runs single-threaded and is thread-safe).
       const EigenSolverKind richer_solver =
           wanted.solver == EigenSolverKind::arpack ? EigenSolverKind::dense : wanted.solver;
-      auto richer_sweeps = std::async(beside_or_deferred(wanted.threads), [&] {
+      auto richer_sweeps = std::async(richer_policy, [&] {
         for (Reference& r : refs) {
           r.sweep = reduced_sweep_applies(*r.model, scene.damping) ? sweep_of(*r.model, count, richer_solver)
                                                                    : sweep_of(*r.model, count, EigenSolverKind::dense);
@@ -377,7 +379,7 @@ CampbellWithErrors campbell_with_error_estimate(const Scene& scene, const Campbe
       try {
         base = sweep_of(*model, count, wanted.solver);
       } catch (...) {
-        if (worker_threads(wanted.threads) > 1) richer_sweeps.wait();
+        if (richer_policy == std::launch::async) richer_sweeps.wait();
         throw;
       }
       richer_sweeps.get();
@@ -410,14 +412,14 @@ CampbellWithErrors campbell_with_error_estimate(const Scene& scene, const Campbe
 
       CampbellDiagram diagram;
       std::vector<std::vector<SpeedModes>> richer(refs.size());
-      auto richer_solved = std::async(beside_or_deferred(wanted.threads), [&] {
+      auto richer_solved = std::async(richer_policy, [&] {
         for (std::size_t r = 0; r < refs.size(); ++r) richer[r] = refs[r].sweep->solve(speeds);
       });
       Tracked t;
       try {
         t = track(*base, *model, wanted, diagram, progress);
       } catch (...) {
-        if (worker_threads(wanted.threads) > 1) richer_solved.wait();
+        if (richer_policy == std::launch::async) richer_solved.wait();
         throw;
       }
       richer_solved.get();

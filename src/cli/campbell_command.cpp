@@ -149,9 +149,8 @@ void check_campbell_work(const Scene& scene, std::size_t speeds, EigenSolverKind
   richer.terms = reference_terms(scene.model.basis, scene.model.terms);
   double flops = 0, bytes = 0;
   for (const ModelSpec& spec : {scene.model, richer}) {
-    const double states = 2.0 * dof_layout(spec).size();
-    flops += solves * 25 * states * states * states;
-    bytes = std::max(bytes, 6 * 8 * states * states);
+    flops += solves * eigensolve_flops(dof_layout(spec).size());
+    bytes = std::max(bytes, eigensolve_bytes(dof_layout(spec).size()));
   }
   check_work(fmt::format("--speeds with model.terms = {}", scene.model.terms),
              fmt::format("{:g} whole eigensolves", 2 * solves), flops / dense_flops_per_second, bytes);

@@ -226,8 +226,8 @@ void check_requirements_work(const Scene& scene) {
   double flops = 0, bytes = 0;
   if (req.frequency_margin) {
     for (const double dofs : {n, nr}) {
-      flops += 3 * 25 * std::pow(2 * dofs, 3);
-      bytes = std::max(bytes, 6 * 8 * std::pow(2 * dofs, 2));
+      flops += 3 * eigensolve_flops(dofs);
+      bytes = std::max(bytes, eigensolve_bytes(dofs));
     }
   }
   if (req.max_fmax_over_fcr) {

@@ -127,17 +127,10 @@ void print_modes(const SceneOptions& options, const Scene& scene, const Converge
 // for the Legendre basis, two for the sine basis, as modes_with_error_estimate solves them), ~25 (2n)³
 // flops for 2n states each. model.terms = 200 is about a minute.
 void check_modes_work(const Scene& scene) {
-  ModelSpec spec = scene.model;
-  double flops = 0, bytes = 0;
-  for (int level = 0; level <= (spec.basis == BasisKind::sine ? 2 : 1); ++level) {
-    const double states = 2.0 * dof_layout(spec).size();
-    flops += 25 * states * states * states;
-    bytes = std::max(bytes, 6 * 8 * states * states);
-    spec.terms = reference_terms(spec.basis, spec.terms);
-  }
+  const EigensolveWork work = converged_modes_work(scene.model);
   check_work(fmt::format("model.terms = {}", scene.model.terms),
              fmt::format("the eigensolves of {}-dof models", dof_layout(scene.model).size()),
-             flops / dense_flops_per_second, bytes);
+             work.flops / dense_flops_per_second, work.bytes);
 }
 
 }  // namespace

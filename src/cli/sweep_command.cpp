@@ -7,7 +7,6 @@
 #include <fmt/format.h>
 
 #include "bladestab/message_text.hpp"
-#include "bladestab/mode_convergence.hpp"
 #include "bladestab/parameter_sweep.hpp"
 #include "chart.hpp"
 #include "commands.hpp"
@@ -107,22 +106,15 @@ void print_table(const Scene& scene, const ParameterSweep& s, const std::vector<
   if (!files.empty()) fmt::print("\nwritten: {}\n", fmt::join(files, ", "));
 }
 
-// Each value solves its model and the richer one of the error estimate whole (modes_with_error_estimate):
-// two dense eigensolves of the first-order system. A sweep of model.terms is estimated at its
-// largest value.
+// Each value solves its model whole with the richer ones of its error estimate, as `modes` does
+// (modes_with_error_estimate). A sweep of model.terms is estimated at its largest value.
 void check_sweep_work(const Scene& scene, const ParameterSweepOptions& o) {
   ModelSpec spec = scene.model;
   if (o.key == "model.terms") spec.terms = static_cast<int>(*std::max_element(o.values.begin(), o.values.end()));
-  ModelSpec richer = spec;
-  richer.terms = reference_terms(spec.basis, spec.terms);
-  double flops = 0, bytes = 0;
-  for (const ModelSpec& s : {spec, richer}) {
-    const double states = 2.0 * dof_layout(s).size();
-    flops += o.values.size() * 25 * states * states * states;
-    bytes = std::max(bytes, 6 * 8 * states * states);
-  }
+  const EigensolveWork work = converged_modes_work(spec);
   check_work(fmt::format("--values {} with model.terms = {}", echoed(o.values_text), spec.terms),
-             fmt::format("{} whole eigensolves", 2 * o.values.size()), flops / dense_flops_per_second, bytes);
+             fmt::format("the eigensolves of {} values", o.values.size()),
+             o.values.size() * work.flops / dense_flops_per_second, work.bytes);
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 
 #include "bladestab/allowed_range.hpp"
 #include "bladestab/input_error.hpp"
+#include "bladestab/mode_convergence.hpp"
 #include "number_options.hpp"
 
 namespace bladestab::cli {
@@ -44,6 +45,17 @@ void check_work(const std::string& cause, const std::string& what, double second
                                "{:g} MB (--max-memory)",
                                cause, what, duration_text(seconds), size_text(bytes), limits.seconds,
                                limits.megabytes));
+}
+
+EigensolveWork converged_modes_work(ModelSpec spec) {
+  EigensolveWork work;
+  for (int level = 0; level <= (spec.basis == BasisKind::sine ? 2 : 1); ++level) {
+    const double dofs = dof_layout(spec).size();
+    work.flops += eigensolve_flops(dofs);
+    work.bytes = std::max(work.bytes, eigensolve_bytes(dofs));
+    spec.terms = reference_terms(spec.basis, spec.terms);
+  }
+  return work;
 }
 
 }  // namespace bladestab::cli

@@ -8,6 +8,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "bladestab/model.hpp"
+
 namespace bladestab::cli {
 
 struct WorkLimits {
@@ -30,6 +32,19 @@ void check_work(const std::string& cause, const std::string& what, double second
 // products of an integrator's right-hand side.
 inline constexpr double dense_flops_per_second = 4e9;
 inline constexpr double small_product_flops_per_second = 2e9;
+
+// One whole dense eigensolve of the first-order system of a model with `dofs` dofs (2·dofs states):
+// ~25 (2n)³ flops and 6 (2n)² doubles.
+inline double eigensolve_flops(double dofs) { return 25 * 8 * dofs * dofs * dofs; }
+inline double eigensolve_bytes(double dofs) { return 6 * 8 * 4 * dofs * dofs; }
+
+// The eigensolves of modes_with_error_estimate on a model of `spec`: the model and its richer
+// reference models (one for the Legendre basis, two for the sine basis). Flops; the largest
+// solve's bytes.
+struct EigensolveWork {
+  double flops = 0, bytes = 0;
+};
+EigensolveWork converged_modes_work(ModelSpec spec);
 
 // Bytes of a transient's history of `revolutions` at `samples_per_revolution`: each sample with its
 // CSV line and chart series takes about 600.
