@@ -2,8 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <future>
+#include <functional>
 #include <limits>
+#include <memory>
 #include <optional>
 
 #include <fmt/format.h>
@@ -78,53 +79,54 @@ VariantRho variant_max_rho(const Scene& scene, const Fidelity& f, double tol) {
   return {r.max_abs_multiplier, r.error_estimate};
 }
 
-// The variants of the budget, each differing from `f` in one part only, started on their own
-// threads: they do not depend on the answer, and each costs about as much as the answer.
+// The variants of the budget, each differing from `f` in one part only. They do not depend on the
+// answer, so they run beside it (SideTasks), the richer reduction first: its model is the largest.
 struct BudgetVariants {
-  std::future<VariantRho> basis, reduction, load;
+  static constexpr std::size_t none = static_cast<std::size_t>(-1);
+  std::unique_ptr<SideTasks<VariantRho>> tasks;
+  std::size_t basis = none, reduction = none, load = none;
   double basis_factor = 1, reduction_factor = 1;
 };
 
-// With `threads` = t, the first t − 1 variants run beside the answer and the others when their
-// result is asked for, on the caller's thread: never more than t at once.
 BudgetVariants start_variants(const Scene& scene, const Fidelity& f, double tol, int threads) {
   const double variant_tol = tol / 8;
-  int beside = worker_threads(threads) - 1;
-  const auto run = [&scene, variant_tol, &beside](Fidelity variant) {
-    const std::launch policy = beside-- > 0 ? std::launch::async : std::launch::deferred;
-    return std::async(policy, [&scene, variant_tol, variant] { return variant_max_rho(scene, variant, variant_tol); });
+  std::vector<std::function<VariantRho()>> tasks;
+  const auto add = [&](Fidelity variant) {
+    tasks.emplace_back([&scene, variant_tol, variant] { return variant_max_rho(scene, variant, variant_tol); });
+    return tasks.size() - 1;
   };
   BudgetVariants v;
-  Fidelity richer_basis = f;
-  richer_basis.model.terms = reference_terms(f.model.basis, f.model.terms);
-  // Algebraic convergence (sine basis): the difference to 2N understates the error up to 2×.
-  v.basis_factor = f.model.basis == BasisKind::sine ? 2 : 1;
-  v.basis = run(richer_basis);
   if (f.reduction.kind == ReductionKind::automatic) {
     Fidelity richer = f;
     richer.reduction.vectors = 2 * f.reduction.vectors;
     // Galerkin projections do not converge monotonically in max|ρ|: a factor 2 of safety.
     v.reduction_factor = 2;
-    v.reduction = run(richer);
+    v.reduction = add(richer);
   } else if (f.reduction.kind == ReductionKind::modal && f.reduction.cutoff_hz > 0) {
     Fidelity reduced = f;
     reduced.reduction = {ReductionKind::automatic, 2 * default_reduction_vectors, 0};
-    v.reduction = run(reduced);
+    v.reduction = add(reduced);
   }
+  Fidelity richer_basis = f;
+  richer_basis.model.terms = reference_terms(f.model.basis, f.model.terms);
+  // Algebraic convergence (sine basis): the difference to 2N understates the error up to 2×.
+  v.basis_factor = f.model.basis == BasisKind::sine ? 2 : 1;
+  v.basis = add(richer_basis);
   if (!f.load.cosine_approximation && !f.load.exact_pulse) {
     // The truncated series against the true pulse train it stands for.
     Fidelity exact = f;
     exact.load = exact_pulse_mean(pulse_train(scene));
-    v.load = run(exact);
+    v.load = add(exact);
   }
+  v.tasks = std::make_unique<SideTasks<VariantRho>>(threads, std::move(tasks));
   return v;
 }
 
 // Each part: factor · |ρ − ρ_variant| plus the variant's own error.
 ErrorBudget budget_of(const FloquetResult& r, BudgetVariants& v) {
-  const auto part = [rho = r.max_abs_multiplier](std::future<VariantRho>& variant, double factor) {
-    if (!variant.valid()) return 0.0;
-    const VariantRho x = variant.get();
+  const auto part = [&v, rho = r.max_abs_multiplier](std::size_t variant, double factor) {
+    if (variant == BudgetVariants::none) return 0.0;
+    const VariantRho x = v.tasks->get(variant);
     return factor * std::abs(rho - x.rho) + x.error;
   };
   ErrorBudget b;
