@@ -293,7 +293,14 @@ int minimum_magnus_steps(const PeriodicSystem& sys) {
   // max_t ‖A(t)‖₂ ≤ ‖A₀‖₂ + ‖B‖₂ Σ_{m≥1} 2|F_m|
   double load = 0;
   for (std::size_t m = 1; m < sys.load.size(); ++m) load += 2 * std::abs(sys.load[m]);
-  const auto norm2 = [](const Eigen::MatrixXd& a) { return Eigen::JacobiSVD<Eigen::MatrixXd>(a).singularValues()(0); };
+  // ‖a‖₂ = √λ_max(aᵀa), to the rounding of λ_max (ε‖a‖²): a symmetric eigenvalue solve, several
+  // times cheaper than the SVD (which was 9 % of a map of the true pulse train).
+  const auto norm2 = [](const Eigen::MatrixXd& a) {
+    const Eigen::MatrixXd gram = a.transpose() * a;
+    return std::sqrt(std::max(0.0, Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(gram, Eigen::EigenvaluesOnly)
+                                       .eigenvalues()
+                                       .maxCoeff()));
+  };
   const double bound = norm2(sys.A0) + load * norm2(sys.B);
   const double steps = std::max({32.0, 8.0 * sys.load.size(), bound * sys.period() / 2});
   return steps > (1 << 30) ? (1 << 30) + 1 : 1 << static_cast<int>(std::ceil(std::log2(steps)));

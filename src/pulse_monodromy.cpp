@@ -26,33 +26,49 @@ Eigen::VectorXcd sorted_multipliers(const Eigen::MatrixXd& Phi) {
   return rho;
 }
 
-}  // namespace
+// What Φ(T_p) takes from the unloaded blade, the same at every step count of the contact: A_free
+// and the flight between contacts (over the whole T_p after an impulse), computed once per ladder.
+struct FreeFlight {
+  Eigen::MatrixXd A_free, flight;
+};
 
-Eigen::MatrixXd pulse_monodromy(const PeriodicSystem& sys, const PulseTrain& train, int steps) {
+FreeFlight free_flight(const PeriodicSystem& sys, const PulseTrain& train) {
   const double T = train.period_s, tc = train.contact_time_s;
   if (std::abs(sys.period() - T) > 1e-12 * T) {
     throw std::invalid_argument(fmt::format("pulse_monodromy: the system's period {:.12g} s is not the pulse period "
                                             "{:.12g} s", sys.period(), T));
   }
-  const int n = sys.state_size();
+  FreeFlight f;
   // SPEC §4: A(t) = A₀ + (F(t) − F₀) B, so the unloaded blade is A₀ − F₀ B.
-  const Eigen::MatrixXd A_free = sys.A0 - sys.load.at(0).real() * sys.B;
+  f.A_free = sys.A0 - sys.load.at(0).real() * sys.B;
+  f.flight = (f.A_free * (train.profile == PulseProfile::impulse ? T : T - tc)).exp();
+  return f;
+}
+
+Eigen::MatrixXd pulse_monodromy(const FreeFlight& f, const PeriodicSystem& sys, const PulseTrain& train, int steps) {
+  const double tc = train.contact_time_s;
   if (train.profile == PulseProfile::impulse) {
     // (A.5) as the jump limit: ẏ = F(t) B y over a vanishing window of impulse J = ∫F dt gives
     // y⁺ = e^{J B} y⁻ = (I + J B) y⁻, since B² = 0. The scene's impulse is F_max t_c, compressive.
     const double J = -train.peak_n * tc;
-    return (A_free * T).exp() * (Eigen::MatrixXd::Identity(n, n) + J * sys.B);
+    const int n = sys.state_size();
+    return f.flight * (Eigen::MatrixXd::Identity(n, n) + J * sys.B);
   }
-  const Eigen::MatrixXd contact =
-      magnus_propagator(A_free, sys.B, [&train](double t) { return train.force(t); }, 0, tc, steps);
-  return (A_free * (T - tc)).exp() * contact;
+  return f.flight * magnus_propagator(f.A_free, sys.B, [&train](double t) { return train.force(t); }, 0, tc, steps);
+}
+
+}  // namespace
+
+Eigen::MatrixXd pulse_monodromy(const PeriodicSystem& sys, const PulseTrain& train, int steps) {
+  return pulse_monodromy(free_flight(sys, train), sys, train, steps);
 }
 
 PulseMonodromy exact_pulse_monodromy(const PeriodicSystem& sys, const PulseTrain& train, double tolerance) {
   if (!(tolerance > 0)) throw std::invalid_argument(fmt::format("exact_pulse_monodromy: tolerance {} must be > 0", tolerance));
   PulseMonodromy result;
+  const FreeFlight flight = free_flight(sys, train);
   if (train.profile == PulseProfile::impulse) {
-    result.monodromy = pulse_monodromy(sys, train, 0);
+    result.monodromy = pulse_monodromy(flight, sys, train, 0);
     result.multipliers = sorted_multipliers(result.monodromy);
   } else {
     // From 1/32 of the count where h‖A‖ ≤ 2 on the contact: the exponential takes the stiff modes
@@ -63,14 +79,14 @@ PulseMonodromy exact_pulse_monodromy(const PeriodicSystem& sys, const PulseTrain
     constexpr int max_steps = 1 << 16;
     const double contact_steps = minimum_magnus_steps(sys) * train.contact_time_s / train.period_s;
     const int first_steps = std::max(2, 1 << static_cast<int>(std::ceil(std::log2(std::max(1.0, contact_steps / 32)))));
-    Eigen::VectorXcd previous = sorted_multipliers(pulse_monodromy(sys, train, first_steps));
+    Eigen::VectorXcd previous = sorted_multipliers(pulse_monodromy(flight, sys, train, first_steps));
     double previous_distance = std::numeric_limits<double>::infinity();
     for (int steps = 2 * first_steps;; steps *= 2) {
       if (steps > max_steps) {
         throw NumericalError(fmt::format("the exact pulse monodromy did not converge to {:g} within {} steps",
                                              tolerance, max_steps));
       }
-      result.monodromy = pulse_monodromy(sys, train, steps);
+      result.monodromy = pulse_monodromy(flight, sys, train, steps);
       result.multipliers = sorted_multipliers(result.monodromy);
       result.steps = steps;
       result.error_estimate = multiplier_set_distance(result.multipliers, previous);
