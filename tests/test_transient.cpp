@@ -95,29 +95,108 @@ TEST_CASE("growth per revolution under the periodic cosine load equals the Floqu
   CHECK(growth == Approx(2.1992274).epsilon(0.01));
 }
 
-TEST_CASE("the paper's Fig. 10/11 single pulse: mode-1 lateral response, 2 mm stretch, first axial line", "[transient][paper]") {
+TEST_CASE("the paper's Fig. 10/11 single pulse: 0.1 mm lateral at mode 1, 0.8 mm axial about 2 mm at the first axial mode", "[transient][paper]") {
+  // Sinha §4.2: one half-sine pulse, F̄ = 5, t̄c = 0.01, μ = 0, 300 rad/s, undamped. What the text
+  // quotes from its figures, and how it is asserted:
+  //  Fig. 10  lateral tip deflection "±0.1 mm" for 60 revolutions, neither growing nor decaying: every
+  //           revolution's peak within ±20 % of 0.1 mm (a value read off a plot's axis), over 20;
+  //           at "67.0 Hz", the first flexural mode (SPEC §7: 68.035 Hz): within 2 % of the figure's,
+  //           0.3 % of the SPEC's (the spectrum's resolution after refinement);
+  //           the lateral motion is "the result of the coupling of axial motion with the lateral
+  //           motion caused by the Coriolis effect": none without it.
+  //  Fig. 11a the tip oscillates about the 2 mm steady stretch (SPEC §7: 2.0 mm; 2 %), "initial
+  //           peak-amplitude in the range 1.2 mm ≤ u ≤ 2.8 mm", i.e. 0.8 mm: the first revolution's
+  //           half range within 10 % (ours is 7 % above: the paper's RKF45 damps, and by its own
+  //           account its later "settling down to 1.8–2.2 mm" is numerical damping, not asserted).
+  //           Independently of the figure, the first axial mode's share of the response is the
+  //           closed-form single-pulse response of that mode (1.0 mm; within 0.3 %, below).
+  //  Fig. 11b "the beam responds at 1286 Hz": the first axial mode (SPEC §8), of the spinning bar
+  //           ω² = (π/2L)² E/ρ − Ω² (SPEC §1): within 0.3 % of it, 1 % of the figure's.
+  //  Fig. 11c no spurious build-up of strain energy: every revolution's peak strain energy within
+  //           1 % of the first's, and the total energy after the pulse constant.
   const Scene s = paper_scene({"model.terms=8", "load.pulse_count=1"});  // half-sine, F̄ = 5, t̄c = 0.01, μ = 0
   const BladeModel m = assemble_model(s);
   TransientOptions o;
   o.revolutions = 20;
   o.tolerance = 1e-7;
   const TransientResult r = run_transient(m, s, o);
-  std::vector<double> lat, ax;
-  for (const TransientSample& p : r.samples) lat.push_back(p.tip_lateral_m), ax.push_back(p.tip_axial_m);
-  const double rate = 200 * 300 / (2 * 3.14159265358979323846);
-  const Spectrum lateral = amplitude_spectrum(lat, rate), axial = amplitude_spectrum(ax, rate);
-  // First coupled bending mode of the same model, from the gyroscopic eigenproblem.
-  const ModalSolution modes = solve_modes(m, system_at(m, 300, damping_matrix(m, s.damping, 300)), 300, 6, EigenSolverKind::dense);
-  double f_axial = 0;
-  for (const Mode& mode : modes.modes) if (mode.family == ModeFamily::axial && f_axial == 0) f_axial = mode.frequency_hz;
-  CHECK(dominant_frequency(lateral) == Approx(modes.modes[0].frequency_hz).epsilon(0.003));
-  CHECK(dominant_frequency(axial, 600) == Approx(f_axial).epsilon(0.003));
-  CHECK(f_axial == Approx(1280).epsilon(0.001));
+  const double L = 1.0, E = 117e9, rho = 4466.0, A = 22.39e-4, W = 300;
+  const PulseTrain train = pulse_train(s);
+
+  // Fig. 10.
+  std::vector<double> lateral_peak(20, 0), strain_peak(20, 0), axial_low(20, 1), axial_high(20, 0);
+  std::vector<double> lat, ax, time;
+  double energy_low = 1e300, energy_high = -1e300;
+  for (const TransientSample& p : r.samples) {
+    const int rev = std::min(19, static_cast<int>(p.revolutions));
+    lateral_peak[rev] = std::max(lateral_peak[rev], std::abs(p.tip_lateral_m));
+    strain_peak[rev] = std::max(strain_peak[rev], p.strain_energy_j);
+    axial_low[rev] = std::min(axial_low[rev], p.tip_axial_m);
+    axial_high[rev] = std::max(axial_high[rev], p.tip_axial_m);
+    lat.push_back(p.tip_lateral_m), ax.push_back(p.tip_axial_m), time.push_back(p.time_s);
+    if (p.time_s > train.contact_time_s) {
+      energy_low = std::min(energy_low, p.total_energy_j), energy_high = std::max(energy_high, p.total_energy_j);
+    }
+  }
+  for (int rev = 0; rev < 20; ++rev) {
+    INFO("revolution " << rev + 1 << ": lateral peak " << lateral_peak[rev] << " m, strain energy peak "
+                       << strain_peak[rev] << " J");
+    CHECK(lateral_peak[rev] == Approx(1e-4).epsilon(0.2));  // measured 0.090 to 0.103 mm
+    CHECK(strain_peak[rev] == Approx(strain_peak[0]).epsilon(0.01));  // measured 0.1 %
+  }
+  const double rate = 200 * W / two_pi;
+  const double f_lateral = dominant_frequency(amplitude_spectrum(lat, rate));
+  CHECK(f_lateral == Approx(67.0).epsilon(0.02));      // measured 68.033 Hz
+  CHECK(f_lateral == Approx(68.035).epsilon(0.003));
+  // Without Coriolis coupling the pulse leaves the lateral tip alone.
+  {
+    const Scene uncoupled = paper_scene({"model.terms=8", "load.pulse_count=1", "model.coriolis=false"});
+    TransientOptions one = o;
+    one.revolutions = 1;
+    double largest = 0;
+    for (const TransientSample& p : run_transient(assemble_model(uncoupled), uncoupled, one).samples) {
+      largest = std::max(largest, std::abs(p.tip_lateral_m));
+    }
+    CHECK(largest < 1e-12);  // against 1e-4 m with it
+  }
+
+  // Fig. 11a, b.
   double mean = 0;
   for (double a : ax) mean += a / ax.size();
   CHECK(mean == Approx(2.0e-3).epsilon(0.02));
+  CHECK((axial_high[0] - axial_low[0]) / 2 == Approx(0.8e-3).epsilon(0.1));  // measured 0.857 mm
+  const double omega_axial = std::sqrt(std::pow(pi / (2 * L), 2) * E / rho - W * W);
+  const double f_axial = dominant_frequency(amplitude_spectrum(ax, rate), 600);
+  CHECK(f_axial == Approx(omega_axial / two_pi).epsilon(0.003));  // measured 1279.63 Hz, the bar 1278.71
+  CHECK(f_axial == Approx(1286).epsilon(0.01));
+  // The first axial mode φ = sin(πs/2L) (modal mass ρAL/2, φ(L) = 1) after the pulse:
+  // q(t) = Im[e^{iωt} F̂(ω)]/(m ω), F̂(ω) = ∫F e^{−iωτ}dτ = −F_max a(1 + e^{−iωt_c})/(a² − ω²), a = π/t_c.
+  // Its amplitude against the run's component at the model's own first axial frequency (with
+  // Coriolis 0.07 % above the bar's), projected over the 20 revolutions (537 of its periods).
+  const ModalSolution modes = solve_modes(m, system_at(m, W, damping_matrix(m, s.damping, W)), W, 6, EigenSolverKind::dense);
+  double omega = 0;
+  for (const Mode& mode : modes.modes) if (mode.family == ModeFamily::axial && omega == 0) omega = two_pi * mode.frequency_hz;
+  const double a = pi / train.contact_time_s;
+  const std::complex<double> pulse_transform =
+      -train.peak_n * a * (1.0 + std::exp(std::complex<double>(0, -omega * train.contact_time_s))) / (a * a - omega * omega);
+  const double closed_form = std::abs(pulse_transform) / (rho * A * L / 2 * omega);
+  std::complex<double> projection = 0;
+  for (std::size_t k = 0; k < ax.size(); ++k) projection += (ax[k] - mean) * std::exp(std::complex<double>(0, -omega * time[k]));
+  const double component = 2 * std::abs(projection) / ax.size();
+  INFO("first axial mode: closed form " << closed_form << " m, in the run " << component << " m");
+  CHECK(component == Approx(closed_form).epsilon(0.003));  // measured 2.7e-4
+
+  // Fig. 11c.
+  // Drift against the energy the pulse put in (213 J): measured 3e-7.
+  CHECK(energy_high - energy_low < 1e-5 * (energy_high - r.samples.front().total_energy_j));
   REQUIRE(r.growth.omitted.empty());
   CHECK(r.growth.growth == Approx(1).epsilon(0.01));  // undamped, one pulse: steady
+  WARN("Fig. 10/11: lateral " << f_lateral << " Hz, peaks " << *std::min_element(lateral_peak.begin(), lateral_peak.end())
+                              << " to " << *std::max_element(lateral_peak.begin(), lateral_peak.end())
+                              << " m; axial " << f_axial << " Hz, mean " << mean << " m, first revolution "
+                              << axial_low[0] << " to " << axial_high[0] << " m, first mode " << component
+                              << " m (closed form " << closed_form << "); energy drift " << energy_high - energy_low
+                              << " J");
 }
 
 // The paper's step (54), 8 steps per period of the stiffest (64 kHz) mode, lets RKF45's parasitic
