@@ -83,6 +83,21 @@ TransientResult run_transient(const BladeModel& model, const Scene& scene, const
     const double v_rel = rim_speed + cos_beta * model.tip_lateral.dot(x.segment(n, n));
     return -mu * std::abs(F) * cos_beta * std::tanh(v_rel / o.friction_velocity);
   };
+  // The tip loads the equations apply for a tip load F: along the span (also the tension of the
+  // geometric stiffness) and laterally (the friction); with the follower correction (SPEC §5) F turns
+  // with the tip slope ψ = v'(L): F cos ψ along the span, −F sin ψ added laterally.
+  struct TipLoads {
+    double axial = 0, lateral = 0;
+  };
+  const auto tip_loads = [&](double F, const Eigen::VectorXd& x) {
+    TipLoads loads{F, friction(F, x)};
+    if (o.follower && F != 0) {
+      const double psi = model.tip_slope.dot(x.head(n));
+      loads.axial = F * std::cos(psi);
+      loads.lateral -= F * std::sin(psi);
+    }
+    return loads;
+  };
   // The state is x = [f; ḟ; W], W the work done on the blade since the start: the energy balance
   // dE/dt = Ẇ = ḟᵀ(F_ax (p_u − G f) + F_lat p_v − D ḟ), E = ½ḟᵀMḟ + ½fᵀK(Ω)f − P_steadyᵀf the
   // rotating-frame energy ((55)–(58); the Coriolis forces do no work; a static tip compression is
@@ -96,12 +111,7 @@ TransientResult run_transient(const BladeModel& model, const Scene& scene, const
     dx.segment(n, n) = Mi_cf - MiK * f - MiC * v;
     dx(2 * n) = -v.dot(D * v);
     if (F == 0) return;
-    double axial = F, lateral = friction(F, x);
-    if (o.follower) {
-      const double psi = model.tip_slope.dot(f);
-      axial = F * std::cos(psi);
-      lateral -= F * std::sin(psi);
-    }
+    const auto [axial, lateral] = tip_loads(F, x);
     dx.segment(n, n) += axial * (Mi_axial - MiG * f) + lateral * Mi_lateral;
     dx(2 * n) += axial * (model.tip_axial.dot(v) - f.dot(model.G * v)) + lateral * model.tip_lateral.dot(v);
   };
@@ -162,11 +172,12 @@ TransientResult run_transient(const BladeModel& model, const Scene& scene, const
   const auto sample = [&](double t, const Eigen::VectorXd& s) {
     const Eigen::VectorXd f = s.head(n), v = s.segment(n, n);
     const double F = tip_load(t, s), E = blade_energy(s), W = s(2 * n);
+    const TipLoads applied = tip_loads(F, s);
     result.samples.push_back({t, speed > 0 ? t * speed / two_pi : t / revolution, model.tip_lateral.dot(f),
                               model.tip_axial.dot(f), model.tip_lateral.dot(v), model.tip_axial.dot(v), F,
                               friction(F, s), casing ? casing->overlap(t, f) : 0, 0.5 * f.dot(K_E * f),
                               0.5 * v.dot(model.M * v), E + (casing ? casing->energy(t, f) : 0), W,
-                              E - initial_energy - W});
+                              E - initial_energy - W, applied.axial, applied.lateral});
   };
   const int per_rev = o.samples_per_revolution;
   const int total_revs = static_cast<int>(std::ceil(o.revolutions));

@@ -2,13 +2,20 @@
 // single-pulse response, fixed against adaptive steps.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <complex>
+#include <vector>
+
+#include <boost/numeric/odeint.hpp>
 
 #include "bladestab/constants.hpp"
 #include "bladestab/crosscheck.hpp"
 #include "bladestab/damping.hpp"
+#include "bladestab/floquet.hpp"
 #include "bladestab/modes.hpp"
+#include "bladestab/pulse_monodromy.hpp"
 #include "bladestab/response_analysis.hpp"
 #include "bladestab/transient.hpp"
 #include "support/scenes.hpp"
@@ -88,29 +95,108 @@ TEST_CASE("growth per revolution under the periodic cosine load equals the Floqu
   CHECK(growth == Approx(2.1992274).epsilon(0.01));
 }
 
-TEST_CASE("the paper's Fig. 10/11 single pulse: mode-1 lateral response, 2 mm stretch, first axial line", "[transient][paper]") {
+TEST_CASE("the paper's Fig. 10/11 single pulse: 0.1 mm lateral at mode 1, 0.8 mm axial about 2 mm at the first axial mode", "[transient][paper]") {
+  // Sinha §4.2: one half-sine pulse, F̄ = 5, t̄c = 0.01, μ = 0, 300 rad/s, undamped. What the text
+  // quotes from its figures, and how it is asserted:
+  //  Fig. 10  lateral tip deflection "±0.1 mm" for 60 revolutions, neither growing nor decaying: every
+  //           revolution's peak within ±20 % of 0.1 mm (a value read off a plot's axis), over 20;
+  //           at "67.0 Hz", the first flexural mode (SPEC §7: 68.035 Hz): within 2 % of the figure's,
+  //           0.3 % of the SPEC's (the spectrum's resolution after refinement);
+  //           the lateral motion is "the result of the coupling of axial motion with the lateral
+  //           motion caused by the Coriolis effect": none without it.
+  //  Fig. 11a the tip oscillates about the 2 mm steady stretch (SPEC §7: 2.0 mm; 2 %), "initial
+  //           peak-amplitude in the range 1.2 mm ≤ u ≤ 2.8 mm", i.e. 0.8 mm: the first revolution's
+  //           half range within 10 % (ours is 7 % above: the paper's RKF45 damps, and by its own
+  //           account its later "settling down to 1.8–2.2 mm" is numerical damping, not asserted).
+  //           Independently of the figure, the first axial mode's share of the response is the
+  //           closed-form single-pulse response of that mode (1.0 mm; within 0.3 %, below).
+  //  Fig. 11b "the beam responds at 1286 Hz": the first axial mode (SPEC §8), of the spinning bar
+  //           ω² = (π/2L)² E/ρ − Ω² (SPEC §1): within 0.3 % of it, 1 % of the figure's.
+  //  Fig. 11c no spurious build-up of strain energy: every revolution's peak strain energy within
+  //           1 % of the first's, and the total energy after the pulse constant.
   const Scene s = paper_scene({"model.terms=8", "load.pulse_count=1"});  // half-sine, F̄ = 5, t̄c = 0.01, μ = 0
   const BladeModel m = assemble_model(s);
   TransientOptions o;
   o.revolutions = 20;
   o.tolerance = 1e-7;
   const TransientResult r = run_transient(m, s, o);
-  std::vector<double> lat, ax;
-  for (const TransientSample& p : r.samples) lat.push_back(p.tip_lateral_m), ax.push_back(p.tip_axial_m);
-  const double rate = 200 * 300 / (2 * 3.14159265358979323846);
-  const Spectrum lateral = amplitude_spectrum(lat, rate), axial = amplitude_spectrum(ax, rate);
-  // First coupled bending mode of the same model, from the gyroscopic eigenproblem.
-  const ModalSolution modes = solve_modes(m, system_at(m, 300, damping_matrix(m, s.damping, 300)), 300, 6, EigenSolverKind::dense);
-  double f_axial = 0;
-  for (const Mode& mode : modes.modes) if (mode.family == ModeFamily::axial && f_axial == 0) f_axial = mode.frequency_hz;
-  CHECK(dominant_frequency(lateral) == Approx(modes.modes[0].frequency_hz).epsilon(0.003));
-  CHECK(dominant_frequency(axial, 600) == Approx(f_axial).epsilon(0.003));
-  CHECK(f_axial == Approx(1280).epsilon(0.001));
+  const double L = 1.0, E = 117e9, rho = 4466.0, A = 22.39e-4, W = 300;
+  const PulseTrain train = pulse_train(s);
+
+  // Fig. 10.
+  std::vector<double> lateral_peak(20, 0), strain_peak(20, 0), axial_low(20, 1), axial_high(20, 0);
+  std::vector<double> lat, ax, time;
+  double energy_low = 1e300, energy_high = -1e300;
+  for (const TransientSample& p : r.samples) {
+    const int rev = std::min(19, static_cast<int>(p.revolutions));
+    lateral_peak[rev] = std::max(lateral_peak[rev], std::abs(p.tip_lateral_m));
+    strain_peak[rev] = std::max(strain_peak[rev], p.strain_energy_j);
+    axial_low[rev] = std::min(axial_low[rev], p.tip_axial_m);
+    axial_high[rev] = std::max(axial_high[rev], p.tip_axial_m);
+    lat.push_back(p.tip_lateral_m), ax.push_back(p.tip_axial_m), time.push_back(p.time_s);
+    if (p.time_s > train.contact_time_s) {
+      energy_low = std::min(energy_low, p.total_energy_j), energy_high = std::max(energy_high, p.total_energy_j);
+    }
+  }
+  for (int rev = 0; rev < 20; ++rev) {
+    INFO("revolution " << rev + 1 << ": lateral peak " << lateral_peak[rev] << " m, strain energy peak "
+                       << strain_peak[rev] << " J");
+    CHECK(lateral_peak[rev] == Approx(1e-4).epsilon(0.2));  // measured 0.090 to 0.103 mm
+    CHECK(strain_peak[rev] == Approx(strain_peak[0]).epsilon(0.01));  // measured 0.1 %
+  }
+  const double rate = 200 * W / two_pi;
+  const double f_lateral = dominant_frequency(amplitude_spectrum(lat, rate));
+  CHECK(f_lateral == Approx(67.0).epsilon(0.02));      // measured 68.033 Hz
+  CHECK(f_lateral == Approx(68.035).epsilon(0.003));
+  // Without Coriolis coupling the pulse leaves the lateral tip alone.
+  {
+    const Scene uncoupled = paper_scene({"model.terms=8", "load.pulse_count=1", "model.coriolis=false"});
+    TransientOptions one = o;
+    one.revolutions = 1;
+    double largest = 0;
+    for (const TransientSample& p : run_transient(assemble_model(uncoupled), uncoupled, one).samples) {
+      largest = std::max(largest, std::abs(p.tip_lateral_m));
+    }
+    CHECK(largest < 1e-12);  // against 1e-4 m with it
+  }
+
+  // Fig. 11a, b.
   double mean = 0;
   for (double a : ax) mean += a / ax.size();
   CHECK(mean == Approx(2.0e-3).epsilon(0.02));
+  CHECK((axial_high[0] - axial_low[0]) / 2 == Approx(0.8e-3).epsilon(0.1));  // measured 0.857 mm
+  const double omega_axial = std::sqrt(std::pow(pi / (2 * L), 2) * E / rho - W * W);
+  const double f_axial = dominant_frequency(amplitude_spectrum(ax, rate), 600);
+  CHECK(f_axial == Approx(omega_axial / two_pi).epsilon(0.003));  // measured 1279.63 Hz, the bar 1278.71
+  CHECK(f_axial == Approx(1286).epsilon(0.01));
+  // The first axial mode φ = sin(πs/2L) (modal mass ρAL/2, φ(L) = 1) after the pulse:
+  // q(t) = Im[e^{iωt} F̂(ω)]/(m ω), F̂(ω) = ∫F e^{−iωτ}dτ = −F_max a(1 + e^{−iωt_c})/(a² − ω²), a = π/t_c.
+  // Its amplitude against the run's component at the model's own first axial frequency (with
+  // Coriolis 0.07 % above the bar's), projected over the 20 revolutions (537 of its periods).
+  const ModalSolution modes = solve_modes(m, system_at(m, W, damping_matrix(m, s.damping, W)), W, 6, EigenSolverKind::dense);
+  double omega = 0;
+  for (const Mode& mode : modes.modes) if (mode.family == ModeFamily::axial && omega == 0) omega = two_pi * mode.frequency_hz;
+  const double a = pi / train.contact_time_s;
+  const std::complex<double> pulse_transform =
+      -train.peak_n * a * (1.0 + std::exp(std::complex<double>(0, -omega * train.contact_time_s))) / (a * a - omega * omega);
+  const double closed_form = std::abs(pulse_transform) / (rho * A * L / 2 * omega);
+  std::complex<double> projection = 0;
+  for (std::size_t k = 0; k < ax.size(); ++k) projection += (ax[k] - mean) * std::exp(std::complex<double>(0, -omega * time[k]));
+  const double component = 2 * std::abs(projection) / ax.size();
+  INFO("first axial mode: closed form " << closed_form << " m, in the run " << component << " m");
+  CHECK(component == Approx(closed_form).epsilon(0.003));  // measured 2.7e-4
+
+  // Fig. 11c.
+  // Drift against the energy the pulse put in (213 J): measured 3e-7.
+  CHECK(energy_high - energy_low < 1e-5 * (energy_high - r.samples.front().total_energy_j));
   REQUIRE(r.growth.omitted.empty());
   CHECK(r.growth.growth == Approx(1).epsilon(0.01));  // undamped, one pulse: steady
+  WARN("Fig. 10/11: lateral " << f_lateral << " Hz, peaks " << *std::min_element(lateral_peak.begin(), lateral_peak.end())
+                              << " to " << *std::max_element(lateral_peak.begin(), lateral_peak.end())
+                              << " m; axial " << f_axial << " Hz, mean " << mean << " m, first revolution "
+                              << axial_low[0] << " to " << axial_high[0] << " m, first mode " << component
+                              << " m (closed form " << closed_form << "); energy drift " << energy_high - energy_low
+                              << " J");
 }
 
 // The paper's step (54), 8 steps per period of the stiffest (64 kHz) mode, lets RKF45's parasitic
@@ -177,34 +263,157 @@ TEST_CASE("crosscheck: the cosine approximation's instability is real for its lo
   CHECK(p.transient_cosine_growth == Approx(p.floquet_cosine).epsilon(1e-3));  // measured 5e-5
   CHECK(std::abs(p.floquet_pulse - 1) < 1e-6);                                  // the real pulse: stable
   CHECK(p.transient_pulse_growth < 1.01);
-  CHECK(p.pulse_harmonics == 400);
   CHECK(std::abs(p.rkf45_max_abs_multiplier - 2.1992274) < 1e-6);  // the integrator's own monodromy
   CHECK(p.monodromy_difference < 1e-4);  // against the Magnus one, entry by entry (measured 1.3e-5)
+
+  // The true pulse's Fourier series. Its Parseval tail, from the half-sine's closed-form coefficients
+  // F_m = −(F_max/T) a(1 + e^{−i mθ t_c})/(a² − (mθ)²), a = π/t_c (−i t_c/2 in place of the fraction
+  // at mθ = a), and ⟨F²⟩ = F_max² t_c/(2T): what the crosscheck reports. The crosscheck asks for 1e-3
+  // within 400 harmonics and gets 1.6e-2 (a half-sine 1 % of the period long needs ~2600).
+  Scene pulse = s;
+  pulse.load.fmax_over_fcr = 5;
+  pulse.load.approximation = LoadApproximation::fourier;
+  const PulseTrain train = pulse_train(pulse);
+  const double T = train.period_s, tc = train.contact_time_s, a = pi / tc, theta = two_pi / T;
+  const auto coefficient = [&](int m) {
+    const double b = m * theta;
+    const std::complex<double> integral =
+        std::abs(a - b) < 1e-9 * a ? std::complex<double>(0, -tc / 2)
+                                   : a * (1.0 + std::exp(std::complex<double>(0, -b * tc))) / (a * a - b * b);
+    return -train.peak_n / T * integral;
+  };
+  double captured = std::norm(coefficient(0));
+  for (int m = 1; m <= p.pulse_harmonics; ++m) captured += 2 * std::norm(coefficient(m));
+  const double tail = std::sqrt(1 - captured / (train.peak_n * train.peak_n * tc / (2 * T)));
+  CHECK(p.pulse_series_tail == Approx(tail).epsilon(1e-9));
+  // Yet the Floquet answer is converged at that truncation: the series of the crosscheck's length
+  // against the true pulse (pulse_monodromy.hpp: the contact integrated, no series) on the same
+  // reduced system, max|ρ| within 1e-6 and the whole multiplier set within 1e-6 (measured 1e-8; the
+  // harmonics beyond 400, above 19 kHz, average out).
+  const BladeModel model = assemble_model(s);
+  const PeriodicSystem series_system = periodic_system(model, pulse, load_series(pulse, 0, p.pulse_harmonics));
+  const FloquetResult series = floquet_multipliers(series_system, {FloquetMethod::monodromy, 0, 1e-8});
+  const PulseMonodromy exact = exact_pulse_monodromy(series_system, train, 1e-10);
+  const double set_distance = multiplier_set_distance(series.multipliers, exact.multipliers);
+  CHECK(std::abs(p.floquet_pulse - exact.multipliers.cwiseAbs().maxCoeff()) < 1e-6);
+  CHECK(set_distance < 1e-6);
+  WARN("true pulse: " << p.pulse_harmonics << " harmonics, Parseval tail " << p.pulse_series_tail << " (closed form "
+                      << tail << "); multipliers " << set_distance << " from the true pulse's");
 }
 
-TEST_CASE("the follower correction adds the lateral load -F sin(psi) and keeps the axial one F cos(psi)", "[transient]") {
-  // Coriolis off and no friction: only the follower's lateral term and the cos ψ factor differ.
+TEST_CASE("the follower correction applies F cos(psi) along the span and -F sin(psi) laterally", "[transient]") {
+  // Coriolis off and no friction; the tip bent 0.2 m in mode 1 (ψ ≈ 0.3 rad, far beyond the
+  // blade's real slopes, so that 1 − cos ψ ≈ 4 % shows: the model is linear, only the load law is
+  // tested). Reference: the equations of motion with the follower loads of SPEC §5, written here
+  // from the model's matrices, M f̈ + K(Ω) f = Ω² P_cf + F_ax (p_u − G f) + F_lat p_v with
+  // F_ax = F cos ψ, F_lat = −F sin ψ, ψ = v'(L) = Σ Y_k (the integrated Legendre φ_k' = P_{k−1} is 1
+  // at the tip), F the half-sine (38), integrated by Boost.Odeint's Dormand–Prince at rtol 1e-11.
   const Scene s = paper_scene({"model.terms=6", "model.coriolis=false", "load.pulse_count=1"});
   const BladeModel m = assemble_model(s);
-  TransientOptions plain, follower;
-  plain.revolutions = follower.revolutions = 1;
-  plain.initial_state = follower.initial_state = perturbed_equilibrium(m, 300, 1e-3, 0);  // ψ ≈ 1.4e-3
+  const PulseTrain train = pulse_train(s);
+  const int n = m.layout.size();
+  TransientOptions follower;
   follower.follower = true;
-  const TransientResult a = run_transient(m, s, plain), b = run_transient(m, s, follower);
-  double peak = 0, diff = 0;
-  for (std::size_t k = 0; k < a.samples.size(); ++k) {
-    peak = std::max(peak, std::abs(a.samples[k].tip_lateral_m));
-    diff = std::max(diff, std::abs(a.samples[k].tip_lateral_m - b.samples[k].tip_lateral_m));
+  follower.revolutions = 0.05;  // the pulse (0.01) and four times as long in free flight
+  follower.samples_per_revolution = 2000;
+  follower.tolerance = 1e-11;
+  follower.initial_state = perturbed_equilibrium(m, 300, 0.2, 0);
+  const TransientResult r = run_transient(m, s, follower);
+
+  enum class Law { follower, axial_without_cos, without_lateral };
+  const auto reference = [&](Law law) {
+    using State = std::vector<double>;
+    const Eigen::LLT<Eigen::MatrixXd> mass(m.M);
+    const Eigen::MatrixXd K = m.stiffness(300);
+    const Eigen::VectorXd steady = m.steady_load(300), p_u = m.tip_axial.transpose(), p_v = m.tip_lateral.transpose();
+    const double peak = 5 * m.blade.critical_load(), contact = train.contact_time_s;
+    const auto rhs = [&](const State& y, State& dy, double t) {
+      const Eigen::Map<const Eigen::VectorXd> f(y.data(), n), v(y.data() + n, n);
+      Eigen::Map<Eigen::VectorXd>(dy.data(), n) = v;
+      Eigen::VectorXd force = steady - K * f;
+      if (t < contact) {
+        const double F = -peak * std::sin(pi * t / contact);  // (38)
+        const double psi = f.segment(m.layout.lateral_offset(), m.layout.lateral_count).sum();
+        const double axial = law == Law::axial_without_cos ? F : F * std::cos(psi);
+        const double lateral = law == Law::without_lateral ? 0 : -F * std::sin(psi);
+        force += axial * (p_u - m.G * f) + lateral * p_v;
+      }
+      Eigen::Map<Eigen::VectorXd>(dy.data() + n, n) = mass.solve(force);
+    };
+    State x(follower.initial_state->data(), follower.initial_state->data() + 2 * n);
+    std::vector<double> times;
+    for (const TransientSample& p : r.samples) times.push_back(p.time_s);
+    const auto split = std::lower_bound(times.begin(), times.end(), contact);
+    std::vector<State> states;
+    const auto keep = [&](const State& y, double) { states.push_back(y); };
+    auto stepper = boost::numeric::odeint::make_dense_output<boost::numeric::odeint::runge_kutta_dopri5<State>>(
+        1e-11 * 1e-3, 1e-11);
+    // Through the pulse, then the free flight: F' jumps at t_c.
+    boost::numeric::odeint::integrate_times(stepper, rhs, x, times.begin(), split, contact / 100, keep);
+    if (*(split - 1) < contact) {
+      boost::numeric::odeint::integrate_adaptive(stepper, rhs, x, *(split - 1), contact, contact / 100);
+    }
+    boost::numeric::odeint::integrate_times(stepper, rhs, x, split, times.end(), contact / 100, keep);
+    return states;
+  };
+  const std::vector<std::vector<double>> exact = reference(Law::follower);
+  REQUIRE(exact.size() == r.samples.size());
+  const auto tip = [&](const std::vector<double>& y, const Eigen::RowVectorXd& row) {
+    return row.dot(Eigen::Map<const Eigen::VectorXd>(y.data(), n));
+  };
+  // Largest difference of the library's tip history from a reference, relative to the excursion.
+  const auto history_difference = [&](const std::vector<std::vector<double>>& states, const Eigen::RowVectorXd& row,
+                                      double TransientSample::*field) {
+    double excursion = 0, difference = 0;
+    for (std::size_t k = 0; k < states.size(); ++k) {
+      excursion = std::max(excursion, std::abs(tip(states[k], row) - tip(exact[0], row)));
+      difference = std::max(difference, std::abs(r.samples[k].*field - tip(states[k], row)));
+    }
+    return difference / excursion;
+  };
+  const double lateral = history_difference(exact, m.tip_lateral, &TransientSample::tip_lateral_m);
+  const double axial = history_difference(exact, m.tip_axial, &TransientSample::tip_axial_m);
+  CHECK(lateral < 1e-9);  // measured 1.3e-12
+  CHECK(axial < 1e-9);    // measured 1.9e-12
+  // Either component left out is far outside that (measured 4e-2 and 0.6): the check sees both.
+  const double without_cos = history_difference(reference(Law::axial_without_cos), m.tip_axial, &TransientSample::tip_axial_m);
+  const double without_sin = history_difference(reference(Law::without_lateral), m.tip_lateral, &TransientSample::tip_lateral_m);
+  CHECK(without_cos > 1e-3);
+  CHECK(without_sin > 1e-3);
+
+  // The loads the library applied, sample by sample through the pulse, against F cos ψ and −F sin ψ
+  // with ψ from the reference's state.
+  int in_pulse = 0;
+  double worst = 0, largest_psi = 0;
+  for (std::size_t k = 0; k < r.samples.size(); ++k) {
+    const TransientSample& p = r.samples[k];
+    if (p.axial_force_n == 0) continue;
+    ++in_pulse;
+    const double psi = Eigen::Map<const Eigen::VectorXd>(exact[k].data(), n)
+                           .segment(m.layout.lateral_offset(), m.layout.lateral_count)
+                           .sum();
+    INFO("t = " << p.time_s << " s, F = " << p.axial_force_n << " N, ψ = " << psi);
+    // The reference's ψ is the library's to ~1e-12 (the histories above): measured ≤ 2e-9 N.
+    CHECK(std::abs(p.applied_axial_n - p.axial_force_n * std::cos(psi)) < 1e-10 * train.peak_n);
+    CHECK(std::abs(p.applied_lateral_n + p.axial_force_n * std::sin(psi)) < 1e-10 * train.peak_n);
+    worst = std::max({worst, std::abs(p.applied_axial_n - p.axial_force_n * std::cos(psi)),
+                      std::abs(p.applied_lateral_n + p.axial_force_n * std::sin(psi))});
+    largest_psi = std::max(largest_psi, std::abs(psi));
   }
-  // The lateral impulse F sin ψ · (2/π) t_c ≈ 323 kN · 1.4e-3 · 0.133 ms = 0.06 N s on mode 1
-  // (modal mass ≈ 2.5 kg at the tip) changes its velocity by ≈ 0.024 m/s, its amplitude by
-  // ≈ 0.024/ω1 = 6e-5 m (measured 8.2e-5 m). Asserted within a factor of about 3 either way.
-  CHECK(diff > 2e-5);
-  CHECK(diff < 2e-4);
-  CHECK(peak == Approx(1e-3).epsilon(0.1));
-  for (std::size_t k = 0; k < a.samples.size(); ++k) {
-    CHECK(a.samples[k].axial_force_n == b.samples[k].axial_force_n);  // the prescribed pulse itself
+  CHECK(in_pulse >= 15);
+  CHECK(largest_psi > 0.25);
+  // Without the correction the load is F along the span and nothing laterally.
+  TransientOptions plain = follower;
+  plain.follower = false;
+  plain.revolutions = 0.01;
+  for (const TransientSample& p : run_transient(m, s, plain).samples) {
+    CHECK(p.applied_axial_n == p.axial_force_n);
+    CHECK(p.applied_lateral_n == 0);
   }
+  WARN("follower: history differences " << lateral << " (lateral), " << axial << " (axial); without cos ψ "
+                                         << without_cos << ", without the lateral load " << without_sin
+                                         << "; applied loads within " << worst << " N at " << in_pulse
+                                         << " samples, ψ up to " << largest_psi);
 }
 
 TEST_CASE("clearance mode: a slow casing distortion pushes the tip with the static force of the wall and blade in series", "[transient][clearance]") {

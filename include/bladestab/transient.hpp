@@ -58,6 +58,10 @@ struct TransientSample {
                             // the start, ∫ ḟᵀ(F_ax (p_u − G f) + F_lat p_v − D ḟ) dt, integrated with the state
   double energy_balance_error_j;  // E(t) − E(0) − W(t), E the total energy without the casing's ½k g₊²:
                                   // zero for the exact solution
+  // The tip loads as the equations of motion apply them: along the span (also the tension of the
+  // geometric stiffness), F, or F cos ψ with the follower correction; laterally the friction, and
+  // with the follower correction −F sin ψ besides (ψ = v'(L) at the sample).
+  double applied_axial_n, applied_lateral_n;
 };
 
 // Clearance mode: what the casing did, from the exact contact events.
