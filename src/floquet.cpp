@@ -180,6 +180,7 @@ LoadVariation series_variation(const PeriodicSystem& sys) {
 }
 
 // X(T) of Ẋ = (A₀ + φ(t) B) X from X(0) by RKF45, landing on the load's breakpoints.
+constexpr Eigen::Index few_columns = 4;
 Eigen::MatrixXd rkf45_propagate(const PeriodicSystem& sys, const LoadVariation& load, const Eigen::MatrixXd& X0,
                                 double rtol, double atol) {
   const Eigen::Index n = X0.rows(), columns = X0.cols();
@@ -187,10 +188,15 @@ Eigen::MatrixXd rkf45_propagate(const PeriodicSystem& sys, const LoadVariation& 
     dy.resize(y.size());
     const auto Y = Eigen::Map<const Eigen::MatrixXd>(y.data(), n, columns);
     auto D = Eigen::Map<Eigen::MatrixXd>(dy.data(), n, columns);
-    // A few columns: Eigen's coefficient-wise product; its blocked GEMM would spend more time packing
-    // the n×n operand than multiplying.
-    D.noalias() = sys.A0.lazyProduct(Y);
-    D.noalias() += load.phi(t) * sys.B.lazyProduct(Y);
+    // A few columns (an eigenvector): Eigen's coefficient-wise product, as its blocked GEMM would
+    // spend more time packing the n×n operand than multiplying; a whole monodromy's n columns: GEMM.
+    if (columns <= few_columns) {
+      D.noalias() = sys.A0.lazyProduct(Y);
+      D.noalias() += load.phi(t) * sys.B.lazyProduct(Y);
+    } else {
+      D.noalias() = sys.A0 * Y;
+      D.noalias() += (load.phi(t) * sys.B) * Y;
+    }
   };
   Eigen::VectorXd x = X0.reshaped();
   StepControl control;
