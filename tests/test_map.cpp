@@ -175,10 +175,11 @@ TEST_CASE("map marks the scene's point with its max|rho| and the nearest boundar
   CHECK(std::abs(p.nearest_boundary->fbar - nearest) <= o.tolerance * 8);
 }
 
-TEST_CASE("50 random refined samples of each plane's map match the whole model's monodromy to the map's tolerance",
-          "[map][samples]") {
+namespace {
+
+// 50 random refined samples of a plane's map against the whole model's monodromy.
+void check_random_samples(bool theta_plane) {
   const Scene s = paper_scene({"model.terms=8"});  // the main job's model
-  const bool theta_plane = GENERATE(true, false);
   MapOptions o;
   o.plane = theta_plane ? MapPlane::theta_fmax : MapPlane::speed_fmax;
   o.grid_x = theta_plane ? linspace(100, 1000, 14) : linspace(50, 600, 14);
@@ -207,4 +208,17 @@ TEST_CASE("50 random refined samples of each plane's map match the whole model's
           o.tolerance * std::max(1.0, ref.max_abs_multiplier) + ref.error_estimate);
     ++checked;
   }
+}
+
+}  // namespace
+
+// Each plane its own test case, so that ctest runs them side by side.
+TEST_CASE("50 random refined samples of the theta-plane map match the whole model's monodromy to the map's tolerance",
+          "[map][samples][slow]") {
+  check_random_samples(true);
+}
+
+TEST_CASE("50 random refined samples of the speed-plane map match the whole model's monodromy to the map's tolerance",
+          "[map][samples][slow]") {
+  check_random_samples(false);
 }
