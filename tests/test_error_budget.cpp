@@ -204,7 +204,7 @@ TEST_CASE("total error estimate covers the true error over the space a user trie
   check_region(Region::damping, 3);
 }
 
-TEST_CASE("a blade that diverges beyond the double range within a period is refused, not printed", "[budget]") {
+TEST_CASE("a blade that diverges beyond the double range within a period is refused, not printed", "[budget][slow]") {
   // d̄ = 0.3 with the scene's F̄ = 5: the mean load is 2.5 F_cr, far past static buckling.
   CHECK_THROWS_AS(analyse_stability(paper_scene({"blade.slenderness=0.3"}), {}), NumericalError);
 }

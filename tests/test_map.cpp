@@ -35,7 +35,7 @@ double distance_to_multiplier(const Scene& base, double speed, double theta, dou
 }
 }  // namespace
 
-TEST_CASE("speed-plane map: every traced boundary point has a multiplier at +1 or -1", "[map]") {
+TEST_CASE("speed-plane map: every traced boundary point has a multiplier at +1 or -1", "[map][slow]") {
   const Scene scene = paper_scene({"model.terms=3", "model.axial=false"});
   MapOptions o;
   o.plane = MapPlane::speed_fmax;
@@ -99,7 +99,7 @@ TEST_CASE("theta-plane map of Mathieu's equation: unstable inside the principal 
 }
 
 TEST_CASE("refined shading: leaves tile the lattice, agree at their corners, and samples match the whole model",
-          "[map][refinement]") {
+          "[map][refinement][slow]") {
   const Scene scene = paper_scene({"model.terms=4"});
   MapOptions o;
   o.plane = MapPlane::theta_fmax;
@@ -143,7 +143,7 @@ TEST_CASE("refined shading: leaves tile the lattice, agree at their corners, and
   CHECK(compared >= 20);
 }
 
-TEST_CASE("map marks the scene's point with its max|rho| and the nearest boundary along F-bar", "[map][scene-point]") {
+TEST_CASE("map marks the scene's point with its max|rho| and the nearest boundary along F-bar", "[map][scene-point][slow]") {
   const Scene s = paper_scene({"model.terms=8"});  // θ = Ω = 300 rad/s, F̄ = 5
   MapOptions o;
   o.plane = MapPlane::theta_fmax;

@@ -77,7 +77,7 @@ bool white(const Colour& c) { return c.r > 0.85 && c.g > 0.85 && c.b > 0.85; }  
 }  // namespace
 
 TEST_CASE("the map's PNG shows the paper scene's unstable point in the unstable colour, a stable one in white",
-          "[map][chart]") {
+          "[map][chart][slow]") {
   // The marker's label or a boundary curve may cover one of the four pixels: three must agree.
   const std::vector<Colour> unstable = colours_beside_marker(5.0);  // max|ρ| = 2.2: growth ×2.2 a period
   REQUIRE(unstable.size() == 4);

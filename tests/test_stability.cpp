@@ -153,7 +153,7 @@ TEST_CASE("methods agree within their error estimates on a grid of stable, unsta
 }
 
 TEST_CASE("methods agree within their error estimates on a grid of stable, unstable and divergent points: F = 6",
-          "[stability]") {
+          "[stability][slow]") {
   CHECK(methods_agree_on({6.0}, tongue_frequencies_hz).unstable >= 3);
 }
 
