@@ -167,7 +167,7 @@ TEST_CASE("RKF45's stability function: fifth order, and the growth a fixed step 
   CHECK(x.norm() == Approx(predicted).epsilon(1e-9));
 }
 
-TEST_CASE("crosscheck: the cosine approximation's instability is real for its load, absent for the true pulse", "[transient][crosscheck]") {
+TEST_CASE("crosscheck: the cosine approximation's instability is real for its load, absent for the true pulse", "[transient][crosscheck][slow]") {
   const Scene s = paper_scene({"model.terms=8"});  // half-sine, t̄c = 0.01, one pulse per revolution
   CrosscheckOptions o;
   o.fmax_over_fcr = {5};
