@@ -71,7 +71,7 @@ TEST_CASE("boundaries at theta = 300: k is raised until converged, to the large-
   for (const BoundaryCheck& c : a.checks) CHECK(c.gap <= c.allowed);
 }
 
-TEST_CASE("boundaries: the whole error estimate covers the true error against a richer model", "[boundaries]") {
+TEST_CASE("boundaries: the whole error estimate covers the true error against a richer model", "[boundaries][slow]") {
   // N = 8 with the estimate against N = 12; the truth from N = 14 (Legendre: exponential
   // convergence) with 4 harmonics more than the analysis chose.
   const Scene s = paper_scene({"model.terms=8"});
@@ -98,7 +98,7 @@ TEST_CASE("boundaries: the whole error estimate covers the true error against a 
   CHECK(compared >= 10);
 }
 
-TEST_CASE("boundaries: with a modal cut-off the reduction part covers the true error", "[boundaries]") {
+TEST_CASE("boundaries: with a modal cut-off the reduction part covers the true error", "[boundaries][slow]") {
   const Scene s = paper_scene({"model.terms=8"});
   const double fcr = assemble_model(s).blade.critical_load();
   BoundaryRequest r;
@@ -176,7 +176,7 @@ TEST_CASE("boundaries: the multiplier check tells a boundary from a point inside
 }
 
 TEST_CASE("boundaries: regions at the scene's load hold the paper point, and the Floquet verdict flips at their ends",
-          "[boundaries][regions]") {
+          "[boundaries][regions][slow]") {
   const Scene s = paper_scene({"model.terms=8"});  // θ = Ω = 300 rad/s, F̄ = 5
   const BoundaryRequest r;
   const BoundaryAnalysis a = boundaries_with_error_estimate(s, r);

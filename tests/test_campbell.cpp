@@ -244,7 +244,7 @@ TEST_CASE("the reduced sweep's frequencies are the whole Ritz model's within the
 }
 
 TEST_CASE("Campbell error estimates cover the error against a converged model, points and crossings",
-          "[campbell][budget]") {
+          "[campbell][budget][slow]") {
   const std::vector<Variant> variants{
       {"paper blade", {}, 8, 1e-6},
       {"paper blade, 12 modes", {}, 12, 1e-6},
@@ -305,7 +305,7 @@ TEST_CASE("Campbell error estimates cover the error against a converged model, p
   }
 }
 
-TEST_CASE("damped blades take the dense sweep, and their estimates cover the error too", "[campbell][budget]") {
+TEST_CASE("damped blades take the dense sweep, and their estimates cover the error too", "[campbell][budget][slow]") {
   const std::vector<Variant> variants{
       {"modal 2 %", {"damping.model=modal", "damping.ratio=0.02"}, 4, 1e-6},
       {"Rayleigh 2 %", {"damping.model=rayleigh", "damping.ratio=0.02", "damping.frequencies_hz=[50, 2000]"}, 4,

@@ -131,47 +131,51 @@ TEST_CASE("check: the stability onset at the worst speed against Floquet either 
   CHECK(r.passed == (onset > 2.0));
 }
 
-TEST_CASE("check: the example scenes end to end", "[check]") {
-  SECTION("passes.toml: exit 0, JSON") {
-    const Outcome o = run_bladestab({"check", example("passes"), "--format", "json"}, {120});
-    INFO(describe(o) << "\n" << o.err);
-    REQUIRE(exit_code(o) == 0);
-    const Json j = parse_json(o.out);
-    CHECK(j["passed"].boolean);
-    REQUIRE(j["checks"].size() == 2);
-    for (std::size_t c = 0; c < 2; ++c) CHECK(j["checks"][c]["passed"].boolean);
-    CHECK(j["checks"][0]["name"].text == "campbell_margin");
-    CHECK(j["checks"][0]["worst"]["margin"].number >= 0.1);
-    CHECK(j["checks"][1]["name"].text == "rub_stability");
-  }
-  SECTION("fails.toml: exit 1, JSON and JUnit") {
-    const Outcome o = run_bladestab({"check", example("fails"), "--format", "json"}, {120});
-    INFO(describe(o) << "\n" << o.err);
-    REQUIRE(exit_code(o) == 1);
-    CHECK(o.err.empty());
-    const Json j = parse_json(o.out);
-    CHECK_FALSE(j["passed"].boolean);
-    REQUIRE(j["checks"].size() == 2);
-    CHECK_FALSE(j["checks"][0]["passed"].boolean);
-    CHECK(j["checks"][0]["worst"]["margin"].number == 0);
-    CHECK_FALSE(j["checks"][1]["passed"].boolean);
-    CHECK(j["checks"][1]["worst"]["onset_fmax_over_fcr"].number == 0);
-    const Outcome x = run_bladestab({"check", example("fails"), "--format", "junit"}, {120});
-    REQUIRE(exit_code(x) == 1);
-    CHECK(x.out.rfind("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuite name=\"bladestab check\"", 0) == 0);
-    CHECK(count_of(x.out, "<testsuite ") == 1);
-    CHECK(count_of(x.out, "</testsuite>") == 1);
-    CHECK(count_of(x.out, "<testcase ") == 2);
-    CHECK(count_of(x.out, "</testcase>") == 2);
-    CHECK(count_of(x.out, "<failure message=") == 2);
-    CHECK(count_of(x.out, "</failure>") == 2);
-    CHECK(x.out.find("tests=\"2\" failures=\"2\"") != std::string::npos);
-    // Every '&' starts an entity, and no '<' is loose inside text.
-    for (std::size_t at = x.out.find('&'); at != std::string::npos; at = x.out.find('&', at + 1)) {
-      const std::string entity = x.out.substr(at, 6);
-      CHECK((entity.rfind("&amp;", 0) == 0 || entity.rfind("&lt;", 0) == 0 || entity.rfind("&gt;", 0) == 0 ||
-             entity.rfind("&quot;", 0) == 0 || entity.rfind("&apos;", 0) == 0));
-    }
+// The example scenes end to end, one run of the program each, as separate test cases so that ctest
+// runs them side by side.
+TEST_CASE("check: the example scenes end to end: passes.toml, exit 0, JSON", "[check]") {
+  const Outcome o = run_bladestab({"check", example("passes"), "--format", "json"}, {120});
+  INFO(describe(o) << "\n" << o.err);
+  REQUIRE(exit_code(o) == 0);
+  const Json j = parse_json(o.out);
+  CHECK(j["passed"].boolean);
+  REQUIRE(j["checks"].size() == 2);
+  for (std::size_t c = 0; c < 2; ++c) CHECK(j["checks"][c]["passed"].boolean);
+  CHECK(j["checks"][0]["name"].text == "campbell_margin");
+  CHECK(j["checks"][0]["worst"]["margin"].number >= 0.1);
+  CHECK(j["checks"][1]["name"].text == "rub_stability");
+}
+
+TEST_CASE("check: the example scenes end to end: fails.toml, exit 1, JSON", "[check][slow]") {
+  const Outcome o = run_bladestab({"check", example("fails"), "--format", "json"}, {120});
+  INFO(describe(o) << "\n" << o.err);
+  REQUIRE(exit_code(o) == 1);
+  CHECK(o.err.empty());
+  const Json j = parse_json(o.out);
+  CHECK_FALSE(j["passed"].boolean);
+  REQUIRE(j["checks"].size() == 2);
+  CHECK_FALSE(j["checks"][0]["passed"].boolean);
+  CHECK(j["checks"][0]["worst"]["margin"].number == 0);
+  CHECK_FALSE(j["checks"][1]["passed"].boolean);
+  CHECK(j["checks"][1]["worst"]["onset_fmax_over_fcr"].number == 0);
+}
+
+TEST_CASE("check: the example scenes end to end: fails.toml, exit 1, JUnit", "[check][slow]") {
+  const Outcome x = run_bladestab({"check", example("fails"), "--format", "junit"}, {120});
+  REQUIRE(exit_code(x) == 1);
+  CHECK(x.out.rfind("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuite name=\"bladestab check\"", 0) == 0);
+  CHECK(count_of(x.out, "<testsuite ") == 1);
+  CHECK(count_of(x.out, "</testsuite>") == 1);
+  CHECK(count_of(x.out, "<testcase ") == 2);
+  CHECK(count_of(x.out, "</testcase>") == 2);
+  CHECK(count_of(x.out, "<failure message=") == 2);
+  CHECK(count_of(x.out, "</failure>") == 2);
+  CHECK(x.out.find("tests=\"2\" failures=\"2\"") != std::string::npos);
+  // Every '&' starts an entity, and no '<' is loose inside text.
+  for (std::size_t at = x.out.find('&'); at != std::string::npos; at = x.out.find('&', at + 1)) {
+    const std::string entity = x.out.substr(at, 6);
+    CHECK((entity.rfind("&amp;", 0) == 0 || entity.rfind("&lt;", 0) == 0 || entity.rfind("&gt;", 0) == 0 ||
+           entity.rfind("&quot;", 0) == 0 || entity.rfind("&apos;", 0) == 0));
   }
 }
 

@@ -6,8 +6,9 @@
 // The reference for a scene is its continuum model, approached independently of the answer's
 // fidelity choices: the Legendre basis at max(24, N + 8) terms (converged to ~1e-12 at 12 terms
 // for this blade, SPEC §2), the true pulse train where the scene asks for a Fourier series, and
-// the Magnus monodromy at a tolerance of 1e-11; the true train on the whole Ritz model (it is
-// integrated only through the contacts). The series' reduction: three modes per load level plus
+// the Magnus monodromy at a tolerance of 1e-10 (at 1e-11 no reference of the survey moved by more
+// than 7e-12 of max(1, max|ρ|), at half again the cost); the true train on the whole Ritz model
+// (it is integrated only through the contacts). The series' reduction: three modes per load level plus
 // gyroscopic corrections, checked against the whole Ritz model (N = 8) and the issue's independent
 // value in the first test (to 5e-9); twelve where max|ρ| > 10, since far past buckling three miss
 // 1e-4 (F̄ = 50: 7.5158e26 against 7.5206e26 with six and twelve). Differences below 1e-8 of
@@ -43,13 +44,17 @@ double reference_max_rho(Scene scene, int vectors = 3) {
   const bool exact = scene.load.approximation == LoadApproximation::exact;
   const PeriodicSystem sys = periodic_system(model, scene, load_series(scene),
                                              {exact ? ReductionKind::none : ReductionKind::automatic, vectors, 0});
-  const FloquetOptions o{FloquetMethod::monodromy, 0, 1e-11, false};
+  const FloquetOptions o{FloquetMethod::monodromy, 0, 1e-10, false};
   const double rho =
       (exact ? pulse_train_multipliers(sys, pulse_train(scene), o) : floquet_multipliers(sys, o)).max_abs_multiplier;
   return rho > 10 && vectors < 12 && !exact ? reference_max_rho(scene, 12) : rho;
 }
 
+// The regions of the space a user tries; each is its own test case, so that ctest runs them side by side.
+enum class Region { models_and_methods, loads_and_frequencies, true_pulse, true_pulse_at_106, damping };
+
 struct Case {
+  Region region;
   std::string name;
   std::vector<std::string> overrides;
   StabilityRequest request;
@@ -85,50 +90,68 @@ TEST_CASE("the reduced reference agrees with the whole Ritz model (N = 8, 16384 
   CHECK(std::abs(reference_max_rho(paper_scene()) - 2.1992296566) < 1e-8);
 }
 
-TEST_CASE("total error estimate covers the true error over the space a user tries", "[budget][slow]") {
+namespace {
+
+// The survey: 30 scenes across the space a user tries, by region.
+std::vector<Case> survey() {
   const double w1 = two_pi * 68.0354;  // first bending mode at 300 rad/s (SPEC §7)
   const auto theta = [w1](double ratio) { return "load.pulse_frequency_hz=" + std::to_string(ratio * w1 / two_pi); };
   const StabilityRequest plain{};
-  std::vector<Case> cases = {
-      {"scene as it ships (N = 16)", {}, plain},
-      {"N = 40", {"model.terms=40"}, plain},
-      {"theta = 150 rad/s", {"load.pulse_frequency_hz=23.8732"}, plain},
-      {"F = 20, monodromy", {"load.fmax_over_fcr=20"}, {FloquetMethod::monodromy, 0, 1e-4}},
-      {"F = 50", {"load.fmax_over_fcr=50"}, {FloquetMethod::automatic, 0, 1e-4}},
-      {"classical Hill", {"model.terms=8"}, {FloquetMethod::hill, 0, 1e-6}},
-      {"Koopman-Hill, N = 8, F = 3, tol 1e-3", {"model.terms=8", "load.fmax_over_fcr=3"},
+  using R = Region;
+  return {
+      {R::models_and_methods, "scene as it ships (N = 16)", {}, plain},
+      {R::models_and_methods, "N = 40", {"model.terms=40"}, plain},
+      {R::loads_and_frequencies, "theta = 150 rad/s", {"load.pulse_frequency_hz=23.8732"}, plain},
+      {R::loads_and_frequencies, "F = 20, monodromy", {"load.fmax_over_fcr=20"}, {FloquetMethod::monodromy, 0, 1e-4}},
+      {R::loads_and_frequencies, "F = 50", {"load.fmax_over_fcr=50"}, {FloquetMethod::automatic, 0, 1e-4}},
+      {R::models_and_methods, "classical Hill", {"model.terms=8"}, {FloquetMethod::hill, 0, 1e-6}},
+      {R::models_and_methods, "Koopman-Hill, N = 8, F = 3, tol 1e-3", {"model.terms=8", "load.fmax_over_fcr=3"},
        {FloquetMethod::koopman_hill, 0, 1e-3}},
-      {"Koopman-Hill q = 16", {"model.terms=8"}, {FloquetMethod::koopman_hill, 16, 1e-6}},
-      {"t_c = 1e-4 rev, Fourier", {"load.contact_time_rev=1e-4", "load.approximation=fourier"}, plain},
-      {"half-sine Fourier series", {"model.terms=8", "load.approximation=fourier"}, plain},
-      {"cut-off 2 kHz", {"model.reduction=modal", "model.cutoff_hz=2000"}, plain},
-      {"cut-off 5 kHz", {"model.reduction=modal", "model.cutoff_hz=5000"}, plain},
-      {"slenderness 1e-4", {"blade.slenderness=1e-4"}, plain},
-      {"slenderness 0.3, F = 1", {"blade.slenderness=0.3", "load.fmax_over_fcr=1"}, plain},
-      {"at rest, 50 Hz pulses", {"operation.speed_rad_s=0", "load.pulse_frequency_hz=50", "load.fmax_over_fcr=0.5"}, plain},
-      {"theta = 0.3 w1", {theta(0.3)}, plain},
-      {"theta = w1", {theta(1.0)}, plain},
-      {"theta = 2 w1", {theta(2.0)}, plain},
-      // The 3-vector reference is 6.5e-7 off here (1.061162988 against the whole model's
-      // 1.0611623423, converged to 4e-13 between 4096 and 16384 steps).
-      {"theta = 3 w1", {theta(3.0)}, plain, 4096},
-      {"N = 4", {"model.terms=4"}, plain},
-      {"N = 60", {"model.terms=60"}, plain},
-      {"sine basis N = 10", {"model.basis=sine", "model.terms=10"}, {FloquetMethod::automatic, 0, 1e-3}},
-      {"exact pulse, 300 rad/s", {"load.approximation=exact"}, plain},
-      {"exact pulse, tongue at 118 rad/s", {"load.approximation=exact", "operation.speed_rad_s=118"}, plain},
-      {"exact pulse, tongue at 106 rad/s", {"load.approximation=exact", "operation.speed_rad_s=106"}, plain},
-      {"exact pulse, 2 per rev, 240 rad/s",
-       {"load.approximation=exact", "operation.speed_rad_s=240", "load.pulses_per_rev=2"}, plain},
-      {"paper damping 1 %", {"damping.model=paper", "damping.ratio=0.01"}, plain},
-      {"modal damping 2 %, F = 10", {"damping.model=modal", "damping.ratio=0.02", "load.fmax_over_fcr=10"}, plain},
-      {"Rayleigh damping 1 %", {"damping.model=rayleigh", "damping.ratio=0.01", "damping.frequencies_hz=[50.0, 500.0]"},
+      {R::models_and_methods, "Koopman-Hill q = 16", {"model.terms=8"}, {FloquetMethod::koopman_hill, 16, 1e-6}},
+      {R::loads_and_frequencies, "t_c = 1e-4 rev, Fourier", {"load.contact_time_rev=1e-4", "load.approximation=fourier"},
        plain},
-      {"modal damping 1 %, exact pulse at 118 rad/s",
+      {R::loads_and_frequencies, "half-sine Fourier series", {"model.terms=8", "load.approximation=fourier"}, plain},
+      {R::models_and_methods, "cut-off 2 kHz", {"model.reduction=modal", "model.cutoff_hz=2000"}, plain},
+      {R::models_and_methods, "cut-off 5 kHz", {"model.reduction=modal", "model.cutoff_hz=5000"}, plain},
+      {R::models_and_methods, "slenderness 1e-4", {"blade.slenderness=1e-4"}, plain},
+      {R::loads_and_frequencies, "slenderness 0.3, F = 1", {"blade.slenderness=0.3", "load.fmax_over_fcr=1"}, plain},
+      {R::loads_and_frequencies, "at rest, 50 Hz pulses",
+       {"operation.speed_rad_s=0", "load.pulse_frequency_hz=50", "load.fmax_over_fcr=0.5"}, plain},
+      {R::loads_and_frequencies, "theta = 0.3 w1", {theta(0.3)}, plain},
+      {R::loads_and_frequencies, "theta = w1", {theta(1.0)}, plain},
+      {R::loads_and_frequencies, "theta = 2 w1", {theta(2.0)}, plain},
+      // The 3-vector reference is 6.5e-7 off here (1.061162988 against the whole model's
+      // 1.0611623433, converged to 1e-13 between 1024 and 2048 steps and to 3e-13 between 2048
+      // and 4096).
+      {R::loads_and_frequencies, "theta = 3 w1", {theta(3.0)}, plain, 2048},
+      {R::models_and_methods, "N = 4", {"model.terms=4"}, plain},
+      {R::models_and_methods, "N = 60", {"model.terms=60"}, plain},
+      {R::models_and_methods, "sine basis N = 10", {"model.basis=sine", "model.terms=10"},
+       {FloquetMethod::automatic, 0, 1e-3}},
+      {R::true_pulse, "exact pulse, 300 rad/s", {"load.approximation=exact"}, plain},
+      {R::true_pulse, "exact pulse, tongue at 118 rad/s", {"load.approximation=exact", "operation.speed_rad_s=118"},
+       plain},
+      {R::true_pulse_at_106, "exact pulse, tongue at 106 rad/s",
+       {"load.approximation=exact", "operation.speed_rad_s=106"}, plain},
+      {R::true_pulse, "exact pulse, 2 per rev, 240 rad/s",
+       {"load.approximation=exact", "operation.speed_rad_s=240", "load.pulses_per_rev=2"}, plain},
+      {R::damping, "paper damping 1 %", {"damping.model=paper", "damping.ratio=0.01"}, plain},
+      {R::damping, "modal damping 2 %, F = 10", {"damping.model=modal", "damping.ratio=0.02", "load.fmax_over_fcr=10"},
+       plain},
+      {R::damping, "Rayleigh damping 1 %",
+       {"damping.model=rayleigh", "damping.ratio=0.01", "damping.frequencies_hz=[50.0, 500.0]"}, plain},
+      {R::true_pulse, "modal damping 1 %, exact pulse at 118 rad/s",
        {"damping.model=modal", "damping.ratio=0.01", "load.approximation=exact", "operation.speed_rad_s=118"}, plain},
   };
+}
+
+// Each scene of the region: the total estimate is not below the true error against the reference,
+// and the verdict holds where the estimate separates max|ρ| from 1. Prints every ratio
+// estimate/true and their spread over the region.
+void check_region(Region region, std::size_t least_scenes) {
   std::vector<double> ratios;
-  for (const Case& c : cases) {
+  for (const Case& c : survey()) {
+    if (c.region != region) continue;
     const Scene scene = paper_scene(c.overrides);
     const StabilityAnswer a = analyse_stability(scene, c.request);
     const double reference = c.whole_model_steps ? whole_model_max_rho(scene, c.whole_model_steps) : reference_max_rho(scene);
@@ -147,13 +170,41 @@ TEST_CASE("total error estimate covers the true error over the space a user trie
     // The verdict holds whenever the estimate separates max|ρ| from 1.
     if (std::abs(reference - 1) > estimate + floor) CHECK(a.stable == (reference <= 1 + floor));
   }
-  CHECK(cases.size() >= 25);
+  REQUIRE(ratios.size() >= least_scenes);
   std::sort(ratios.begin(), ratios.end());
   std::printf("budget | ratio estimate/true: min %.3g, median %.3g, max %.3g over %zu scenes\n", ratios.front(),
               ratios[ratios.size() / 2], ratios.back(), ratios.size());
 }
 
-TEST_CASE("a blade that diverges beyond the double range within a period is refused, not printed", "[budget]") {
+}  // namespace
+
+TEST_CASE("total error estimate covers the true error over the space a user tries: models, bases and methods",
+          "[budget][slow]") {
+  CHECK(survey().size() >= 25);
+  check_region(Region::models_and_methods, 11);
+}
+
+TEST_CASE("total error estimate covers the true error over the space a user tries: loads and pulse frequencies",
+          "[budget][slow]") {
+  check_region(Region::loads_and_frequencies, 11);
+}
+
+TEST_CASE("total error estimate covers the true error over the space a user tries: the true pulse train",
+          "[budget][slow]") {
+  check_region(Region::true_pulse, 4);
+}
+
+// Alone, as the answer raises N to 24 here: most of the survey's time.
+TEST_CASE("total error estimate covers the true error over the space a user tries: the true train's tongue at 106 rad/s",
+          "[budget][slow]") {
+  check_region(Region::true_pulse_at_106, 1);
+}
+
+TEST_CASE("total error estimate covers the true error over the space a user tries: damping", "[budget][slow]") {
+  check_region(Region::damping, 3);
+}
+
+TEST_CASE("a blade that diverges beyond the double range within a period is refused, not printed", "[budget][slow]") {
   // d̄ = 0.3 with the scene's F̄ = 5: the mean load is 2.5 F_cr, far past static buckling.
   CHECK_THROWS_AS(analyse_stability(paper_scene({"blade.slenderness=0.3"}), {}), NumericalError);
 }

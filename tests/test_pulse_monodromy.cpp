@@ -104,7 +104,7 @@ Eigen::Matrix2d oscillator_transfer(double w2, double t) {
 
 }  // namespace
 
-TEST_CASE("load.approximation = \"exact\" is accepted; its series is the pulse's mean alone", "[exact]") {
+TEST_CASE("load.approximation = \"exact\" is accepted, and its series is the pulse's mean alone", "[exact]") {
   const Scene s = exact_scene({"load.contact_time_rev=0.02"});
   CHECK(s.load.approximation == LoadApproximation::exact);
   const LoadSeries series = load_series(s);

@@ -74,7 +74,7 @@ TEST_CASE("undamped free vibration at 300 rad/s conserves the rotating-frame ene
   CHECK(r.static_tip_axial_m == Approx(2.0e-3).epsilon(0.02));
 }
 
-TEST_CASE("growth per revolution under the periodic cosine load equals the Floquet max|rho|", "[transient]") {
+TEST_CASE("growth per revolution under the periodic cosine load equals the Floquet max|rho|", "[transient][slow]") {
   // The paper's continuous cosine load (42) in the time domain: profile cosine over a whole revolution.
   const Scene s = paper_scene({"model.terms=8", "load.profile=cosine", "load.contact_time_rev=1"});
   const BladeModel m = assemble_model(s);
@@ -202,7 +202,7 @@ TEST_CASE("the paper's Fig. 10/11 single pulse: 0.1 mm lateral at mode 1, 0.8 mm
 // The paper's step (54), 8 steps per period of the stiffest (64 kHz) mode, lets RKF45's parasitic
 // growth amplify that mode ×1.1e4 in 5 revolutions (measured: 1.7e-3 of the lateral peak apart);
 // the chosen step keeps the growth under 1 %.
-TEST_CASE("fixed and adaptive steps agree to 1e-6 on a 5-revolution pulse-train history", "[transient]") {
+TEST_CASE("fixed and adaptive steps agree to 1e-6 on a 5-revolution pulse-train history", "[transient][slow]") {
   const Scene s = paper_scene({"model.terms=8"});  // endless half-sine train, F̄ = 5
   const BladeModel m = assemble_model(s);
   TransientOptions adaptive, fixed, paper;
@@ -253,7 +253,7 @@ TEST_CASE("RKF45's stability function: fifth order, and the growth a fixed step 
   CHECK(x.norm() == Approx(predicted).epsilon(1e-9));
 }
 
-TEST_CASE("crosscheck: the cosine approximation's instability is real for its load, absent for the true pulse", "[transient][crosscheck]") {
+TEST_CASE("crosscheck: the cosine approximation's instability is real for its load, absent for the true pulse", "[transient][crosscheck][slow]") {
   const Scene s = paper_scene({"model.terms=8"});  // half-sine, t̄c = 0.01, one pulse per revolution
   CrosscheckOptions o;
   o.fmax_over_fcr = {5};
@@ -416,7 +416,7 @@ TEST_CASE("the follower correction applies F cos(psi) along the span and -F sin(
                                          << " samples, ψ up to " << largest_psi);
 }
 
-TEST_CASE("clearance mode: a slow casing distortion pushes the tip with the static force of the wall and blade in series", "[transient][clearance]") {
+TEST_CASE("clearance mode: a slow casing distortion pushes the tip with the static force of the wall and blade in series", "[transient][clearance][slow]") {
   // δ = 0: the wall touches the running tip and moves in smoothly, d·(1 − cos 2πt/T)/2 over each
   // revolution (47.7 Hz against the 1280 Hz axial mode: quasi-static). At its deepest the tip sits
   // where K(Ω) holds it against F, so F = −d/(1/k + 1/k_tip), k_tip = 1/(p_uᵀK(Ω)⁻¹p_u).
