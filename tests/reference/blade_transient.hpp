@@ -78,18 +78,29 @@ inline TipHistory odeint_tip_history(const bladestab::BladeModel& m, const Blade
     h.friction_work.push_back(y[2 * n + 1]);
     h.states.push_back(Eigen::Map<const Eigen::VectorXd>(y.data(), 2 * n));
   };
-  std::vector<double> ends = c.edges;
-  ends.push_back(times.back());
-  std::sort(ends.begin(), ends.end());
+  // The pieces' ends: the load's edges up to the last time, and the last time. Ends and times that
+  // differ by rounding only (an edge at k T_p against a sample time at j T/n) count as one.
+  const double close = 1e-12 * times.back();
+  std::vector<double> edges = c.edges, ends;
+  edges.push_back(times.back());
+  std::sort(edges.begin(), edges.end());
+  for (const double e : edges) {
+    if (e <= close || e > times.back() + close) continue;
+    if (!ends.empty() && e - ends.back() <= close) {
+      ends.back() = std::max(ends.back(), e);
+    } else {
+      ends.push_back(std::min(e, times.back()));
+    }
+  }
+  ends.back() = times.back();
   auto stepper = odeint::make_dense_output(tolerance, tolerance, odeint::runge_kutta_dopri5<State>());
   std::size_t next = 0;
   if (times.front() == 0) record(x), next = 1;
   double t = 0;
   for (double end : ends) {
-    if (end <= t || end > times.back()) continue;
     piece_end = end;
     std::vector<double> piece{t};
-    while (next < times.size() && times[next] <= end) piece.push_back(times[next++]);
+    while (next < times.size() && times[next] <= end + close) piece.push_back(std::min(times[next++], end));
     const std::size_t recorded = piece.size() - 1;
     if (piece.back() < end) piece.push_back(end);
     std::size_t k = 0;
