@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "bladestab/floquet.hpp"
+#include "reference/first_order_modes.hpp"
 #include "reference/mathieu.hpp"
 #include "reference/odeint_monodromy.hpp"
 #include "support/json.hpp"
@@ -87,21 +88,12 @@ double bisect(const std::function<double(double)>& g, double lo, double hi) {
 }
 
 // −Re λ/|λ| of (λ²M + λC + K) q = 0 for every λ with Im λ ≥ 0, as (frequency Im λ/2π [Hz], ratio)
-// pairs sorted by frequency. Solved here as a general eigenproblem in the test's own scaled modal
-// coordinates: q = Φη with (K, M)'s M-orthonormal modes Φ and ω² = diag ΦᵀKΦ, state [ω η; η̇],
-// A = [[0, diag ω], [−diag ω, −ΦᵀCΦ]] (the plain companion matrix [[0, I], [−M⁻¹K, −M⁻¹C]] spans
-// ω_max² ≈ 1e11 and loses five digits of the low modes).
+// pairs sorted by frequency, from the first-order form in the test's own scaled modal coordinates
+// (reference/first_order_modes.hpp): a general eigensolve of its own.
 std::vector<std::pair<double, double>> damping_ratios(const Eigen::MatrixXd& M, const Eigen::MatrixXd& C,
                                                       const Eigen::MatrixXd& K) {
-  const Eigen::Index n = M.rows();
-  const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> undamped(K, M);
-  const Eigen::MatrixXd omega = undamped.eigenvalues().cwiseSqrt().asDiagonal();
-  const Eigen::MatrixXd& Phi = undamped.eigenvectors();
-  Eigen::MatrixXd A(2 * n, 2 * n);
-  A << Eigen::MatrixXd::Zero(n, n), omega, -omega, -Phi.transpose() * C * Phi;
-  const Eigen::VectorXcd lambda = Eigen::EigenSolver<Eigen::MatrixXd>(A, false).eigenvalues();
   std::vector<std::pair<double, double>> out;
-  for (const std::complex<double>& l : lambda) {
+  for (const std::complex<double>& l : reference::FirstOrderModes(M, C, K).eigenvalues()) {
     if (l.imag() >= 0) out.emplace_back(l.imag() / (2 * pi), -l.real() / std::abs(l));
   }
   std::sort(out.begin(), out.end());

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "bladestab/transient.hpp"
+#include "reference/first_order_modes.hpp"
 #include "support/run_cli.hpp"
 #include "support/scenes.hpp"
 
@@ -20,36 +21,22 @@ using testing_support::paper_scene;
 
 namespace {
 
-// x(t) = e^{At} x₀ of M f̈ + C ḟ + K f = 0 by the eigen-decomposition of A in scaled modal
-// coordinates of the test's own: f = Φη with (K, M)'s M-orthonormal modes Φ, ω² = diag ΦᵀKΦ, state
-// y = [ω η; η̇], A = [[0, diag ω], [−diag ω, −ΦᵀCΦ]] = V Λ V⁻¹.
+// f(t) of the free M f̈ + C ḟ + K f = 0 from f(0), ḟ(0), by the eigen-decomposition A = V Λ V⁻¹ of
+// its first-order form in the test's own scaled modal coordinates (reference/first_order_modes.hpp).
 struct FreeVibration {
-  Eigen::MatrixXd M, Phi;
-  Eigen::VectorXd omega;
+  reference::FirstOrderModes modes;
   Eigen::MatrixXcd V, V_inverse;
   Eigen::VectorXcd lambda;
 
-  FreeVibration(const Eigen::MatrixXd& mass, const Eigen::MatrixXd& C, const Eigen::MatrixXd& K) : M(mass) {
-    const Eigen::Index n = M.rows();
-    const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> modes(K, M);
-    Phi = modes.eigenvectors();
-    omega = modes.eigenvalues().cwiseSqrt();
-    Eigen::MatrixXd A(2 * n, 2 * n);
-    A << Eigen::MatrixXd::Zero(n, n), Eigen::MatrixXd(omega.asDiagonal()), -Eigen::MatrixXd(omega.asDiagonal()),
-        -Phi.transpose() * C * Phi;
-    const Eigen::EigenSolver<Eigen::MatrixXd> eigen(A);
+  FreeVibration(const Eigen::MatrixXd& M, const Eigen::MatrixXd& C, const Eigen::MatrixXd& K) : modes(M, C, K) {
+    const Eigen::EigenSolver<Eigen::MatrixXd> eigen(modes.A);
     V = eigen.eigenvectors();
     V_inverse = V.inverse();
     lambda = eigen.eigenvalues();
   }
-  // The displacement f(t) from f(0) = f0, ḟ(0) = v0.
   Eigen::VectorXd displacement(const Eigen::VectorXd& f0, const Eigen::VectorXd& v0, double t) const {
-    const Eigen::Index n = f0.size();
-    // η = ΦᵀM f: with ΦᵀMΦ = I, Φ⁻¹ = ΦᵀM.
-    Eigen::VectorXd y0(2 * n);
-    y0 << omega.cwiseProduct(Phi.transpose() * (M * f0)), Phi.transpose() * (M * v0);
-    const Eigen::VectorXcd y = V * (lambda * t).array().exp().matrix().asDiagonal() * (V_inverse * y0);
-    return Phi * y.head(n).real().cwiseQuotient(omega);
+    const Eigen::VectorXcd y = V * (lambda * t).array().exp().matrix().asDiagonal() * (V_inverse * modes.state(f0, v0));
+    return modes.displacement(y.real());
   }
 };
 
