@@ -7,15 +7,15 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
-#include <tuple>
 #include <vector>
 
-#include <boost/numeric/odeint.hpp>
 #include <unsupported/Eigen/MatrixFunctions>
 
 #include "bladestab/floquet.hpp"
 #include "bladestab/input_error.hpp"
 #include "bladestab/pulse_monodromy.hpp"
+#include "reference/odeint_monodromy.hpp"
+#include "reference/pulse_profiles.hpp"
 #include "support/scenes.hpp"
 
 using namespace bladestab;
@@ -46,44 +46,16 @@ Scene exact_scene(std::vector<std::string> more) {
   return testing_support::paper_scene(more);
 }
 
-// SPEC §3 table, F(τ) on 0 ≤ τ ≤ t_c (written out here, apart from PulseTrain::force).
-double spec_force(PulseProfile profile, double F, double c, double tau) {
-  switch (profile) {
-    case PulseProfile::half_sine: return -F * std::sin(pi * tau / c);
-    case PulseProfile::cosine: return -F / 2 + F / 2 * std::cos(2 * pi * tau / c);
-    case PulseProfile::triangular: return tau <= c / 2 ? -F * 2 * tau / c : -F * 2 * (c - tau) / c;
-    case PulseProfile::sawtooth: return -F * tau / c;
-    case PulseProfile::rectangular:
-    case PulseProfile::impulse: return -F;
-  }
-  return 0;
-}
-
-// Φ over [0, t1] for ẏ = A(t) y, A(t) = A₀ + (F(t) − F₀) B (SPEC §4) with the true F(t), by
-// Boost.Odeint's controlled Fehlberg 7(8) stepper on each smooth piece: each pulse's two halves
-// (the triangle's kink at t_c/2; F and F' jump at the edges) and the free flight after it.
+// Φ over [0, t1] for ẏ = A(t) y, A(t) = A₀ + (F(t) − F₀) B (SPEC §4) with the true F(t) of the SPEC's
+// table, by Boost.Odeint's controlled Fehlberg 7(8) stepper on each smooth piece
+// (tests/reference/odeint_monodromy.hpp): each pulse's two halves (the triangle's kink at t_c/2; F
+// and F' jump at the edges) and the free flight after it.
 Eigen::MatrixXd odeint_propagator(const PeriodicSystem& sys, const PulseTrain& train, double t1, double tol) {
-  using State = std::vector<double>;
-  namespace odeint = boost::numeric::odeint;
-  const int n = sys.state_size();
-  const double F0 = sys.load[0].real(), c = train.contact_time_s, T = train.period_s;
-  State x(n * n, 0.0);
-  for (int i = 0; i < n; ++i) x[i * n + i] = 1;
-  for (double t0 = 0; t0 < t1; t0 += T) {
-    for (auto [a, b, contact] : {std::tuple{0.0, c / 2, true}, std::tuple{c / 2, c, true}, std::tuple{c, T, false}}) {
-      const double from = std::min(t0 + a, t1), to = std::min(t0 + b, t1);
-      if (to <= from) continue;
-      const auto rhs = [&, contact = contact](const State& y, State& dy, double t) {
-        const double F = contact ? spec_force(train.profile, train.peak_n, c, t - t0) : 0.0;
-        dy.resize(y.size());
-        Eigen::Map<Eigen::MatrixXd>(dy.data(), n, n) =
-            (sys.A0 + (F - F0) * sys.B) * Eigen::Map<const Eigen::MatrixXd>(y.data(), n, n);
-      };
-      odeint::integrate_adaptive(odeint::make_controlled<odeint::runge_kutta_fehlberg78<State>>(tol, tol), rhs, x,
-                                 from, to, (to - from) / 100);
-    }
-  }
-  return Eigen::Map<Eigen::MatrixXd>(x.data(), n, n);
+  const reference::PulseTrainReference pulses{train.profile, train.peak_n, train.contact_time_s, train.period_s, 0};
+  std::vector<double> pieces = pulses.edges(t1);
+  for (double t0 = 0; t0 < t1; t0 += train.period_s) pieces.push_back(t0 + train.contact_time_s / 2);
+  const double F0 = sys.load[0].real();
+  return reference::odeint_propagator(sys.A0, sys.B, [&](double t) { return pulses.force(t) - F0; }, pieces, t1, tol);
 }
 
 double relative_difference(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {

@@ -5,7 +5,8 @@
 //  - koopman-hill: Φ(T) ≈ C e^{HT} W (Bayer & Leine 2023), sorting-free;
 //  - monodromy:    Φ(T) by the sixth-order Magnus propagator, step count doubled to tolerance;
 //  - monodromy-rkf45: Φ(T) by the transient's RKF45 stepper (the time domain's own monodromy),
-//                  adaptive to the tolerance and checked against one 100 times tighter;
+//                  adaptive at 1e-3 of the tolerance (its global error is ~1e3 rtol) and checked
+//                  against one 100 times tighter;
 //  - auto:         the monodromy (on a reduced system it is the cheapest and needs no sorting).
 // Every result states the method, the truncation and an error estimate, and is reported only after
 // checks that do not share its failure mode (FloquetChecks); a failed check raises the fidelity or

@@ -31,7 +31,7 @@ FloquetMethod parse_method(const std::string& name) {
 }
 
 std::string truncation(const FloquetResult& r, bool exact_pulse) {
-  if (r.method == FloquetMethod::monodromy_rkf45) return "RKF45 at the tolerance and at 1/100 of it";
+  if (r.method == FloquetMethod::monodromy_rkf45) return "RKF45 at 1/1000 of the tolerance and at 1/100 of that";
   if (exact_pulse) return fmt::format("{} Magnus steps through the contact, exact between pulses", r.steps);
   return r.method == FloquetMethod::monodromy ? fmt::format("{} Magnus steps per period", r.steps)
                                               : fmt::format("q = {} harmonics", r.harmonics);
