@@ -40,7 +40,7 @@ const Boundary* counterpart(const Boundary& b, const std::vector<Boundary>& all)
 }  // namespace
 
 TEST_CASE("boundaries at theta = 300: k is raised until converged, to the large-k value within the estimate",
-          "[boundaries]") {
+          "[boundaries][slow]") {
   const Scene s = paper_scene({"model.terms=8"});
   BoundaryRequest r;
   r.theta_rad_s = 300;
@@ -215,7 +215,7 @@ TEST_CASE("boundaries: regions at the scene's load hold the paper point, and the
   }
 }
 
-TEST_CASE("boundaries --at-theta with a pulse series: the pulses come at the theta asked for", "[boundaries][series]") {
+TEST_CASE("boundaries --at-theta with a pulse series: the pulses come at the theta asked for", "[boundaries][series][slow]") {
   // A long pulse (t_c = 0.3 rev) as its own Fourier series: the duty t_c/T, so every F_m, depends on θ.
   const Scene s = paper_scene({"model.terms=8", "load.approximation=\"fourier\"", "load.contact_time_rev=0.3"});
   BoundaryRequest r;

@@ -62,7 +62,7 @@ double lowest_boundary(const Scene& s) {
 
 }  // namespace
 
-TEST_CASE("damped boundaries move up and agree with the damped Floquet multipliers", "[boundaries][damping]") {
+TEST_CASE("damped boundaries move up and agree with the damped Floquet multipliers", "[boundaries][damping][slow]") {
   const double undamped = lowest_boundary(scene_with(""));
   for (const std::string damping : {"modal:0.01", "paper:0.02"}) {
     const Scene s = scene_with(damping);

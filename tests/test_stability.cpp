@@ -225,7 +225,7 @@ const std::vector<double> tongue_frequencies_hz = {30.0, 60.0, 100.0, 140.0, 200
 // The grid of stable, unstable and divergent points as three test cases by load (ctest runs them side
 // by side): F̄ up to past the static buckling load of the spinning blade (mean load −F̄/2 F_cr).
 TEST_CASE("methods agree within their error estimates on a grid of stable, unstable and divergent points: F = 0.5, 2",
-          "[stability]") {
+          "[stability][slow]") {
   CHECK(methods_agree_on({0.5, 2.0}, tongue_frequencies_hz).stable >= 3);
 }
 

@@ -61,7 +61,7 @@ CliRun run_transient_cli(const std::string& options) {
 
 }  // namespace
 
-TEST_CASE("tolerance 1e-2 on the issue's run: the capped steps stay stable and match a tight-tolerance run", "[transient][honesty]") {
+TEST_CASE("tolerance 1e-2 on the issue's run: the capped steps stay stable and match a tight-tolerance run", "[transient][honesty][slow]") {
   // The scene as shipped (N = 16, stiffest mode 158 kHz), the endless F̄ = 5 pulse train, 2 revolutions:
   // before the cap this run printed a lateral peak of 2.15e21 mm.
   const Scene s = paper_scene();
@@ -160,7 +160,7 @@ TEST_CASE("a response growing past 0.1 L is outside the small-deflection model: 
   CHECK(c.peak_lateral_m < 1.1);
 }
 
-TEST_CASE("growth per revolution: the Floquet max|rho| under the cosine load, whatever the output sampling", "[transient][honesty]") {
+TEST_CASE("growth per revolution: the Floquet max|rho| under the cosine load, whatever the output sampling", "[transient][honesty][slow]") {
   // The cosine load (42) as a true load, F̄ = 5, 8 revolutions from 1 µm of bending mode 1. The load
   // itself seeds the instability through the Coriolis coupling of the axial motion, and by revolution
   // 8 the tip passes 1 m: the CLI refuses such a run (see above), but the model is linear, so the
