@@ -44,7 +44,7 @@ int modes_below(const BladeModel& m, double speed, double cutoff_hz) {
 
 }  // namespace
 
-TEST_CASE("stability --cutoff-hz keeps the modes below the cut-off; SPEC section 6's table; error within the estimate",
+TEST_CASE("stability --cutoff-hz keeps the modes below the cut-off, SPEC section 6's table, error within the estimate",
           "[stability][cutoff]") {
   // SPEC §6: kept dofs and max|ρ| for each cut-off; the whole model (24 dofs) gives 2.199227.
   struct Row {
@@ -91,7 +91,7 @@ TEST_CASE("stability --cutoff-hz keeps the modes below the cut-off; SPEC section
   CHECK(compared == 5);
 }
 
-TEST_CASE("boundaries --cutoff-hz: the boundaries of exactly the modes below the cut-off; error within the estimate",
+TEST_CASE("boundaries --cutoff-hz: the boundaries of exactly the modes below the cut-off, error within the estimate",
           "[boundaries][cutoff]") {
   const double cutoff = 3000;  // the lowest bending modes and the first axial mode of the N = 8 blade
   const Scene s = paper_scene({"model.terms=8"});

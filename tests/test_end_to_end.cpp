@@ -149,7 +149,7 @@ double odeint_max_rho(const Scene& s, const ReductionSpec& reduction) {
 
 }  // namespace
 
-TEST_CASE("end to end: modes, json and csv; mode 1 at rest is the Euler-Bernoulli cantilever's", "[end_to_end][modes]") {
+TEST_CASE("end to end: modes, json and csv, mode 1 at rest is the Euler-Bernoulli cantilever's", "[end_to_end][modes]") {
   const std::vector<std::string> at_rest{"--set", "operation.speed_rad_s=0", "--count", "3"};
   const Json j = run_json("modes", at_rest);
   const Csv c = run_csv("modes", at_rest);
@@ -168,7 +168,7 @@ TEST_CASE("end to end: modes, json and csv; mode 1 at rest is the Euler-Bernoull
   CHECK(std::abs(lambda1 / exact - 1) <= j["modes"][0]["error_estimate"].number);
 }
 
-TEST_CASE("end to end: campbell, json, csv, crossings and PNG; mode 1 at rest is the cantilever's", "[end_to_end][campbell]") {
+TEST_CASE("end to end: campbell, json, csv, crossings and PNG, mode 1 at rest is the cantilever's", "[end_to_end][campbell]") {
   const fs::path dir = output_dir("campbell");
   const std::vector<std::string> more{"--speeds", "0:600:4", "--count", "3", "--out", dir.string()};
   const Json j = run_json("campbell", {more.begin(), more.end()});
@@ -197,7 +197,7 @@ TEST_CASE("end to end: campbell, json, csv, crossings and PNG; mode 1 at rest is
   check_png(dir / "campbell.png", 1200, 825);
 }
 
-TEST_CASE("end to end: stability, json and csv; max|rho| against Runge-Kutta 7(8) on the same system", "[end_to_end][stability]") {
+TEST_CASE("end to end: stability, json and csv, max|rho| against Runge-Kutta 7(8) on the same system", "[end_to_end][stability]") {
   const Json j = run_json("stability", {});
   const Csv c = run_csv("stability", {});
   const std::size_t count = j["multipliers"].size();
@@ -216,7 +216,7 @@ TEST_CASE("end to end: stability, json and csv; max|rho| against Runge-Kutta 7(8
   CHECK_FALSE(j["stable"].boolean);
 }
 
-TEST_CASE("end to end: boundaries, json and csv; a multiplier of the reference monodromy at -1 there",
+TEST_CASE("end to end: boundaries, json and csv, a multiplier of the reference monodromy at -1 there",
           "[end_to_end][boundaries]") {
   const std::vector<std::string> more{"--max-order", "1", "--set", "model.axial=false"};
   const Json j = run_json("boundaries", more);
@@ -245,7 +245,7 @@ TEST_CASE("end to end: boundaries, json and csv; a multiplier of the reference m
   CHECK(gap < 3 * std::sqrt(first["error_estimate"].number));
 }
 
-TEST_CASE("end to end: map, json, csv, grid and curve files, PNG and SVG; the scene point's max|rho|",
+TEST_CASE("end to end: map, json, csv, grid and curve files, PNG and SVG, the scene point's max|rho|",
           "[end_to_end][map]") {
   const fs::path dir = output_dir("map");
   const std::vector<std::string> grid{"--plane", "theta-fmax", "--theta", "100:900:5", "--fmax", "0:10:3", "--trace",
@@ -277,7 +277,7 @@ TEST_CASE("end to end: map, json, csv, grid and curve files, PNG and SVG; the sc
   CHECK(testing_support::read_text(dir / "map_theta_fmax.svg").find("<svg") != std::string::npos);
 }
 
-TEST_CASE("end to end: transient, json, csv and PNG; the static stretch and the tip load's range",
+TEST_CASE("end to end: transient, json, csv and PNG, the static stretch and the tip load's range",
           "[end_to_end][transient]") {
   const fs::path dir = output_dir("transient");
   const std::vector<std::string> run_args{"--revolutions", "1", "--samples-per-rev", "100", "--out", dir.string()};
@@ -307,7 +307,7 @@ TEST_CASE("end to end: transient, json, csv and PNG; the static stretch and the 
   check_png(dir / "transient.png", 1500, 1050);
 }
 
-TEST_CASE("end to end: crosscheck, json and csv; the cosine approximation's Floquet max|rho| against Runge-Kutta 7(8)",
+TEST_CASE("end to end: crosscheck, json and csv, the cosine approximation's Floquet max|rho| against Runge-Kutta 7(8)",
           "[end_to_end][crosscheck]") {
   const std::vector<std::string> more{"--points", "5", "--revolutions", "6", "--set", "model.axial=false"};
   const Json j = run_json("crosscheck", more);
@@ -325,7 +325,7 @@ TEST_CASE("end to end: crosscheck, json and csv; the cosine approximation's Floq
   CHECK(cosine["transient_growth_per_revolution"].number == Approx(reference).epsilon(0.01));
 }
 
-TEST_CASE("end to end: sweep, json, csv and PNG; mode 1 at rest is the cantilever's", "[end_to_end][sweep]") {
+TEST_CASE("end to end: sweep, json, csv and PNG, mode 1 at rest is the cantilever's", "[end_to_end][sweep]") {
   const fs::path dir = output_dir("sweep");
   const std::vector<std::string> more{"--key", "operation.speed_rad_s", "--values", "0:600:4", "--count", "3", "--out",
                                       dir.string()};
@@ -342,7 +342,7 @@ TEST_CASE("end to end: sweep, json, csv and PNG; mode 1 at rest is the cantileve
   check_png(dir / "sweep.png", 1650, 750);
 }
 
-TEST_CASE("end to end: check, json and junit; the worst Campbell margin from the test's own eigen-solve",
+TEST_CASE("end to end: check, json and junit, the worst Campbell margin from the test's own eigen-solve",
           "[end_to_end][check]") {
   const std::string scene = std::string(BLADESTAB_SOURCE_DIR) + "/stability_maps/ci/passes.toml";
   const auto check_run = [&](const char* format) {

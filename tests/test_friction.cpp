@@ -71,7 +71,7 @@ TEST_CASE("friction mu = 0.2: the transient matches an independent integration o
   CHECK(friction_effect > 0.5);
 }
 
-TEST_CASE("friction: the force is mu|F| cos(beta), against the sliding, only in contact; its work is the reference's",
+TEST_CASE("friction: the force is mu|F| cos(beta), against the sliding, only in contact, its work is the reference's",
           "[transient][friction]") {
   const FrictionRun run = friction_run(0.2, 2);
   const double mu = 0.2, cos_beta = std::cos(run.scene.blade.stagger_deg * 3.14159265358979323846 / 180);
