@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <tuple>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -27,27 +28,31 @@ Eigen::VectorXcd sorted_by_magnitude(Eigen::VectorXcd rho) {
 }
 
 // The Hill matrix in the real sin/cos basis: with x = Σ c_k e^{ikθt}, a_k = c_k + c_{−k} and
-// b_k = i (c_k − c_{−k}) are the cosine and sine amplitudes; H_r = P H P⁻¹ is real.
+// b_k = i (c_k − c_{−k}) are the cosine and sine amplitudes; H_r = P H P⁻¹ is real. P and P⁻¹
+// have at most two identity blocks per block row and column, so H_r is summed block by block
+// (O(N² n) instead of two dense complex N × N products, N = n(2q + 1)).
 Eigen::MatrixXd real_hill_matrix(const PeriodicSystem& sys, int q) {
   const int n = sys.state_size(), N = n * (2 * q + 1);
   const Eigen::MatrixXcd H = hill_matrix(sys, q);
-  Eigen::MatrixXcd P = Eigen::MatrixXcd::Zero(N, N), Pinv = Eigen::MatrixXcd::Zero(N, N);
-  const auto I = Eigen::MatrixXcd::Identity(n, n);
+  struct Entry {
+    int row, col;  // block indices
+    cplx value;    // times the identity block
+  };
   const cplx i(0, 1);
-  P.block(0, q * n, n, n) = I;  // constant term first
-  Pinv.block(q * n, 0, n, n) = I;
+  std::vector<Entry> P{{0, q, 1}}, Pinv{{q, 0, 1}};  // constant term first
   for (int k = 1; k <= q; ++k) {
-    const int cos_row = (2 * k - 1) * n, sin_row = 2 * k * n, plus = (q + k) * n, minus = (q - k) * n;
-    P.block(cos_row, plus, n, n) = I;
-    P.block(cos_row, minus, n, n) = I;
-    P.block(sin_row, plus, n, n) = i * I;
-    P.block(sin_row, minus, n, n) = -i * I;
-    Pinv.block(plus, cos_row, n, n) = 0.5 * I;
-    Pinv.block(plus, sin_row, n, n) = -0.5 * i * I;
-    Pinv.block(minus, cos_row, n, n) = 0.5 * I;
-    Pinv.block(minus, sin_row, n, n) = 0.5 * i * I;
+    const int cos_row = 2 * k - 1, sin_row = 2 * k, plus = q + k, minus = q - k;
+    P.insert(P.end(), {{cos_row, plus, 1}, {cos_row, minus, 1}, {sin_row, plus, i}, {sin_row, minus, -i}});
+    Pinv.insert(Pinv.end(),
+                {{plus, cos_row, 0.5}, {plus, sin_row, -0.5 * i}, {minus, cos_row, 0.5}, {minus, sin_row, 0.5 * i}});
   }
-  return (P * H * Pinv).real();
+  Eigen::MatrixXd Hr = Eigen::MatrixXd::Zero(N, N);
+  for (const Entry& p : P) {
+    for (const Entry& r : Pinv) {
+      Hr.block(p.row * n, r.col * n, n, n) += (p.value * r.value * H.block(p.col * n, r.row * n, n, n)).real();
+    }
+  }
+  return Hr;
 }
 
 // ln ρ / T, and (46) δ = −2π Re λ / |Im λ|.
@@ -397,19 +402,20 @@ Eigen::VectorXcd hill_multipliers(const PeriodicSystem& sys, int q) {
 }
 
 Eigen::VectorXcd koopman_hill_multipliers(const PeriodicSystem& sys, int q) {
-  // Φ(T) ≈ C e^{HT} W: only the central block column of e^{HT} is needed, from H = V Λ V⁻¹ as
-  // V e^{ΛT} (V⁻¹ W); C sums the block rows.
+  // Φ(T) ≈ C e^{HT} W: C sums the block rows, W is the central block column. In the real sin/cos
+  // basis (real_hill_matrix: H = P⁻¹ H_r P) this is C_r e^{H_r T} E₀, with P W = E₀ the constant
+  // term's block and C_r = C P⁻¹ = [I, I, 0, I, 0, …] (x(0) is a₀ plus the cosine amplitudes).
+  // From H_r = V Λ V⁻¹: C_r V e^{ΛT} (V⁻¹ E₀), a real eigenproblem in place of a complex one.
   const int n = sys.state_size(), N = n * (2 * q + 1);
-  Eigen::ComplexEigenSolver<Eigen::MatrixXcd> eig(hill_matrix(sys, q));
+  Eigen::EigenSolver<Eigen::MatrixXd> eig(real_hill_matrix(sys, q), true);
   if (eig.info() != Eigen::Success) throw std::runtime_error("Hill eigenvalues did not converge");
-  Eigen::MatrixXcd W = Eigen::MatrixXcd::Zero(N, n);
-  W.block(q * n, 0, n, n).setIdentity();
-  Eigen::MatrixXcd Y = eig.eigenvectors().partialPivLu().solve(W);
+  const Eigen::MatrixXcd V = eig.eigenvectors();
+  Eigen::MatrixXcd Y = V.partialPivLu().solve(Eigen::MatrixXcd::Identity(N, n));
   for (int i = 0; i < N; ++i) Y.row(i) *= std::exp(eig.eigenvalues()(i) * sys.period());
-  const Eigen::MatrixXcd E = eig.eigenvectors() * Y;
-  Eigen::MatrixXcd Phi = Eigen::MatrixXcd::Zero(n, n);
-  for (int j = 0; j <= 2 * q; ++j) Phi += E.block(j * n, 0, n, n);
-  return sorted_by_magnitude(Eigen::ComplexEigenSolver<Eigen::MatrixXcd>(Phi, false).eigenvalues());
+  Eigen::MatrixXcd CV = V.topRows(n);  // the constant term, then each cosine amplitude
+  for (int k = 1; k <= q; ++k) CV += V.middleRows((2 * k - 1) * n, n);
+  const Eigen::MatrixXd Phi = (CV * Y).real();
+  return sorted_by_magnitude(Eigen::EigenSolver<Eigen::MatrixXd>(Phi, false).eigenvalues());
 }
 
 Eigen::MatrixXd magnus_monodromy(const PeriodicSystem& sys, int steps) {
