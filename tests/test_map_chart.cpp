@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "support/run_cli.hpp"
 #include "support/scenes.hpp"
 
 namespace fs = std::filesystem;
@@ -56,7 +57,8 @@ struct Colour {
 };
 
 std::vector<Colour> colours_beside_marker(double fbar) {
-  const fs::path dir = fs::temp_directory_path() / ("bladestab_map_chart_" + std::to_string(static_cast<int>(fbar * 10)));
+  // In this process's private scratch directory: two suites on one machine do not share it.
+  const fs::path dir = testing_support::scratch() / ("map_chart_" + std::to_string(static_cast<int>(fbar * 10)));
   fs::remove_all(dir);
   fs::create_directories(dir);
   run(std::string(BLADESTAB_EXE) + " map '" + testing_support::paper_scene_path() +
