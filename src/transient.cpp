@@ -103,17 +103,28 @@ TransientResult run_transient(const BladeModel& model, const Scene& scene, const
   // rotating-frame energy ((55)–(58); the Coriolis forces do no work; a static tip compression is
   // in K(Ω) and P_steady, so its potential is in E). A Runge–Kutta method keeps
   // no quadratic invariant, so a step that spuriously amplifies a mode breaks E(t) − E(0) = W(t).
+  const bool damped = !D.isZero(0);
+  Eigen::VectorXd work(n);  // the products below, without a temporary per evaluation
   const OdeFunction rhs = [&](double t, const Eigen::VectorXd& x, Eigen::VectorXd& dx) {
     const auto f = x.head(n), v = x.segment(n, n);
     const double F = tip_load(t, x);
     dx.resize(2 * n + 1);
     dx.head(n) = v;
-    dx.segment(n, n) = Mi_cf - MiK * f - MiC * v;
-    dx(2 * n) = -v.dot(D * v);
+    auto a = dx.segment(n, n);
+    a = Mi_cf;
+    a.noalias() -= MiK * f;
+    a.noalias() -= MiC * v;
+    dx(2 * n) = 0;
+    if (damped) {
+      work.noalias() = D * v;
+      dx(2 * n) = -v.dot(work);
+    }
     if (F == 0) return;
     const auto [axial, lateral] = tip_loads(F, x);
-    dx.segment(n, n) += axial * (Mi_axial - MiG * f) + lateral * Mi_lateral;
-    dx(2 * n) += axial * (model.tip_axial.dot(v) - f.dot(model.G * v)) + lateral * model.tip_lateral.dot(v);
+    work.noalias() = MiG * f;
+    a += axial * (Mi_axial - work) + lateral * Mi_lateral;
+    work.noalias() = model.G * v;
+    dx(2 * n) += axial * (model.tip_axial.dot(v) - f.dot(work)) + lateral * model.tip_lateral.dot(v);
   };
 
   TransientResult result;
