@@ -14,6 +14,7 @@
 
 #include "bladestab/transient.hpp"
 #include "bladestab/transient_checks.hpp"
+#include "support/run_cli.hpp"
 #include "support/scenes.hpp"
 
 using namespace bladestab;
@@ -39,7 +40,8 @@ struct CliRun {
 
 // `bladestab transient` on the paper scene with `options` (shell words), in a scratch directory.
 CliRun run_transient_cli(const std::string& options) {
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "bladestab_transient_honesty";
+  // In this process's private scratch directory: ctest runs the CLI tests side by side.
+  const std::filesystem::path dir = testing_support::scratch() / "transient_honesty";
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   const std::string command = std::string("exec '") + BLADESTAB_EXE + "' transient '" + testing_support::paper_scene_path() +
