@@ -591,8 +591,8 @@ StabilityMap stability_map(const Scene& scene, const MapOptions& o, const std::f
   map.cells_y = (ny - 1) << ky;
   // Lattice point i lies in grid cell i >> k, linearly between its grid points.
   const auto on_lattice = [](const std::vector<double>& grid, int k, int i) {
+    if (grid.size() == 1) return grid.front();  // before the cell: it would be −1, and −1 << k undefined
     const int cell = std::min(i >> k, static_cast<int>(grid.size()) - 2), first = cell << k;
-    if (grid.size() == 1) return grid.front();
     return grid[cell] + (grid[cell + 1] - grid[cell]) * (i - first) / static_cast<double>(1 << k);
   };
   const auto lattice_x = [&](int i) { return on_lattice(o.grid_x, kx, i); };
