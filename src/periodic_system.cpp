@@ -12,7 +12,21 @@
 namespace bladestab {
 
 namespace {
+
+// Eigenvectors are defined up to sign, and which sign LAPACK returns depends on rounding (the
+// build's vectorization, BLAS threads). The state coordinates are fixed here: each mode's shape in
+// the Ritz coordinates has its largest entry positive, so the periodic system (and what
+// --export-matrices writes) is the same on every build.
+void fix_mode_signs(Eigen::MatrixXd& Phi, const Eigen::MatrixXd& basis) {
+  const Eigen::MatrixXd shapes = basis * Phi;
+  for (Eigen::Index j = 0; j < Phi.cols(); ++j) {
+    Eigen::Index largest = 0;
+    shapes.col(j).cwiseAbs().maxCoeff(&largest);
+    if (shapes(largest, j) < 0) Phi.col(j) = -Phi.col(j);
+  }
 }
+
+}  // namespace
 
 double PeriodicSystem::period() const { return two_pi / angular_frequency; }
 
@@ -36,7 +50,8 @@ PeriodicSystem periodic_system(const ReducedSystem& reduced, const LoadSeries& l
   }
   const Eigen::VectorXd omega2 = modes.eigenvalues();
   const int n = reduced.size();
-  const Eigen::MatrixXd& Phi = modes.eigenvectors();
+  Eigen::MatrixXd Phi = modes.eigenvectors();
+  fix_mode_signs(Phi, reduced.basis);
   const Eigen::VectorXd w = omega2.cwiseSqrt();
   const Eigen::MatrixXd G = Phi.transpose() * reduced.G * Phi;
   const Eigen::MatrixXd C = Phi.transpose() * reduced.C * Phi;

@@ -73,9 +73,13 @@ void check_export(const std::vector<std::string>& overrides, const std::string& 
   CHECK(std::stod(manifest_value(json, "period_s")) == Approx(expected.period()).epsilon(1e-15));
   CHECK(manifest_value(json, "A0") == "system.A0.mtx");
 
+  // The same arrays up to rounding: the program and this test may differ in vectorization and BLAS
+  // threads. They do under the sanitizers: A0 1.7e-14, and B 5e-12 for the whole 48-state model,
+  // whose modal coordinates carry the eigenvectors' rounding, ε ω²_max / gap. A lost sign
+  // convention gives O(1), a wrong load level 1e-3.
   const PeriodicSystem read = read_matrix_market((dir / "system").string());
-  CHECK(relative_difference(read.A0, expected.A0) <= 1e-15);
-  CHECK(relative_difference(read.B, expected.B) <= 1e-15);
+  CHECK(relative_difference(read.A0, expected.A0) <= 1e-12);
+  CHECK(relative_difference(read.B, expected.B) <= 1e-10);
   REQUIRE(read.load.size() == expected.load.size());
   for (std::size_t m = 0; m < read.load.size(); ++m) {
     CHECK(std::abs(read.load[m] - expected.load[m]) <= 1e-15 * std::abs(expected.load[m]));
