@@ -339,8 +339,10 @@ int window_vectors(const BladeModel& model, const Scene& scene, const CurveWindo
   return tongue_vectors(model, scene_at(scene, slowest, theta_max, 0), theta_max, w.max_order);
 }
 
-// Boundaries of the check lines, kept across the fidelity's iterations: most models compared
-// (the whole one at min(K, 4) harmonics, the costliest) recur when only K or the vectors change.
+// Boundaries of a line, kept for the map's run: the check lines recur across the fidelity's
+// iterations (the whole model at min(K, 4) harmonics, the costliest, when only K or the vectors
+// change), the chosen model's check lines are lines of the trace, and closing a fold asks for a
+// line once per family.
 class LineCache {
 public:
   std::vector<Boundary> on_line(const CurveWindow& w, const Scene& scene, const CurveModel& m, double line) {
@@ -507,7 +509,7 @@ StabilityMap stability_map(const Scene& scene, const MapOptions& o, const std::f
   }
   std::vector<std::vector<Boundary>> found(o.trace.size());
   parallel_for(map.curve_fidelity.drawn ? o.trace.size() : 0, o.threads, [&](std::size_t i) {
-    found[i] = window.on_line(scene, curve_model, o.trace[i]);
+    found[i] = cache.on_line(window, scene, curve_model, o.trace[i]);
     tick();
   });
   Tracer tracer(0.05 * window.span());
@@ -529,7 +531,7 @@ StabilityMap stability_map(const Scene& scene, const MapOptions& o, const std::f
   map.curves = close_folds(tracer.curves(), o.trace, theta_plane, 0.05 * window.span(), o.threads,
                            [&](int multiplier, double line) {
     std::vector<double> values;
-    for (const Boundary& b : window.on_line(scene, curve_model, line)) {
+    for (const Boundary& b : cache.on_line(window, scene, curve_model, line)) {
       if (b.multiplier == multiplier && window.shown(b, curve_model.approximation)) values.push_back(window.along(b));
     }
     return values;
