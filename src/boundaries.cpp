@@ -434,19 +434,26 @@ BoundaryAnalysis boundaries_with_error_estimate(const Scene& scene_in, const Bou
   return result;
 }
 
-std::vector<Boundary> boundary_frequencies(const PeriodicSystem& sys, double peak_force_n, int approximation) {
+namespace {
+
+std::vector<int> families(int family) { return family == 0 ? std::vector<int>{-1, 1} : std::vector<int>{family}; }
+
+}  // namespace
+
+std::vector<Boundary> boundary_frequencies(const PeriodicSystem& sys, double peak_force_n, int approximation,
+                                           int family) {
   // The system's load is already at peak_force_n; K1 carries it, so scale 1.
   std::vector<Boundary> out;
-  for (int multiplier : {-1, 1}) add_family(sys, multiplier, approximation, 1.0, out);
+  for (int multiplier : families(family)) add_family(sys, multiplier, approximation, 1.0, out);
   for (Boundary& b : out) b.peak_force_n = peak_force_n;
   std::sort(out.begin(), out.end(), [](const Boundary& a, const Boundary& b) { return a.theta_rad_s < b.theta_rad_s; });
   return out;
 }
 
 std::vector<Boundary> boundary_loads(const PeriodicSystem& sys, double system_peak_force_n, double theta,
-                                     int approximation) {
+                                     int approximation, int family) {
   std::vector<Boundary> out;
-  for (int multiplier : {-1, 1}) {
+  for (int multiplier : families(family)) {
     const Pencil p = harmonic_balance(sys, multiplier, approximation);
     // (A + s K₁) c = 0 with A = K₀ + θC₁ + θ²M₁ and s = F_max / system_peak_force_n: A⁻¹K₁ c = −(1/s) c.
     const Eigen::MatrixXd A = p.K0 + theta * p.C1 + theta * theta * p.M1;

@@ -71,21 +71,23 @@ struct CurveWindow {
   // The boundaries on line `line` of `m`. In the θ plane the system carries the line's load; in
   // the speed plane it carries the window's top load F̄ = y_hi, so the reduced basis (the modes at
   // F = 0 and at the most compressive load) spans every load the line crosses.
-  std::vector<Boundary> on_line(const Scene& scene, const CurveModel& m, double line) const {
+  // `family`: both (0) or the one of multiplier −1 or +1.
+  std::vector<Boundary> on_line(const Scene& scene, const CurveModel& m, double line, int family = 0) const {
     if (theta_plane) {
       if (line <= 0) return {};
       const Scene at = scene_at(scene, speed, two_pi, line);  // θ is the unknown; any value will do
       return boundary_frequencies(periodic_system(*m.model, at, load_series(at), m.reduction), line * fcr,
-                                  m.approximation);
+                                  m.approximation, family);
     }
-    return along_fbar(scene, m, line, engine_order * line);
+    return along_fbar(scene, m, line, engine_order * line, family);
   }
   // Every boundary F_max at speed Ω and pulse frequency θ (the speed plane's lines).
-  std::vector<Boundary> along_fbar(const Scene& scene, const CurveModel& m, double omega, double theta) const {
+  std::vector<Boundary> along_fbar(const Scene& scene, const CurveModel& m, double omega, double theta,
+                                   int family = 0) const {
     if (y_hi <= 0) return {};
     const Scene at = scene_at(scene, omega, theta, y_hi);
     return boundary_loads(periodic_system(*m.model, at, load_series(at), m.reduction), y_hi * fcr, theta,
-                          m.approximation);
+                          m.approximation, family);
   }
   // The boundary's coordinate along the line: θ, or F̄.
   double along(const Boundary& b) const { return theta_plane ? b.theta_rad_s : b.peak_force_n / fcr; }
@@ -341,24 +343,25 @@ int window_vectors(const BladeModel& model, const Scene& scene, const CurveWindo
 
 // Boundaries of a line, kept for the map's run: the check lines recur across the fidelity's
 // iterations (the whole model at min(K, 4) harmonics, the costliest, when only K or the vectors
-// change), the chosen model's check lines are lines of the trace, and closing a fold asks for a
-// line once per family.
+// change), and the chosen model's check lines are lines of the trace. Closing a fold asks for
+// one family's boundaries on a line between two of the trace: half the eigen-solves.
 class LineCache {
 public:
-  std::vector<Boundary> on_line(const CurveWindow& w, const Scene& scene, const CurveModel& m, double line) {
-    const Key key{m.model, static_cast<int>(m.reduction.kind), m.reduction.vectors, m.approximation, line};
+  std::vector<Boundary> on_line(const CurveWindow& w, const Scene& scene, const CurveModel& m, double line,
+                                int family = 0) {
+    const Key key{m.model, static_cast<int>(m.reduction.kind), m.reduction.vectors, m.approximation, line, family};
     {
       std::lock_guard<std::mutex> hold(lock_);
       const auto it = cache_.find(key);
       if (it != cache_.end()) return it->second;
     }
-    std::vector<Boundary> found = w.on_line(scene, m, line);
+    std::vector<Boundary> found = w.on_line(scene, m, line, family);
     std::lock_guard<std::mutex> hold(lock_);
     return cache_.emplace(key, std::move(found)).first->second;
   }
 
 private:
-  using Key = std::tuple<const BladeModel*, int, int, int, double>;
+  using Key = std::tuple<const BladeModel*, int, int, int, double, int>;
   std::mutex lock_;
   std::map<Key, std::vector<Boundary>> cache_;
 };
@@ -531,7 +534,7 @@ StabilityMap stability_map(const Scene& scene, const MapOptions& o, const std::f
   map.curves = close_folds(tracer.curves(), o.trace, theta_plane, 0.05 * window.span(), o.threads,
                            [&](int multiplier, double line) {
     std::vector<double> values;
-    for (const Boundary& b : cache.on_line(window, scene, curve_model, line)) {
+    for (const Boundary& b : cache.on_line(window, scene, curve_model, line, multiplier)) {
       if (b.multiplier == multiplier && window.shown(b, curve_model.approximation)) values.push_back(window.along(b));
     }
     return values;

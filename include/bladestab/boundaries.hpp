@@ -32,13 +32,15 @@ struct Boundary {
 };
 
 // `system` supplies the modal matrices and the load shape; its load is scaled to `peak_force_n`.
-// All boundary θ > 0 at that load, both families, sorted by θ.
-std::vector<Boundary> boundary_frequencies(const PeriodicSystem& system, double peak_force_n, int approximation);
+// All boundary θ > 0 at that load, sorted by θ: of both families, or of the one whose multiplier is
+// `family` (−1 or +1; each family is its own eigenproblem, so one costs half).
+std::vector<Boundary> boundary_frequencies(const PeriodicSystem& system, double peak_force_n, int approximation,
+                                           int family = 0);
 
 // All boundary F_max ≥ 0 at pulse frequency θ (the load shape per newton of F_max is the system's
-// load divided by `system_peak_force_n`), both families, sorted by F_max.
+// load divided by `system_peak_force_n`), sorted by F_max; both families or `family` as above.
 std::vector<Boundary> boundary_loads(const PeriodicSystem& system, double system_peak_force_n, double theta_rad_s,
-                                     int approximation);
+                                     int approximation, int family = 0);
 
 // |ρ − b.multiplier| for the Floquet multiplier ρ of `system` closest to ±1 at the boundary point
 // (θ = b.theta_rad_s, F_max = b.peak_force_n; the system's load is at `system_peak_force_n`),
