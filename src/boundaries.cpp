@@ -436,7 +436,12 @@ BoundaryAnalysis boundaries_with_error_estimate(const Scene& scene_in, const Bou
 
 namespace {
 
-std::vector<int> families(int family) { return family == 0 ? std::vector<int>{-1, 1} : std::vector<int>{family}; }
+std::vector<int> families(int family) {
+  if (family != 0 && family != -1 && family != 1) {
+    throw std::invalid_argument(fmt::format("boundary family {}: the multiplier is -1 or +1 (0 for both)", family));
+  }
+  return family == 0 ? std::vector<int>{-1, 1} : std::vector<int>{family};
+}
 
 }  // namespace
 
