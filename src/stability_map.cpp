@@ -535,7 +535,7 @@ StabilityMap stability_map(const Scene& scene, const MapOptions& o, const std::f
                            [&](int multiplier, double line) {
     std::vector<double> values;
     for (const Boundary& b : cache.on_line(window, scene, curve_model, line, multiplier)) {
-      if (b.multiplier == multiplier && window.shown(b, curve_model.approximation)) values.push_back(window.along(b));
+      if (window.shown(b, curve_model.approximation)) values.push_back(window.along(b));
     }
     return values;
   }, unloaded_omega);
