@@ -45,6 +45,8 @@ TEST_CASE("speed-plane map: every traced boundary point has a multiplier at +1 o
   // 12 harmonics per family: the boundary equations' truncation then moves F̄ by less than 1e-12
   // (at 8 harmonics a point near F̄ = 3 had its multiplier 7e-6 from +1).
   o.approximation = 12;
+  o.resolution_x = 2;  // the curves are under test: the shading stays on the 3 × 3 grid
+  o.resolution_y = 2;
   const StabilityMap map = stability_map(scene, o);
   REQUIRE(map.curves.size() >= 2);
   int checked = 0;
