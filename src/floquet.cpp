@@ -174,14 +174,18 @@ double reciprocal_error(const Eigen::VectorXcd& rho) {
   return worst;
 }
 
-// ẏ = (A₀ + φ(t) B) y over one period: the load variation φ and the times where it jumps.
+// ẏ = (A₀ + φ(t) B) y over one period: the load variation φ and the times where it jumps. Where φ
+// is constant from `varies_until` to the period (a pulse train between its contacts), RKF45 stops
+// there and `rest` carries the state over the remainder exactly.
 struct LoadVariation {
   std::function<double(double)> phi;
   std::vector<double> breakpoints;
+  double varies_until = 0;  // 0: the whole period
+  std::function<Eigen::MatrixXd(const Eigen::MatrixXd&)> rest;
 };
 
 LoadVariation series_variation(const PeriodicSystem& sys) {
-  return {[&sys](double t) { return sys.load_variation(t); }, {}};
+  return {[&sys](double t) { return sys.load_variation(t); }, {}, 0, {}};
 }
 
 // Whether A₀ and B have the blocks of periodic_system.hpp's state y = [D η; η̇]: A₀ = [[0, D], [·, ·]]
@@ -196,7 +200,8 @@ bool has_modal_state_blocks(const PeriodicSystem& sys) {
          sys.B.bottomRightCorner(m, m).isZero(0);
 }
 
-// X(T) of Ẋ = (A₀ + φ(t) B) X from X(0) by RKF45, landing on the load's breakpoints.
+// X(T) of Ẋ = (A₀ + φ(t) B) X from X(0) by RKF45, landing on the load's breakpoints (and by the
+// load's exact `rest` after `varies_until`).
 constexpr Eigen::Index few_columns = 4;
 Eigen::MatrixXd rkf45_propagate(const PeriodicSystem& sys, const LoadVariation& load, const Eigen::MatrixXd& X0,
                                 double rtol, double atol) {
@@ -228,8 +233,9 @@ Eigen::MatrixXd rkf45_propagate(const PeriodicSystem& sys, const LoadVariation& 
   StepControl control;
   control.rtol = rtol;
   control.atol = atol;
-  rkf45_integrate(rhs, x, 0, sys.period(), control, load.breakpoints, {}, [](double, const Eigen::VectorXd&) {});
-  return x.reshaped(n, columns);
+  const double end = load.rest ? load.varies_until : sys.period();
+  rkf45_integrate(rhs, x, 0, end, control, load.breakpoints, {}, [](double, const Eigen::VectorXd&) {});
+  return load.rest ? load.rest(x.reshaped(n, columns)) : Eigen::MatrixXd(x.reshaped(n, columns));
 }
 
 // Integrates the dominant eigenvector v of Φ over one period with RKF45 and compares x(T) with ρv.
@@ -269,7 +275,8 @@ FloquetChecks check_monodromy(const Eigen::MatrixXd& phi, const Eigen::VectorXcd
   c.reciprocal_error = is_hamiltonian(sys) ? reciprocal_error(rho) : std::numeric_limits<double>::quiet_NaN();
   const double rtol = std::clamp(tol * 1e-2, 1e-9, 1e-6);
   // An explicit integration of a stiff (unreduced) system would take far longer than the answer.
-  const bool affordable = minimum_magnus_steps(sys) <= 8192;
+  const double integrated = load.rest ? load.varies_until / sys.period() : 1;
+  const bool affordable = minimum_magnus_steps(sys) * integrated <= 8192;
   c.residual = integrate && affordable ? dominant_residual(phi, sys, load, rtol) : std::numeric_limits<double>::quiet_NaN();
   c.monodromy_max_abs_multiplier = max_abs(rho);
   const double allowed = std::max(10 * tol, 1e-8);
@@ -496,10 +503,35 @@ FloquetResult floquet_multipliers(const PeriodicSystem& sys, const FloquetOption
                    checks, sys.period());
 }
 
+namespace {
+
+// The pulse train for the independent check: RKF45 through the contact, and the free flight after it
+// by the unloaded blade's eigenvectors, e^{A τ} = V e^{Λτ} V⁻¹ (not the Padé exponential that
+// exact_pulse_monodromy takes). Where V is ill-conditioned (near-defective modes), RKF45 integrates
+// the whole period. The impulse is a jump in the monodromy and a short rectangle here: RKF45 too.
+LoadVariation pulse_variation(const PeriodicSystem& sys, const PulseTrain& train) {
+  LoadVariation load{pulse_load_variation(sys, train), train.edges(0, sys.period()), 0, {}};
+  if (train.profile == PulseProfile::impulse || !(train.contact_time_s < sys.period())) return load;
+  const Eigen::MatrixXd A_free = sys.A0 - sys.load.at(0).real() * sys.B;  // SPEC §4, as in pulse_monodromy
+  Eigen::EigenSolver<Eigen::MatrixXd> eig(A_free, true);
+  if (eig.info() != Eigen::Success) return load;
+  const Eigen::MatrixXcd V = eig.eigenvectors();
+  const Eigen::PartialPivLU<Eigen::MatrixXcd> lu(V);
+  if (!(lu.rcond() > 1e-8)) return load;
+  const Eigen::VectorXcd growth = (eig.eigenvalues() * (sys.period() - train.contact_time_s)).array().exp();
+  load.varies_until = train.contact_time_s;
+  load.rest = [V, lu, growth](const Eigen::MatrixXd& X) -> Eigen::MatrixXd {
+    return (V * (growth.asDiagonal() * lu.solve(X.cast<cplx>()))).real();
+  };
+  return load;
+}
+
+}  // namespace
+
 FloquetResult pulse_train_multipliers(const PeriodicSystem& sys, const PulseTrain& train, const FloquetOptions& options) {
   const PulseMonodromy p = exact_pulse_monodromy(sys, train, options.tolerance);
   const Attempt attempt{p.multipliers, p.error_estimate, 0, p.steps, p.monodromy};
-  const LoadVariation load{pulse_load_variation(sys, train), train.edges(0, sys.period())};
+  const LoadVariation load = options.independent_check ? pulse_variation(sys, train) : LoadVariation{};
   return result_of(FloquetMethod::monodromy, attempt,
                    check_monodromy(p.monodromy, p.multipliers, sys, options.tolerance, options.independent_check, load),
                    sys.period());
