@@ -44,10 +44,10 @@ std::vector<Boundary> boundary_loads(const PeriodicSystem& system, double system
 
 // |ρ − b.multiplier| for the Floquet multiplier ρ of `system` closest to ±1 at the boundary point
 // (θ = b.theta_rad_s, F_max = b.peak_force_n; the system's load is at `system_peak_force_n`),
-// from the monodromy matrix integrated by RKF45 at relative tolerance `rtol`: a check that shares
-// nothing with the boundary eigenproblem. On a boundary it is 0; it grows like the square root of
-// the distance from it.
-double multiplier_gap(const PeriodicSystem& system, double system_peak_force_n, const Boundary& b, double rtol);
+// from the monodromy matrix by Magnus steps, doubled until Φ(T) settles to `tolerance` relative to
+// its largest entry: a check that shares nothing with the boundary eigenproblem. On a boundary it
+// is 0; it grows like the square root of the distance from it.
+double multiplier_gap(const PeriodicSystem& system, double system_peak_force_n, const Boundary& b, double tolerance);
 
 // Boundaries with an estimate of their whole error against the continuum model of the scene.
 struct BoundaryRequest {
@@ -100,7 +100,7 @@ struct BoundaryAnalysis {
 //   method     twice the change from k to k + 2 harmonics (or k + 2 to k + 4), plus the
 //              eigensolver's rounding
 // Then the multiplier at the (one or two) lowest-order boundaries is checked by multiplier_gap on
-// a system cut off at 200·order·θ/2π (cheap for RKF45); a failed check raises k, and at
+// a system cut off at 200·order·θ/2π (few Magnus steps a period); a failed check raises k, and at
 // max_approximation it is a std::runtime_error, never a number.
 BoundaryAnalysis boundaries_with_error_estimate(const Scene& scene, const BoundaryRequest& request);
 

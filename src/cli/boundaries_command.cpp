@@ -125,7 +125,7 @@ void print(const SceneOptions& options, const Scene& scene, const BladeModel& mo
       fmt::print("error          {} relative on {}, largest over the boundaries\n", describe_error_budget(result.total()),
                  in_load ? "F̄_max" : "θ");
       for (const BoundaryCheck& c : result.checks) {
-        fmt::print("check          θ = {:.6g} rad/s, F̄_max = {:.6g}: RKF45 monodromy{} has a multiplier {:.1e} from {} "
+        fmt::print("check          θ = {:.6g} rad/s, F̄_max = {:.6g}: Magnus monodromy{} has a multiplier {:.1e} from {} "
                    "(allowed {:.1e})\n",
                    c.boundary.theta_rad_s, c.boundary.peak_force_n / fcr,
                    c.cutoff_hz > 0 ? fmt::format(" (modes below {:.0f} Hz)", c.cutoff_hz) : "", c.gap,
