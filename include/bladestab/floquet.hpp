@@ -41,11 +41,14 @@ struct FloquetChecks {
   // the |ρ| ≥ 1 and their nearest partners. NaN with damping.
   double reciprocal_error = 0;
   // The dominant eigenpair (ρ, v) of Φ(T) checked by integrating v over one period with RKF45:
-  // ‖x(T) − ρ v‖ / (|ρ| ‖v‖). The true pulse train: RKF45 through the contact, the free flight by
-  // the unloaded blade's eigenvectors. NaN for methods that give no Φ(T) (classical Hill) and for
-  // stiff unreduced systems (more than 8192 Magnus steps over what RKF45 integrates), where it
-  // would cost minutes.
+  // the residual ‖x(T) − ρ v‖ / (|ρ| ‖v‖), and the multiplier that x(T) gives, ρ' = wᴴx(T) / wᴴv
+  // with w the left eigenvector, as |ρ' − ρ| / |ρ| (the one checked: the residual also carries
+  // errors of Φ that move no multiplier). The true pulse train: RKF45 through the contact, the
+  // free flight by the unloaded blade's eigenvectors. NaN for methods that give no Φ(T) (classical
+  // Hill) and for stiff unreduced systems (more than 8192 Magnus steps over what RKF45
+  // integrates), where it would cost minutes.
   double residual = 0;
+  double multiplier_error = 0;
   // Hill methods: max|ρ| of the monodromy on the same system, which they must agree with.
   double monodromy_max_abs_multiplier = 0;
 };

@@ -60,6 +60,7 @@ void write_checks(JsonWriter& json, const FloquetChecks& c) {
   item("determinant_error", c.determinant_error);
   item("reciprocal_error", c.reciprocal_error);
   item("rkf45_residual", c.residual);
+  item("rkf45_multiplier_error", c.multiplier_error);
   json.value("monodromy_max_abs_multiplier", c.monodromy_max_abs_multiplier).end_object();
 }
 
@@ -144,9 +145,10 @@ void print(const SceneOptions& options, const Scene& scene, const StabilityAnswe
       fmt::print("method     {}, {}\n", to_string(r.method), truncation(r, load.exact_pulse));
       fmt::print("error      {} on max|ρ|{}\n", describe_error_budget(a.budget),
                  a.tolerance_met ? "" : "  — above the tolerance: terms or reduction could not be raised further");
-      fmt::print("checks     det Φ vs Liouville {}, reciprocal pairs {}, RKF45 residual of the dominant vector {}\n\n",
+      fmt::print("checks     det Φ vs Liouville {}, reciprocal pairs {}, RKF45 on the dominant vector: multiplier {}, "
+                 "residual {}\n\n",
                  check_value(r.checks.determinant_error), check_value(r.checks.reciprocal_error),
-                 check_value(r.checks.residual));
+                 check_value(r.checks.multiplier_error), check_value(r.checks.residual));
       const double relative = error / std::max(1.0, r.max_abs_multiplier);
       fmt::print("max|ρ| = {:.{}g}   max Re λ = {:.4g} 1/s   → {}\n\n", r.max_abs_multiplier,
                  significant_digits(relative), r.max_real_exponent, a.stable ? "stable" : "UNSTABLE");
