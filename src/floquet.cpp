@@ -541,8 +541,7 @@ namespace {
 LoadVariation pulse_variation(const PeriodicSystem& sys, const PulseTrain& train) {
   LoadVariation load{pulse_load_variation(sys, train), train.edges(0, sys.period()), 0, {}};
   if (train.profile == PulseProfile::impulse || !(train.contact_time_s < sys.period())) return load;
-  const Eigen::MatrixXd A_free = sys.A0 - sys.load.at(0).real() * sys.B;  // SPEC §4, as in pulse_monodromy
-  Eigen::EigenSolver<Eigen::MatrixXd> eig(A_free, true);
+  Eigen::EigenSolver<Eigen::MatrixXd> eig(free_state_matrix(sys), true);
   if (eig.info() != Eigen::Success) return load;
   const Eigen::MatrixXcd V = eig.eigenvectors();
   const Eigen::PartialPivLU<Eigen::MatrixXcd> lu(V);

@@ -39,8 +39,7 @@ FreeFlight free_flight(const PeriodicSystem& sys, const PulseTrain& train) {
                                             "{:.12g} s", sys.period(), T));
   }
   FreeFlight f;
-  // SPEC §4: A(t) = A₀ + (F(t) − F₀) B, so the unloaded blade is A₀ − F₀ B.
-  f.A_free = sys.A0 - sys.load.at(0).real() * sys.B;
+  f.A_free = free_state_matrix(sys);
   f.flight = (f.A_free * (train.profile == PulseProfile::impulse ? T : T - tc)).exp();
   return f;
 }
@@ -58,6 +57,8 @@ Eigen::MatrixXd pulse_monodromy(const FreeFlight& f, const PeriodicSystem& sys, 
 }
 
 }  // namespace
+
+Eigen::MatrixXd free_state_matrix(const PeriodicSystem& sys) { return sys.A0 - sys.load.at(0).real() * sys.B; }
 
 Eigen::MatrixXd pulse_monodromy(const PeriodicSystem& sys, const PulseTrain& train, int steps) {
   return pulse_monodromy(free_flight(sys, train), sys, train, steps);

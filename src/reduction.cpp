@@ -51,7 +51,7 @@ ReducedSystem reduce(const BladeModel& model, double speed, const Eigen::MatrixX
   Eigen::MatrixXd V;
   const int m = spec.vectors > 0 ? spec.vectors : default_reduction_vectors;
   // A model no larger than the reduced one would be is kept whole.
-  if (spec.kind == ReductionKind::automatic && 3 * m < dofs) {
+  if (spec.kind == ReductionKind::automatic && !reduction_keeps_whole(m, dofs)) {
     // A few modes of each load level (a subset solve: the whole decomposition at every map point
     // was a tenth of a map's time).
     const UndampedModes unloaded = undamped_modes(model, speed, 0, m);

@@ -503,8 +503,9 @@ StabilityMap stability_map(const Scene& scene, const MapOptions& o, const std::f
     const bool reducible = curve_model.reduction.kind == ReductionKind::automatic;
     if (reducible && b.reduction >= std::max(b.method, b.basis)) {
       const int doubled = 2 * curve_model.reduction.vectors;
-      curve_model.reduction = 3 * doubled < model.layout.size() ? ReductionSpec{ReductionKind::automatic, doubled, 0}
-                                                                : ReductionSpec{ReductionKind::none, 0, 0};
+      curve_model.reduction = reduction_keeps_whole(doubled, model.layout.size())
+                                  ? ReductionSpec{ReductionKind::none, 0, 0}
+                                  : ReductionSpec{ReductionKind::automatic, doubled, 0};
     } else if (b.method >= b.basis && curve_model.approximation + 2 <= max_curve_approximation) {
       curve_model.approximation += 2;
     } else {
@@ -547,13 +548,13 @@ StabilityMap stability_map(const Scene& scene, const MapOptions& o, const std::f
   const auto scene_at_point = [&](double x, double fbar) {
     return theta_plane ? scene_at(scene, speed, x, fbar) : scene_at(scene, x, o.engine_order * x, fbar);
   };
-  // Where the vectors' three per load level (reduction.cpp) would span the whole Ritz model, the
-  // whole model is used (0 vectors), and its reduction part is 0. So it is for the true pulse
+  // Where the reduction would keep the whole Ritz model, the whole model is used (0 vectors), and
+  // its reduction part is 0. So it is for the true pulse
   // train, as in `stability`: it is integrated only through the contacts, and its narrow tongues
   // hang on the pulse's high harmonics, which a few vectors miss (on the paper blade's speed plane,
   // 4 vectors per level against the 24-dof model's failed the check).
   for (int vectors = window_vectors(model, scene, window);; vectors *= 2) {
-    if (scene_load.exact_pulse || 3 * vectors >= model.layout.size()) {
+    if (scene_load.exact_pulse || reduction_keeps_whole(vectors, model.layout.size())) {
       map.shading_fidelity = ShadingFidelity{0, {}, 0.0, true};
       break;
     }

@@ -28,6 +28,9 @@ struct PulseMonodromy {
   double error_estimate = 0;     // multiplier_set_distance between `steps` and steps/2 (0 for the impulse)
 };
 
+// A_free = A₀ − F₀ B, the state matrix of the blade between contacts (SPEC §4: A(t) = A₀ + (F(t) − F₀) B).
+Eigen::MatrixXd free_state_matrix(const PeriodicSystem& system);
+
 // Φ(T_p) with a fixed number of Magnus steps through the contact (ignored for the impulse).
 // The system gives A₀, B and F₀ = load[0]; its other harmonics are not used. Throws
 // std::invalid_argument if the system's period is not the train's.

@@ -33,6 +33,11 @@ struct ReducedSystem {
 // Modes per load level of the automatic reduction when the spec leaves it to the program.
 constexpr int default_reduction_vectors = 3;
 
+// Whether the automatic reduction with `vectors` modes per load level keeps a model of `dofs` whole:
+// its 3·vectors basis vectors (the modes at two load levels and their gyroscopic corrections)
+// would be as many as the model's dofs.
+constexpr bool reduction_keeps_whole(int vectors, int dofs) { return 3 * vectors >= dofs; }
+
 // `min_force_n` is the most compressive tip force of the period (≤ 0), used by `automatic`.
 ReducedSystem reduce(const BladeModel& model, double speed_rad_s, const Eigen::MatrixXd& damping,
                      double min_force_n, const ReductionSpec& spec);
