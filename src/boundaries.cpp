@@ -2,9 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <map>
 #include <stdexcept>
+
+#include <future>
 
 #include <fmt/format.h>
 #include <lapacke.h>
@@ -13,6 +16,7 @@
 #include "bladestab/floquet.hpp"
 #include "bladestab/mode_convergence.hpp"
 #include "bladestab/numerical_error.hpp"
+#include "bladestab/worker_threads.hpp"
 
 namespace bladestab {
 namespace {
@@ -236,19 +240,33 @@ std::vector<int> match(const std::vector<Boundary>& base, const std::vector<Boun
   return counterpart;
 }
 
-// The boundaries of one model of the scene, cached per approximation k.
+// The boundaries of one model of the scene, cached per approximation k. The two families are
+// independent eigenproblems of equal size: with two threads the +1 family's runs beside the −1's.
+// `solved` is called after each new k.
 class BoundarySolver {
 public:
-  BoundarySolver(PeriodicSystem system, double peak, std::optional<double> theta)
-      : system_(std::move(system)), peak_(peak), theta_(theta) {}
+  BoundarySolver(PeriodicSystem system, double peak, std::optional<double> theta, int threads,
+                 std::function<void()> solved)
+      : system_(std::move(system)), peak_(peak), theta_(theta), threads_(threads), solved_(std::move(solved)) {}
   const std::vector<Boundary>& at(int k) {
     auto it = cache_.find(k);
     if (it == cache_.end()) {
-      it = cache_.emplace(k, theta_ ? boundary_loads(system_, peak_, *theta_, k) : boundary_frequencies(system_, peak_, k))
-               .first;
+      const auto family = [this, k](int multiplier) {
+        return theta_ ? boundary_loads(system_, peak_, *theta_, k, multiplier)
+                      : boundary_frequencies(system_, peak_, k, multiplier);
+      };
+      std::future<std::vector<Boundary>> plus = std::async(beside_or_deferred(threads_), family, 1);
+      std::vector<Boundary> both = family(-1), more = plus.get();
+      both.insert(both.end(), more.begin(), more.end());
+      std::sort(both.begin(), both.end(), [this](const Boundary& a, const Boundary& b) {
+        return value_of(a, theta_.has_value()) < value_of(b, theta_.has_value());
+      });
+      it = cache_.emplace(k, std::move(both)).first;
+      if (solved_) solved_();
     }
     return it->second;
   }
+  bool has(int k) const { return cache_.count(k) > 0; }
   const PeriodicSystem& system() const { return system_; }
   double peak() const { return peak_; }
 
@@ -256,6 +274,8 @@ private:
   PeriodicSystem system_;
   double peak_;
   std::optional<double> theta_;
+  int threads_;
+  std::function<void()> solved_;
   std::map<int, std::vector<Boundary>> cache_;
 };
 
@@ -368,16 +388,32 @@ BoundaryAnalysis boundaries_with_error_estimate(const Scene& scene_in, const Bou
   const BladeModel model = assemble_model(scene);
   const double peak = scene.load.fmax_over_fcr * model.blade.critical_load();
   const LoadSeries load = load_series(scene);
-  const auto solver_for = [&](const BladeModel& m, const LoadSeries& series, double cutoff_hz) {
-    return BoundarySolver(periodic_system(m, scene, series, {ReductionKind::modal, 0, cutoff_hz}), peak, r.theta_rad_s);
+  // Progress: one step per harmonic level of a model. What remains if the current k converges, at
+  // most: its levels k, k + 2, k + 4 not yet solved (k + 4 only where a boundary first appears at
+  // k + 2) and one level of each comparison model below.
+  int done = 0, level = r.first_approximation, comparisons_left = 0;
+  const BoundarySolver* ladder = nullptr;
+  const auto report = [&] {
+    int pending = comparisons_left;
+    for (int k : {level, level + 2, level + 4}) pending += ladder == nullptr || !ladder->has(k);
+    if (r.progress) r.progress(done, done + pending);
+  };
+  const auto solver_for = [&](const BladeModel& m, const LoadSeries& series, double cutoff_hz, bool counted = true) {
+    std::function<void()> solved;
+    if (counted) solved = [&] { ++done, report(); };
+    return BoundarySolver(periodic_system(m, scene, series, {ReductionKind::modal, 0, cutoff_hz}), peak, r.theta_rad_s,
+                          r.threads, std::move(solved));
   };
   BoundarySolver solver = solver_for(model, load, r.cutoff_hz);
+  ladder = &solver;
+  comparisons_left = 1 + (solver.system().kept_modes < solver.system().all_modes) + !load.cosine_approximation;
   const double centre = in_load ? peak : load.angular_frequency;
   const std::pair<double, double> window = r.window.value_or(std::make_pair(in_load ? 0.0 : centre / 2, 2 * centre));
 
   BoundaryAnalysis result;
   result.window = window;
   for (int k = r.first_approximation;; k += 2) {
+    level = k;
     if (k + 4 > r.max_approximation) {
       throw std::runtime_error(fmt::format(
           "boundaries: not converged to the tolerance {} with up to {} harmonics per family{}", r.tolerance,
@@ -401,7 +437,7 @@ BoundaryAnalysis boundaries_with_error_estimate(const Scene& scene_in, const Bou
       const double reach_hz = check_reach * std::max(1, lowest) * e.boundary.theta_rad_s / two_pi;
       BoundaryCheck check;
       check.cutoff_hz = r.cutoff_hz > 0 ? std::min(r.cutoff_hz, reach_hz) : reach_hz;
-      BoundarySolver checker = solver_for(model, load, check.cutoff_hz);
+      BoundarySolver checker = solver_for(model, load, check.cutoff_hz, false);
       if (checker.system().kept_modes == checker.system().all_modes) check.cutoff_hz = 0;
       const std::vector<Boundary>& there = checker.at(e.approximation);
       const int j = match({e.boundary}, there, in_load)[0];  // the same boundary in the check's model
@@ -435,6 +471,7 @@ BoundaryAnalysis boundaries_with_error_estimate(const Scene& scene_in, const Bou
         if (j < 0) e.budget.unbounded.push_back(missing);
       }
     }
+    --comparisons_left;
   };
   ModelSpec richer = scene.model;
   richer.terms = reference_terms(richer.basis, richer.terms);
@@ -448,6 +485,7 @@ BoundaryAnalysis boundaries_with_error_estimate(const Scene& scene_in, const Bou
     BoundarySolver longer = solver_for(model, load_series(scene, load.relative_tail / 10, 10 * (load.harmonics() + 1)), r.cutoff_hz);
     compare(longer, 1, &ErrorBudget::load, "load: no counterpart with a longer series");
   }
+  if (r.progress) r.progress(done, done);
   return result;
 }
 

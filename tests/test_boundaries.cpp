@@ -157,6 +157,39 @@ TEST_CASE("boundaries: Mathieu's first two tongues with the automatic k", "[boun
   }
 }
 
+TEST_CASE("boundaries: the families side by side give the answer of one thread, and progress counts to its end",
+          "[boundaries][slow]") {
+  const Scene s = paper_scene({"model.terms=3"});
+  std::vector<BoundaryAnalysis> runs;
+  std::vector<std::pair<int, int>> calls;
+  for (int threads : {1, 2}) {
+    BoundaryRequest r;
+    r.threads = threads;
+    if (threads == 2) r.progress = [&calls](int done, int total) { calls.emplace_back(done, total); };
+    runs.push_back(boundaries_with_error_estimate(s, r));
+  }
+  REQUIRE(runs[0].boundaries.size() == runs[1].boundaries.size());
+  REQUIRE_FALSE(runs[0].boundaries.empty());
+  CHECK(runs[0].approximation == runs[1].approximation);
+  for (std::size_t i = 0; i < runs[0].boundaries.size(); ++i) {
+    const EstimatedBoundary &a = runs[0].boundaries[i], &b = runs[1].boundaries[i];
+    CHECK(a.boundary.theta_rad_s == b.boundary.theta_rad_s);  // the same eigenproblems: equal to the last bit
+    CHECK(a.boundary.multiplier == b.boundary.multiplier);
+    CHECK(a.boundary.order == b.boundary.order);
+    CHECK(a.budget.total() == b.budget.total());
+  }
+  // One call per harmonic level of each model: the ladder's k, k + 2 (and k + 4) up to the chosen k,
+  // and the richer basis; done counts up by one, never past the total, which ends equal to it.
+  REQUIRE(calls.size() >= 4);
+  for (std::size_t i = 0; i + 1 < calls.size(); ++i) {
+    CHECK(calls[i].first == static_cast<int>(i) + 1);
+    CHECK(calls[i].first < calls[i].second);
+  }
+  CHECK(calls.back().first == calls.back().second);
+  CHECK(calls.back().first == static_cast<int>(calls.size()) - 1);
+  CHECK(calls.back().first >= (runs[1].approximation - 2) / 2 + 3);
+}
+
 TEST_CASE("boundaries: the multiplier check tells a boundary from a point inside the region", "[boundaries][mathieu]") {
   // Mathieu scene, F̄ = 0.6: the principal (−1) tongue between the edges a₁ and b₁.
   const Scene s = paper_scene({"model.theory=euler-bernoulli", "model.terms=1", "model.axial=false", "model.basis=sine",

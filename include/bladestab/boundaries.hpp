@@ -13,6 +13,7 @@
 // regions.
 // Combination resonances (|ρ| leaving the unit circle away from ±1) are not boundaries of this
 // kind; only the Floquet multipliers show them.
+#include <functional>
 #include <optional>
 #include <utility>
 #include <vector>
@@ -65,6 +66,10 @@ struct BoundaryRequest {
   double tolerance = 1e-6;            // on the harmonics' part, relative on θ or F_max
   int first_approximation = 2;        // k to start from
   int max_approximation = 40;
+  int threads = 1;                    // the two families' eigenproblems side by side (0: one per core)
+  // progress(done, total) after each harmonic level of each model: `total` is what the answer needs
+  // if the current k converges (an upper bound), so it grows when k is raised; (done, done) at the end.
+  std::function<void(int, int)> progress;
 };
 
 struct EstimatedBoundary {

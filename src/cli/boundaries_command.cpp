@@ -21,6 +21,7 @@
 #include "json_writer.hpp"
 #include "number_options.hpp"
 #include "options.hpp"
+#include "progress.hpp"
 #include "work_limits.hpp"
 
 namespace bladestab::cli {
@@ -223,6 +224,7 @@ Command register_boundaries(CLI::App& app) {
                     "keep only the modes below this frequency (default 0: all)");
   add_integer_option(*command, "--max-order", request->max_order, 0, 2 * request->max_approximation - 3,
                      "highest order n (θ ≈ 2ω/n) reported and converged (default 4)");
+  add_threads_option(*command, request->threads);
   command->add_option("--range", *range,
                       "LO:HI, the θ window [rad/s] (F̄_max with --at-theta) reported and converged "
                       "(default θ/2:2θ of the scene; 0:2F̄_max)");
@@ -239,6 +241,7 @@ Command register_boundaries(CLI::App& app) {
       request->window = std::make_pair(window->first * unit, window->second * unit);
     }
     check_boundary_work(scene, model, *request);
+    request->progress = progress_reporter("boundaries: harmonic levels solved", options->output_format() == OutputFormat::table);
     const BoundaryAnalysis analysis = boundaries_with_error_estimate(scene, *request);
     print(*options, scene, model, *request, analysis, instability_regions(scene, *request, analysis));
   };
