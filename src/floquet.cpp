@@ -80,12 +80,39 @@ Eigen::VectorXcd eigenvalues_of(const Eigen::MatrixXd& phi) {
 // Raises q by 2 from `start` until the whole multiplier sets of two successive truncations agree
 // within tol, the Hill matrix would exceed `max_size` rows, or q passes `max_q`. Returns whether
 // the tolerance was met; `out` holds the last truncation either way.
+// Counts refinement levels for FloquetOptions::progress. plan(n): at most n more levels (and the
+// stages after them) from here.
+class LevelCounter {
+public:
+  explicit LevelCounter(const std::function<void(int, int)>& progress) : progress_(progress) {}
+  void plan(int levels) { planned_ = std::max(levels, 1); }
+  void level_done() {
+    ++done_, planned_ = std::max(planned_ - 1, 1);
+    if (progress_) progress_(done_, done_ + planned_);
+  }
+  void finished() {
+    if (progress_) progress_(done_, done_);
+  }
+
+private:
+  const std::function<void(int, int)>& progress_;
+  int done_ = 0, planned_ = 1;
+};
+
+// The harmonic levels q = start, start + 2, … that refine_harmonics may take.
+int harmonic_levels(const PeriodicSystem& sys, int start, int max_q, int max_size) {
+  int levels = 0;
+  for (int q = start; q <= max_q && sys.state_size() * (2 * q + 1) <= max_size; q += 2) ++levels;
+  return levels;
+}
+
 template <class Method>
 bool refine_harmonics(const PeriodicSystem& sys, Method method, int start, int max_q, int max_size, double tol,
-                      Attempt& out) {
+                      Attempt& out, LevelCounter& counter) {
   Eigen::VectorXcd previous = method(sys, std::max(start - 2, 1));
   for (int q = start; q <= max_q && sys.state_size() * (2 * q + 1) <= max_size; q += 2) {
     const Eigen::VectorXcd current = method(sys, q);
+    counter.level_done();
     out = {current, multiplier_set_distance(current, previous), q, 0, {}};
     if (out.error <= tol * std::max(1.0, max_abs(current))) return true;
     previous = current;
@@ -107,21 +134,31 @@ bool refine_harmonics(const PeriodicSystem& sys, Method method, int start, int m
 //    (measured: Δ_N 15× below the true error at F̄ = 12, N = 256); the next level decides.
 // Two levels that agree by chance (the first release's failure) do not pass: the level before
 // them must disagree by the ratio.
-Attempt refine_steps(const PeriodicSystem& sys, double tol) {
-  constexpr int max_steps = 1 << 17;
+constexpr int max_magnus_steps = 1 << 17;
+
+// The Magnus levels refine_steps may take: from `first` doubled up to max_magnus_steps.
+int step_levels(int first) {
+  int levels = 0;
+  for (int steps = first; steps <= max_magnus_steps; steps *= 2) ++levels;
+  return levels;
+}
+
+Attempt refine_steps(const PeriodicSystem& sys, double tol, LevelCounter& counter) {
   const int safe = minimum_magnus_steps(sys);
-  if (safe > max_steps) {
+  if (safe > max_magnus_steps) {
     throw NumericalError(fmt::format(
         "the monodromy needs more than {} Magnus steps per period for this {}-state system (its stiffest rate "
         "is {:.3g} rad/s); use the automatic reduction (model.reduction = \"auto\")",
-        max_steps, sys.state_size(), sys.modal_frequencies.maxCoeff()));
+        max_magnus_steps, sys.state_size(), sys.modal_frequencies.maxCoeff()));
   }
   const int first = std::max(8, safe / 64);
+  counter.plan(step_levels(first) + 1);  // and the checks after
   Eigen::VectorXcd previous;
   double previous_distance = std::numeric_limits<double>::infinity();
   bool overflowed_before = false;
-  for (int steps = first; steps <= max_steps; steps *= 2) {
+  for (int steps = first; steps <= max_magnus_steps; steps *= 2) {
     Eigen::MatrixXd phi = magnus_monodromy(sys, steps);
+    counter.level_done();
     if (!all_finite(phi)) {
       // From the safe count on the Magnus series converges: two overflows in a row there are growth.
       if (steps > safe && overflowed_before) {
@@ -155,7 +192,7 @@ Attempt refine_steps(const PeriodicSystem& sys, double tol) {
     previous = current;
   }
   throw NumericalError(fmt::format("the monodromy matrix did not converge to {:g} within {} Magnus steps per period",
-                                   tol, max_steps));
+                                   tol, max_magnus_steps));
 }
 
 // The system is Hamiltonian (undamped, gyroscopic at most) when Ĉ is skew-symmetric.
@@ -476,6 +513,7 @@ FloquetResult floquet_multipliers(const PeriodicSystem& sys, const FloquetOption
   constexpr int max_q = 40, max_hill_rows = 1200;
   Attempt attempt;
   FloquetChecks checks;
+  LevelCounter counter(options.progress);
   switch (options.method) {
     case FloquetMethod::hill:
     case FloquetMethod::koopman_hill: {
@@ -491,13 +529,14 @@ FloquetResult floquet_multipliers(const PeriodicSystem& sys, const FloquetOption
         }
         const Eigen::VectorXcd current = method(sys, q), coarser = method(sys, std::max(1, q - 2));
         attempt = {current, multiplier_set_distance(current, coarser), q, 0, {}};
-      } else if (!refine_harmonics(sys, method, 2, max_q, max_hill_rows, tol, attempt)) {
+      } else if (counter.plan(harmonic_levels(sys, 2, max_q, max_hill_rows) + 1),
+                 !refine_harmonics(sys, method, 2, max_q, max_hill_rows, tol, attempt, counter)) {
         throw NumericalError(fmt::format("{}: the multipliers did not settle to {:g} up to q = {} ({} rows); use "
                                          "the monodromy method", to_string(options.method), tol, attempt.harmonics,
                                          sys.state_size() * (2 * attempt.harmonics + 1)));
       }
       // The kept exponents must agree with the monodromy's (sorting can pick wrong ones).
-      const Attempt reference = refine_steps(sys, tol);
+      const Attempt reference = refine_steps(sys, tol, counter);
       checks = check_monodromy(reference.monodromy, reference.multipliers, sys, tol, false, series_variation(sys));
       const double disagreement = std::abs(max_abs(attempt.multipliers) - max_abs(reference.multipliers));
       if (disagreement > attempt.error + reference.error + tol * std::max(1.0, max_abs(reference.multipliers))) {
@@ -512,7 +551,7 @@ FloquetResult floquet_multipliers(const PeriodicSystem& sys, const FloquetOption
     }
     case FloquetMethod::monodromy:
     case FloquetMethod::automatic:
-      attempt = refine_steps(sys, tol);
+      attempt = refine_steps(sys, tol, counter);
       checks = check_monodromy(attempt.monodromy, attempt.multipliers, sys, tol, options.independent_check,
                                series_variation(sys));
       break;
@@ -528,6 +567,7 @@ FloquetResult floquet_multipliers(const PeriodicSystem& sys, const FloquetOption
       break;
     }
   }
+  counter.finished();
   return result_of(options.method == FloquetMethod::automatic ? FloquetMethod::monodromy : options.method, attempt,
                    checks, sys.period());
 }

@@ -122,12 +122,13 @@ BudgetVariants start_variants(const Scene& scene, const Fidelity& f, double tol,
   return v;
 }
 
-// Each part: factor · |ρ − ρ_variant| plus the variant's own error.
-ErrorBudget budget_of(const FloquetResult& r, BudgetVariants& v) {
-  const auto part = [&v, rho = r.max_abs_multiplier](std::size_t variant, double factor) {
+// Each part: factor · |ρ − ρ_variant| plus the variant's own error. `taken` after each variant.
+ErrorBudget budget_of(const FloquetResult& r, BudgetVariants& v, const std::function<void()>& taken) {
+  const auto part = [&](std::size_t variant, double factor) {
     if (variant == BudgetVariants::none) return 0.0;
     const VariantRho x = v.tasks->get(variant);
-    return factor * std::abs(rho - x.rho) + x.error;
+    taken();
+    return factor * std::abs(r.max_abs_multiplier - x.rho) + x.error;
   };
   ErrorBudget b;
   b.method = r.error_estimate;
@@ -159,11 +160,24 @@ StabilityAnswer analyse_stability(const Scene& scene, const StabilityRequest& re
   }
   const double tol = request.tolerance;
   StabilityAnswer a;
+  int done = 0;  // progress over the rounds: the answer's levels, then its variants
   while (true) {
     BudgetVariants variants = start_variants(scene, f, tol, request.threads);
+    const int variant_count = (variants.basis != BudgetVariants::none) + (variants.reduction != BudgetVariants::none) +
+                              (variants.load != BudgetVariants::none);
+    FloquetOptions options{request.method, request.harmonics, tol / 4, true, {}};
+    int levels = 0;
+    if (request.progress) {
+      options.progress = [&](int d, int total) { levels = d, request.progress(done + d, done + total + variant_count); };
+    }
     const PeriodicSystem sys = system_at(scene, f);
-    a.floquet = floquet_of(scene, f, sys, {request.method, request.harmonics, tol / 4, true});
-    a.budget = budget_of(a.floquet, variants);
+    a.floquet = floquet_of(scene, f, sys, options);
+    done += levels;
+    int variants_left = variant_count;
+    a.budget = budget_of(a.floquet, variants, [&] {
+      ++done, --variants_left;
+      if (request.progress) request.progress(done, done + variants_left);
+    });
     a.reduced_size = sys.kept_modes;
     a.full_size = sys.all_modes;
     a.theta_rad_s = sys.angular_frequency;
@@ -186,6 +200,7 @@ StabilityAnswer analyse_stability(const Scene& scene, const StabilityRequest& re
   a.reduction = f.reduction;
   a.load = f.load;
   a.stable = a.floquet.max_abs_multiplier <= 1 + std::max(a.budget.total(), 1e-9);
+  if (request.progress) request.progress(done, done);
   return a;
 }
 

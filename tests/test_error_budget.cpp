@@ -248,3 +248,28 @@ TEST_CASE("answers do not depend on --threads: stability's budget and campbell's
     CHECK(c[0].diagram.crossings.size() == c[1].diagram.crossings.size());
   }
 }
+
+TEST_CASE("stability's progress counts the answer's levels and its variants, and leaves the answer alone", "[budget]") {
+  const Scene scene = paper_scene({"model.terms=8"});
+  for (const FloquetMethod method : {FloquetMethod::automatic, FloquetMethod::koopman_hill}) {
+    std::vector<std::pair<int, int>> calls;
+    StabilityRequest counted{method, 0, 1e-5, 2};
+    counted.progress = [&calls](int done, int total) { calls.emplace_back(done, total); };
+    const StabilityAnswer quiet = analyse_stability(scene, {method, 0, 1e-5, 2}), loud = analyse_stability(scene, counted);
+    CHECK(quiet.floquet.max_abs_multiplier == loud.floquet.max_abs_multiplier);
+    CHECK(quiet.budget.total() == loud.budget.total());
+    // Each level of the answer's refinement (Koopman–Hill: its q, then the monodromy it is checked
+    // against) and each variant (basis, reduction) counts one; done never passes the total.
+    const int variants = 2;
+    const int levels = method == FloquetMethod::automatic ? 2 : 2 + 2;  // at least two levels per ladder
+    REQUIRE(calls.size() >= static_cast<std::size_t>(levels + variants));
+    CHECK(calls.front().first == 1);
+    for (std::size_t i = 1; i < calls.size(); ++i) {
+      CHECK(calls[i].first - calls[i - 1].first <= 1);
+      CHECK(calls[i].first >= calls[i - 1].first);
+      CHECK(calls[i].first <= calls[i].second);
+    }
+    CHECK(calls.back().first == calls.back().second);
+    CHECK(calls.back().first >= levels + variants);
+  }
+}

@@ -69,7 +69,7 @@ struct BoundaryRequest {
   int threads = 1;                    // the two families' eigenproblems side by side (0: one per core)
   // progress(done, total) after each harmonic level of each model: `total` is what the answer needs
   // if the current k converges (an upper bound), so it grows when k is raised; (done, done) at the end.
-  std::function<void(int, int)> progress;
+  std::function<void(int, int)> progress = {};
 };
 
 struct EstimatedBoundary {

@@ -11,6 +11,7 @@
 // Every result states the method, the truncation and an error estimate, and is reported only after
 // checks that do not share its failure mode (FloquetChecks); a failed check raises the fidelity or
 // throws NumericalError — never a number.
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -31,6 +32,10 @@ struct FloquetOptions {
   // Check the dominant Floquet vector by an independent RKF45 integration (FloquetChecks::residual).
   // Maps leave it to a sample of their points.
   bool independent_check = true;
+  // progress(done, total) after each refinement level (a q of the Hill methods, a Magnus step
+  // count): `total` is the most levels the refinements may still take, so it overstates; the
+  // independent check is the last step, (total, total).
+  std::function<void(int, int)> progress = {};
 };
 
 // What the result was checked against.

@@ -17,6 +17,8 @@
 //       method     step or harmonic convergence of the whole multiplier set;
 //  4. fidelity raised where the budget exceeds the tolerance (terms, vectors, steps), as far as the
 //     scene leaves it free; what was chosen is reported.
+#include <functional>
+
 #include "bladestab/error_budget.hpp"
 #include "bladestab/floquet.hpp"
 #include "bladestab/scene.hpp"
@@ -28,6 +30,9 @@ struct StabilityRequest {
   int harmonics = 0;        // Hill methods' q; 0 = raised to the tolerance
   double tolerance = 1e-6;  // on max|ρ|, relative above 1
   int threads = 0;          // the budget's variants beside the answer: at most this many at once (0: one per core)
+  // progress(done, total): the answer's refinement levels (FloquetOptions::progress) and then each
+  // budget variant as it is taken, over every fidelity round; `total` overstates; (n, n) at the end.
+  std::function<void(int, int)> progress = {};
 };
 
 struct StabilityAnswer {

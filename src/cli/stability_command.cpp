@@ -17,6 +17,7 @@
 #include "json_writer.hpp"
 #include "number_options.hpp"
 #include "options.hpp"
+#include "progress.hpp"
 #include "output_files.hpp"
 
 namespace bladestab::cli {
@@ -253,7 +254,9 @@ Command register_stability(CLI::App& app) {
                                    "pulse and has no series to export; use \"cosine\" or \"fourier\"",
                                    echoed(*export_path, 240)));
     }
-    const StabilityAnswer answer = analyse_stability(scene, {parse_method(*method), *harmonics, *tolerance, *threads});
+    const StabilityAnswer answer = analyse_stability(
+        scene, {parse_method(*method), *harmonics, *tolerance, *threads,
+                progress_reporter("stability: refinement levels", options->output_format() == OutputFormat::table)});
     if (exporting) export_matrices(*export_path, scene, answer, *tolerance);
     print(*options, scene, answer);
   };
