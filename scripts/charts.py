@@ -493,6 +493,43 @@ def _label_regions(ax, curves):
                     annotation_clip=True)
 
 
+def _combination_label(region):
+    """ "ω₁+ω₂" for a sum combination of order 1, "(ω₁+ω₂)/2" of order 2,
+    "ω₂−ω₁" / "(ω₂−ω₁)/3" for a difference combination."""
+    i = "ω" + str(region["mode_i"]).translate(SUBSCRIPT_DIGITS)
+    j = "ω" + str(region["mode_j"]).translate(SUBSCRIPT_DIGITS)
+    pair = f"{i}+{j}" if region["kind"] == "sum" else f"{j}−{i}"
+    return pair if region["order"] == 1 else f"({pair})/{region['order']}"
+
+
+def _label_combinations(ax, data):
+    """Each combination region named in the JSON, at its tip (its lowest
+    sample), in the contour's colour."""
+    regions = _optional_list(data, "combination_regions")
+    for k, region in enumerate(regions):
+        if not isinstance(region, dict):
+            raise InputError(f"combination_regions[{k}] is not an object")
+        for key in ("mode_i", "mode_j", "order"):
+            _integer(_require(region, key, int), f"combination_regions[{k}].{key}")
+        if region.get("kind") not in ("sum", "difference"):
+            raise InputError(f"combination_regions[{k}].kind is not 'sum' or 'difference'")
+        _number(region.get("x"), f"combination_regions[{k}].x")
+        _number(region.get("y"), f"combination_regions[{k}].y")
+    if len(regions) > MAX_REGION_LABELS:
+        return
+    x_lo, x_hi = ax.get_xlim()
+    for region in regions:
+        x, y = region["x"], region["y"]
+        right = x > x_lo + 0.85 * (x_hi - x_lo)
+        ax.annotate(_combination_label(region), xy=(x, y),
+                    xytext=(-3 if right else 3, -2), textcoords="offset points",
+                    ha="right" if right else "left", va="top", fontsize=7,
+                    color="0.15", style="italic", zorder=5,
+                    bbox=dict(boxstyle="round,pad=0.1", fc="white", ec="none",
+                              alpha=0.75),
+                    annotation_clip=True)
+
+
 def _map_markers(data):
     markers = []
     for i, marker in enumerate(_optional_list(data, "markers")):
@@ -679,6 +716,7 @@ def chart_map(data, ax):
         ax.plot([cx[i] for i in isolated], [cy[i] for i in isolated],
                 linestyle="none", marker=".", color=color, zorder=3)
     _label_regions(ax, curves)
+    _label_combinations(ax, data)
     for multiplier in sorted(legend_lines):
         line = legend_lines[multiplier]
         handles.append(Line2D(

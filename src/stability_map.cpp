@@ -20,6 +20,7 @@
 #include "bladestab/numerical_error.hpp"
 #include "bladestab/mode_convergence.hpp"
 #include "bladestab/reduction.hpp"
+#include "bladestab/undamped_modes.hpp"
 #include "bladestab/worker_threads.hpp"
 
 namespace bladestab {
@@ -49,6 +50,69 @@ FloquetResult point_multipliers(const BladeModel& model, const Scene& scene, int
     return pulse_train_multipliers(sys, pulse_train(scene), {FloquetMethod::automatic, 0, tolerance, false});
   }
   return floquet_multipliers(sys, {FloquetMethod::automatic, 0, tolerance, false});
+}
+
+// The combination resonance an unstable point lies in, where its dominant multiplier is complex
+// (away from ±1 by more than 0.05 rad): named from the Ritz model's lowest frequencies under the
+// point's mean load (combination_resonance.hpp; the gyroscopic coupling left out of them).
+std::optional<Combination> combination_at(const BladeModel& model, const Scene& at, const FloquetResult& r,
+                                          double stable_below, int max_order) {
+  if (!(r.max_abs_multiplier > stable_below)) return std::nullopt;
+  const double phase = std::abs(std::arg(r.multipliers(0)));
+  if (phase < 0.05 || phase > pi - 0.05) return std::nullopt;
+  const LoadSeries load = load_series(at);
+  const double mean = load.coefficients.at(0).real();  // F₀, kept for the exact pulse too
+  const int count = std::min(8, static_cast<int>(model.M.rows()));
+  const UndampedModes modes = undamped_modes(model, at.operation.speed_rad_s, mean, count, false);
+  if (!(modes.omega2(0) > 0)) return std::nullopt;  // buckled under the mean load: no frequencies to name
+  return nearest_combination(modes.omega2.head(count).cwiseSqrt(), load.angular_frequency, r.multipliers(0), max_order);
+}
+
+// A shading sample named by its combination, at lattice point (i, j).
+struct NamedSample {
+  int i = 0, j = 0;
+  Combination combination;
+  MapSample sample;
+};
+
+// The combination regions of the shading: samples of one combination within one coarse grid cell
+// (reach_i × reach_j lattice steps) of each other form an island, reported at its sample of
+// largest max|ρ|. Islands of fewer than 3 samples are left out: a refined island's edge alone
+// holds more, and a stray point's name is not confirmed by any neighbour.
+std::vector<CombinationRegion> combination_islands(const std::vector<NamedSample>& named, int reach_i, int reach_j) {
+  std::vector<std::size_t> parent(named.size());
+  for (std::size_t a = 0; a < named.size(); ++a) parent[a] = a;
+  const std::function<std::size_t(std::size_t)> root = [&](std::size_t a) {
+    return parent[a] == a ? a : parent[a] = root(parent[a]);
+  };
+  const auto same = [](const Combination& a, const Combination& b) {
+    return a.mode_i == b.mode_i && a.mode_j == b.mode_j && a.sum == b.sum && a.order == b.order;
+  };
+  for (std::size_t a = 0; a < named.size(); ++a) {
+    for (std::size_t b = a + 1; b < named.size(); ++b) {
+      if (same(named[a].combination, named[b].combination) && std::abs(named[a].i - named[b].i) <= reach_i &&
+          std::abs(named[a].j - named[b].j) <= reach_j) {
+        parent[root(a)] = root(b);
+      }
+    }
+  }
+  std::map<std::size_t, CombinationRegion> islands;
+  for (std::size_t a = 0; a < named.size(); ++a) {
+    CombinationRegion& r = islands[root(a)];
+    const MapSample& p = named[a].sample;
+    if (r.samples++ == 0 || p.max_abs_multiplier > r.max_abs_multiplier) {
+      r.combination = named[a].combination;
+      r.x = p.x, r.fbar = p.fbar, r.max_abs_multiplier = p.max_abs_multiplier;
+    }
+  }
+  std::vector<CombinationRegion> out;
+  for (const auto& [first, r] : islands) {
+    if (r.samples >= 3) out.push_back(r);
+  }
+  std::sort(out.begin(), out.end(), [](const CombinationRegion& a, const CombinationRegion& b) {
+    return std::tie(a.x, a.fbar) < std::tie(b.x, b.fbar);
+  });
+  return out;
 }
 
 // One model of the boundary equations: a Ritz model, its reduction, K harmonics per family.
@@ -612,15 +676,20 @@ StabilityMap stability_map(const Scene& scene, const MapOptions& o, const std::f
 
   std::mutex error_lock;
   double max_error = 0;
-  // max|ρ| at the lattice points `points`, shared among the threads.
+  const double stable_below = 1 + o.tolerance;
+  std::vector<NamedSample> named_samples;
+  // max|ρ| at the lattice points `points`, shared among the threads; an unstable point whose
+  // dominant multiplier is complex is named by the combination it lies in.
   const auto evaluate = [&](const std::vector<std::pair<int, int>>& points) {
     std::vector<double> result(points.size(), std::nan(""));
+    std::vector<std::optional<Combination>> named(points.size());
     parallel_for(points.size(), o.threads, [&](std::size_t k) {
       const double x = lattice_x(points[k].first), fbar = lattice_y(points[k].second);
       if (x > 0) {
         const Scene at = scene_at_point(x, fbar);
         const FloquetResult r = point_multipliers(model, at, map.shading_fidelity.reduction_vectors, o.tolerance);
         result[k] = r.max_abs_multiplier;
+        named[k] = combination_at(model, at, r, stable_below, window.max_order);
         std::lock_guard<std::mutex> lock(error_lock);
         max_error = std::max(max_error, r.error_estimate / std::max(1.0, r.max_abs_multiplier));
       }
@@ -629,6 +698,7 @@ StabilityMap stability_map(const Scene& scene, const MapOptions& o, const std::f
     for (std::size_t k = 0; k < points.size(); ++k) {
       value[key(points[k].first, points[k].second)] = result[k];
       map.samples.push_back({lattice_x(points[k].first), lattice_y(points[k].second), result[k]});
+      if (named[k]) named_samples.push_back({points[k].first, points[k].second, *named[k], map.samples.back()});
     }
   };
   // Points not yet evaluated among the corners of `cells`.
@@ -643,7 +713,6 @@ StabilityMap stability_map(const Scene& scene, const MapOptions& o, const std::f
     }
     return points;
   };
-  const double stable_below = 1 + o.tolerance;
   // Whether a cell's corners disagree about stability (NaN counts as its own verdict).
   const auto mixed = [&](const MapCell& c) {
     const double v[4] = {value[key(c.i, c.j)], value[key(c.i + c.width, c.j)], value[key(c.i, c.j + c.height)],
@@ -708,6 +777,7 @@ StabilityMap stability_map(const Scene& scene, const MapOptions& o, const std::f
     for (int i = 0; i < nx; ++i) map.max_abs_multiplier(j, i) = value[key(i << kx, j << ky)];
   }
   map.max_error_estimate = max_error;
+  map.combinations = combination_islands(named_samples, 1 << kx, 1 << ky);
   return map;
 }
 

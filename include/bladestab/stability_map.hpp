@@ -13,6 +13,7 @@
 
 #include <Eigen/Dense>
 
+#include "bladestab/combination_resonance.hpp"
 #include "bladestab/error_budget.hpp"
 #include "bladestab/floquet.hpp"
 #include "bladestab/scene.hpp"
@@ -84,6 +85,17 @@ struct MapPoint {
   std::optional<Nearest> nearest_boundary;
 };
 
+// A combination resonance found in the shading (combination_resonance.hpp): the samples whose
+// unstable multiplier is complex, each named by the modes it couples at its own mean load, and
+// grouped into islands (samples of one combination within a grid cell of each other); one entry
+// per island of at least 3 samples, at its sample of largest max|ρ|, where it is labelled (an
+// island need not touch the F̄ = 0 axis, as the principal tongues do).
+struct CombinationRegion {
+  Combination combination;
+  double x = 0, fbar = 0, max_abs_multiplier = 0;  // the sample of largest max|ρ|
+  int samples = 0;                                 // the island's samples
+};
+
 struct StabilityMap {
   MapPlane plane = MapPlane::theta_fmax;
   std::vector<double> grid_x, grid_fbar;
@@ -93,6 +105,7 @@ struct StabilityMap {
   std::vector<MapCell> cells;          // the refinement's leaves, covering the window
   double max_error_estimate = 0;
   std::vector<BoundaryCurve> curves;
+  std::vector<CombinationRegion> combinations;  // by x, then F̄
   CurveFidelity curve_fidelity;
   ShadingFidelity shading_fidelity;
   std::optional<MapPoint> scene_point;  // where the window holds the scene's (θ or Ω, F̄)

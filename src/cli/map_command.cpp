@@ -107,6 +107,21 @@ std::string map_json(const Scene& scene, const BladeModel& model, const MapOptio
         .numbers("y", c.fbar)
         .end_object();
   }
+  json.end_array().begin_array("combination_regions");
+  for (const CombinationRegion& r : m.combinations) {
+    const Combination& c = r.combination;
+    json.begin_object()
+        .value("mode_i", c.mode_i)
+        .value("mode_j", c.mode_j)
+        .value("kind", c.sum ? "sum" : "difference")
+        .value("order", c.order)
+        .value("detuning", c.detuning)
+        .value("x", r.x)
+        .value("y", r.fbar)
+        .value("max_abs_multiplier", r.max_abs_multiplier)
+        .value("samples", r.samples)
+        .end_object();
+  }
   json.end_array();
   if (m.scene_point) {  // where the scene itself sits
     const MapPoint& p = *m.scene_point;
