@@ -3,11 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <future>
 #include <limits>
 #include <map>
 #include <stdexcept>
-
-#include <future>
 
 #include <fmt/format.h>
 #include <lapacke.h>

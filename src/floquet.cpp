@@ -77,9 +77,6 @@ Eigen::VectorXcd eigenvalues_of(const Eigen::MatrixXd& phi) {
   return sorted_by_magnitude(eig.eigenvalues());
 }
 
-// Raises q by 2 from `start` until the whole multiplier sets of two successive truncations agree
-// within tol, the Hill matrix would exceed `max_size` rows, or q passes `max_q`. Returns whether
-// the tolerance was met; `out` holds the last truncation either way.
 // Counts refinement levels for FloquetOptions::progress. plan(n): at most n more levels (and the
 // stages after them) from here.
 class LevelCounter {
@@ -106,11 +103,16 @@ int harmonic_levels(const PeriodicSystem& sys, int start, int max_q, int max_siz
   return levels;
 }
 
+// Raises q by 2 from `start` until the whole multiplier sets of two successive truncations agree
+// within tol, the Hill matrix would exceed `max_size` rows, or q passes `max_q`. Returns whether
+// the tolerance was met; `out` holds the last truncation either way.
 template <class Method>
 bool refine_harmonics(const PeriodicSystem& sys, Method method, int start, int max_q, int max_size, double tol,
                       Attempt& out, LevelCounter& counter) {
+  const int levels = harmonic_levels(sys, start, max_q, max_size);
+  counter.plan(levels + 1);  // and the monodromy the result is checked against
   Eigen::VectorXcd previous = method(sys, std::max(start - 2, 1));
-  for (int q = start; q <= max_q && sys.state_size() * (2 * q + 1) <= max_size; q += 2) {
+  for (int level = 0, q = start; level < levels; ++level, q += 2) {
     const Eigen::VectorXcd current = method(sys, q);
     counter.level_done();
     out = {current, multiplier_set_distance(current, previous), q, 0, {}};
@@ -118,6 +120,15 @@ bool refine_harmonics(const PeriodicSystem& sys, Method method, int start, int m
     previous = current;
   }
   return false;
+}
+
+constexpr int max_magnus_steps = 1 << 17;
+
+// The Magnus levels refine_steps may take: from `first` doubled up to max_magnus_steps.
+int step_levels(int first) {
+  int levels = 0;
+  for (int steps = first; steps <= max_magnus_steps; steps *= 2) ++levels;
+  return levels;
 }
 
 // Doubles the Magnus steps until the multiplier sets of successive counts show convergence.
@@ -134,15 +145,6 @@ bool refine_harmonics(const PeriodicSystem& sys, Method method, int start, int m
 //    (measured: Δ_N 15× below the true error at F̄ = 12, N = 256); the next level decides.
 // Two levels that agree by chance (the first release's failure) do not pass: the level before
 // them must disagree by the ratio.
-constexpr int max_magnus_steps = 1 << 17;
-
-// The Magnus levels refine_steps may take: from `first` doubled up to max_magnus_steps.
-int step_levels(int first) {
-  int levels = 0;
-  for (int steps = first; steps <= max_magnus_steps; steps *= 2) ++levels;
-  return levels;
-}
-
 Attempt refine_steps(const PeriodicSystem& sys, double tol, LevelCounter& counter) {
   const int safe = minimum_magnus_steps(sys);
   if (safe > max_magnus_steps) {
@@ -529,8 +531,7 @@ FloquetResult floquet_multipliers(const PeriodicSystem& sys, const FloquetOption
         }
         const Eigen::VectorXcd current = method(sys, q), coarser = method(sys, std::max(1, q - 2));
         attempt = {current, multiplier_set_distance(current, coarser), q, 0, {}};
-      } else if (counter.plan(harmonic_levels(sys, 2, max_q, max_hill_rows) + 1),
-                 !refine_harmonics(sys, method, 2, max_q, max_hill_rows, tol, attempt, counter)) {
+      } else if (!refine_harmonics(sys, method, 2, max_q, max_hill_rows, tol, attempt, counter)) {
         throw NumericalError(fmt::format("{}: the multipliers did not settle to {:g} up to q = {} ({} rows); use "
                                          "the monodromy method", to_string(options.method), tol, attempt.harmonics,
                                          sys.state_size() * (2 * attempt.harmonics + 1)));
