@@ -115,6 +115,29 @@ std::vector<CombinationRegion> combination_islands(const std::vector<NamedSample
   return out;
 }
 
+// A boundary curve as traced, with each point's mode and order (the dominant mode and harmonic of
+// its eigenvector). At high loads the modes mix and the name changes along one continuous curve
+// (measured on the paper blade at Ω = 300 rad/s: the −1 pair of mode 2, order 7 at θ ≈ 307 rad/s,
+// F̄ = 8.9 is "mode 1, order 3" from F̄ = 9; the 2ω₁ boundary near θ = 500, F̄ = 5.5 becomes
+// "mode 2, order 5"), so a curve is followed through its names, not cut where they change.
+struct TracedCurve {
+  int multiplier = -1;
+  std::vector<double> x, fbar;  // θ or Ω, F̄
+  std::vector<int> mode, order;
+
+  void push(double at_x, double at_fbar, int m, int n) {
+    x.push_back(at_x), fbar.push_back(at_fbar), mode.push_back(m), order.push_back(n);
+  }
+  void reverse() {
+    std::reverse(x.begin(), x.end()), std::reverse(fbar.begin(), fbar.end());
+    std::reverse(mode.begin(), mode.end()), std::reverse(order.begin(), order.end());
+  }
+  void extend(const TracedCurve& c) {
+    x.insert(x.end(), c.x.begin(), c.x.end()), fbar.insert(fbar.end(), c.fbar.begin(), c.fbar.end());
+    mode.insert(mode.end(), c.mode.begin(), c.mode.end()), order.insert(order.end(), c.order.begin(), c.order.end());
+  }
+};
+
 // One model of the boundary equations: a Ritz model, its reduction, K harmonics per family.
 struct CurveModel {
   const BladeModel* model = nullptr;
@@ -155,13 +178,25 @@ struct CurveWindow {
   }
   // The boundary's coordinate along the line: θ, or F̄.
   double along(const Boundary& b) const { return theta_plane ? b.theta_rad_s : b.peak_force_n / fcr; }
-  // In the window, of order ≤ max_order, and of an order the K-th approximation resolves: beyond
-  // the first, its highest harmonics (2K − 1 and 2K) are dropped as truncation artefacts
-  // (boundaries.hpp), so orders up to 2K − 2. The checks against K + 2 compare these orders only.
-  bool shown(const Boundary& b, int approximation) const {
+  // In the window and of an order the K-th approximation resolves: beyond the first, its highest
+  // harmonics (2K − 1 and 2K) are dropped as truncation artefacts (boundaries.hpp), so orders up
+  // to 2K − 2. Curves are followed through all of them (TracedCurve).
+  bool traced(const Boundary& b, int approximation) const {
     const double v = along(b);
     const int resolved = approximation == 1 ? 2 : 2 * approximation - 2;
-    return b.order <= std::min(max_order, resolved) && (theta_plane ? v >= x_lo && v <= x_hi : v <= y_hi);
+    return b.order <= std::min(resolved, 2 * max_order) && (theta_plane ? v >= x_lo && v <= x_hi : v <= y_hi);
+  }
+  // Traced and of order ≤ max_order: the points a curve is drawn from (drawn_curves), and the
+  // ones the checks against K + 2 compare.
+  bool shown(const Boundary& b, int approximation) const {
+    return b.order <= max_order && traced(b, approximation);
+  }
+  bool drawn(const TracedCurve& c) const {
+    return std::any_of(c.order.begin(), c.order.end(), [&](int n) { return n <= max_order; });
+  }
+  // The point in the plot's unit square: θ or Ω over the window, F̄ over its top.
+  Eigen::Vector2d unit(double x, double fbar) const {
+    return {(x - x_lo) / (x_hi > x_lo ? x_hi - x_lo : 1.0), fbar / (y_hi > 0 ? y_hi : 1.0)};
   }
   // The measure of the curves' error; a window of one line has none, and its value serves.
   double span() const {
@@ -181,7 +216,7 @@ double curve_distance(const CurveWindow& w, int approximation, const std::vector
   double worst = 0;
   for (const auto& [base, other] : {std::pair{&a, &b}, std::pair{&b, &a}}) {
     for (const Boundary& x : *base) {
-      if (!w.shown(x, approximation)) continue;
+      if (!w.traced(x, approximation)) continue;
       double nearest = w.span();
       for (const Boundary& y : *other) {
         if (y.multiplier == x.multiplier) nearest = std::min(nearest, std::abs(w.along(x) - w.along(y)));
@@ -214,8 +249,12 @@ void parallel_for(std::size_t count, int threads, const std::function<void(std::
 }
 
 // Joins boundary points into curves by continuity: at each new parameter value, every curve
-// still open takes the nearest point of its family (±1) within `max_jump`; points left over
-// start new curves and curves left over end. The curve's mode and order are its first point's.
+// still open takes the point of its family (±1) nearest to where it is heading (its last two
+// points extrapolated, or its last point), within `max_jump` of its last point and, once it has
+// two, within max(max_jump / 5, 2 |last step|) of the heading: a curve does not leap to another's
+// point where its own ends (measured on the paper blade below θ = 160 rad/s, where the tongues of
+// orders 5 to 8 crowd, jumps of 40 rad/s along a line of F̄). Points left over start new curves
+// and curves left over end.
 class Tracer {
 public:
   explicit Tracer(double max_jump) : max_jump_(max_jump) {}
@@ -226,39 +265,41 @@ public:
     std::vector<bool> used(found.size(), false);
     for (Open& open : open_) {
       if (open.index != index - 1) continue;
+      const bool straight = !std::isnan(open.previous);
+      const double heading = straight ? 2 * open.value - open.previous : open.value;
+      const double turn = std::max(max_jump_ / 5, 2 * std::abs(open.value - open.previous));
       int best = -1;
       for (std::size_t k = 0; k < found.size(); ++k) {
         if (used[k] || found[k].multiplier != curves_[open.curve].multiplier) continue;
-        const double jump = std::abs(value[k] - open.value);
-        if (jump <= max_jump_ && (best < 0 || jump < std::abs(value[best] - open.value))) best = static_cast<int>(k);
+        if (std::abs(value[k] - open.value) > max_jump_ || (straight && std::abs(value[k] - heading) > turn)) continue;
+        if (best < 0 || std::abs(value[k] - heading) < std::abs(value[best] - heading)) best = static_cast<int>(k);
       }
       if (best < 0) continue;
       used[best] = true;
-      append(open.curve, value[best], x_fixed, x_is_value);
-      open = {open.curve, index, value[best]};
+      append(open.curve, found[best], value[best], x_fixed, x_is_value);
+      open = {open.curve, index, value[best], open.value};
     }
     for (std::size_t k = 0; k < found.size(); ++k) {
       if (used[k]) continue;
-      curves_.push_back({found[k].multiplier, found[k].mode, found[k].order, {}, {}});
-      append(static_cast<int>(curves_.size()) - 1, value[k], x_fixed, x_is_value);
-      open_.push_back({static_cast<int>(curves_.size()) - 1, index, value[k]});
+      curves_.push_back({found[k].multiplier, {}, {}, {}, {}});
+      append(static_cast<int>(curves_.size()) - 1, found[k], value[k], x_fixed, x_is_value);
+      open_.push_back({static_cast<int>(curves_.size()) - 1, index, value[k], std::nan("")});
     }
   }
 
-  const std::vector<BoundaryCurve>& curves() const { return curves_; }
+  const std::vector<TracedCurve>& curves() const { return curves_; }
 
 private:
   struct Open {
     int curve, index;
-    double value;
+    double value, previous;  // along the line, on the last line and the one before (NaN: none)
   };
-  void append(int curve, double value, double fixed, bool x_is_value) {
-    curves_[curve].x.push_back(x_is_value ? value : fixed);
-    curves_[curve].fbar.push_back(x_is_value ? fixed : value);
+  void append(int curve, const Boundary& b, double value, double fixed, bool x_is_value) {
+    curves_[curve].push(x_is_value ? value : fixed, x_is_value ? fixed : value, b.mode, b.order);
   }
   double max_jump_;
   std::vector<Open> open_;
-  std::vector<BoundaryCurve> curves_;
+  std::vector<TracedCurve> curves_;
 };
 
 // Closes curves through their turning points. Where two curves of one family start (or end) on the
@@ -269,31 +310,35 @@ private:
 // curves are joined through the pair there (two boundary points a hair apart) if it did coalesce (its gap shrank tenfold: near a fold
 // it shrinks like the square root of the distance, 64× over the bisection), or if it was closer
 // than the boundary equations resolve a pair (a thin tongue, drawn as one line). In the θ plane a
-// pair on the lowest line above F̄ = 0 belongs to a region that opens on the axis, where its tip
-// is known: θ = 2ω_m/n for mode m and order n (the boundary equations at F = 0). Curves that leave
-// the window, and pairs that belong to two regions, stay open.
+// pair on the lowest line above F̄ = 0 belongs to a region that opens on the axis, at its tip
+// θ ≈ 2ω_m/n for mode m and order n: the boundary equations' pair at F̄ = tip_load times that
+// line's, one point to the eye (not 2ω_m/n from the undamped, non-gyroscopic frequencies, which on
+// the paper blade at 300 rad/s put 2ω₁ at 855.52 rad/s, where the pair meets at 854.93). Curves that leave
+// the window, and pairs that belong to two regions, stay open. Only pairs with a curve that is
+// `drawn` are closed: the others' bisections would be spent on curves never shown.
 constexpr int fold_bisections = 12;
+constexpr double tip_load = 1e-12;
 
 struct CurveEnd {
   int curve;
   bool at_start;
 };
 
-std::vector<BoundaryCurve> close_folds(std::vector<BoundaryCurve> curves, const std::vector<double>& trace,
-                                       bool theta_plane, double max_jump, int threads,
-                                       const std::function<std::vector<double>(int multiplier, double line)>& along,
-                                       const Eigen::VectorXd& unloaded_omega) {
+std::vector<TracedCurve> close_folds(std::vector<TracedCurve> curves, const std::vector<double>& trace,
+                                      bool theta_plane, double max_jump, int threads,
+                                      const std::function<std::vector<double>(int multiplier, double line)>& along,
+                                      const std::function<bool(const TracedCurve&)>& drawn) {
   // Points as (line value, value along the line): F̄ and θ in the θ plane, Ω and F̄ in the speed plane.
-  const auto line_value = [&](const BoundaryCurve& c, std::size_t k) { return theta_plane ? c.fbar[k] : c.x[k]; };
-  const auto value = [&](const BoundaryCurve& c, std::size_t k) { return theta_plane ? c.x[k] : c.fbar[k]; };
-  const auto end_index = [](const BoundaryCurve& c, bool start) { return start ? std::size_t{0} : c.x.size() - 1; };
-  const auto line_of = [&](const BoundaryCurve& c, bool start) {
+  const auto line_value = [&](const TracedCurve& c, std::size_t k) { return theta_plane ? c.fbar[k] : c.x[k]; };
+  const auto value = [&](const TracedCurve& c, std::size_t k) { return theta_plane ? c.x[k] : c.fbar[k]; };
+  const auto end_index = [](const TracedCurve& c, bool start) { return start ? std::size_t{0} : c.x.size() - 1; };
+  const auto line_of = [&](const TracedCurve& c, bool start) {
     return static_cast<int>(std::find(trace.begin(), trace.end(), line_value(c, end_index(c, start))) - trace.begin());
   };
   // Whether a boundary of the family lies strictly between u and v on the line.
   const auto between = [&](int multiplier, double line, double u, double v) {
     const double lo = std::min(u, v), hi = std::max(u, v);
-    for (const BoundaryCurve& c : curves) {
+    for (const TracedCurve& c : curves) {
       if (c.multiplier != multiplier) continue;
       for (std::size_t k = 0; k < c.x.size(); ++k) {
         if (line_value(c, k) == line && value(c, k) > lo && value(c, k) < hi) return true;
@@ -318,7 +363,8 @@ std::vector<BoundaryCurve> close_folds(std::vector<BoundaryCurve> curves, const 
         const double gap = std::abs(value(curves[b], end_index(curves[b], start)) - va);
         if (gap < best_gap) best_gap = gap, best = static_cast<int>(b);
       }
-      if (best < 0 || between(curves[a].multiplier, trace[line], va, value(curves[best], end_index(curves[best], start)))) {
+      if (best < 0 || between(curves[a].multiplier, trace[line], va, value(curves[best], end_index(curves[best], start))) ||
+          !(drawn(curves[a]) || drawn(curves[best]))) {
         continue;
       }
       taken[a] = taken[best] = true;
@@ -337,11 +383,15 @@ std::vector<BoundaryCurve> close_folds(std::vector<BoundaryCurve> curves, const 
     double va = value(curves[a.curve], end_index(curves[a.curve], a.at_start));
     double vb = value(curves[b.curve], end_index(curves[b.curve], b.at_start));
     const double first_gap = std::abs(va - vb);
-    const BoundaryCurve &ca = curves[a.curve], &cb = curves[b.curve];
-    if (theta_plane && outside <= 0 && ca.mode == cb.mode && ca.order == cb.order && ca.order > 0 &&
-        ca.mode <= unloaded_omega.size()) {
-      const double tip = 2 * unloaded_omega(ca.mode - 1) / ca.order;
-      if (std::abs(tip - 0.5 * (va + vb)) <= std::max(max_jump, first_gap)) joins[f] = Join{{0.0, tip}};
+    const TracedCurve &ca = curves[a.curve], &cb = curves[b.curve];
+    const std::size_t ea = end_index(ca, a.at_start), eb = end_index(cb, b.at_start);
+    if (theta_plane && outside <= 0 && ca.mode[ea] == cb.mode[eb] && ca.order[ea] == cb.order[eb] && ca.order[ea] > 0) {
+      const double reach = std::max(max_jump, first_gap), middle = 0.5 * (va + vb);
+      double tip = std::numeric_limits<double>::quiet_NaN();
+      for (double x : along(ca.multiplier, tip_load * inside)) {
+        if (std::abs(x - middle) <= reach && (std::isnan(tip) || std::abs(x - middle) < std::abs(tip - middle))) tip = x;
+      }
+      if (std::isfinite(tip)) joins[f] = Join{{0.0, tip}};
       return;
     }
     if (first_gap <= 1e-3 * max_jump) {  // one line to the eye: joined where the pair ends
@@ -371,27 +421,102 @@ std::vector<BoundaryCurve> close_folds(std::vector<BoundaryCurve> curves, const 
   });
   // Joined: a reversed, the turning point, b (or the mirror for ends).
   std::vector<bool> merged(curves.size(), false);
-  std::vector<BoundaryCurve> out;
+  std::vector<TracedCurve> out;
   for (std::size_t f = 0; f < folds.size(); ++f) {
     if (!joins[f]) continue;
     const auto& [a, b] = folds[f];
-    BoundaryCurve first = curves[a.curve], second = curves[b.curve];
-    if (a.at_start) {
-      std::reverse(first.x.begin(), first.x.end()), std::reverse(first.fbar.begin(), first.fbar.end());
-    } else {
-      std::reverse(second.x.begin(), second.x.end()), std::reverse(second.fbar.begin(), second.fbar.end());
+    TracedCurve first = curves[a.curve], second = curves[b.curve];
+    (a.at_start ? first : second).reverse();
+    for (const auto& [line, along_line] : *joins[f]) {  // named as the point they continue
+      first.push(theta_plane ? along_line : line, theta_plane ? line : along_line, first.mode.back(), first.order.back());
     }
-    for (const auto& [line, along_line] : *joins[f]) {
-      first.x.push_back(theta_plane ? along_line : line);
-      first.fbar.push_back(theta_plane ? line : along_line);
-    }
-    first.x.insert(first.x.end(), second.x.begin(), second.x.end());
-    first.fbar.insert(first.fbar.end(), second.fbar.begin(), second.fbar.end());
+    first.extend(second);
     out.push_back(std::move(first));
     merged[a.curve] = merged[b.curve] = true;
   }
   for (std::size_t c = 0; c < curves.size(); ++c) {
     if (!merged[c]) out.push_back(std::move(curves[c]));
+  }
+  return out;
+}
+
+// Whether segments pq and rs of the plane cross (touching counts).
+bool segments_cross(const Eigen::Vector2d& p, const Eigen::Vector2d& q, const Eigen::Vector2d& r, const Eigen::Vector2d& s) {
+  const auto side = [](const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
+    const double cross = (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
+    return (cross > 0) - (cross < 0);
+  };
+  return side(p, q, r) * side(p, q, s) <= 0 && side(r, s, p) * side(r, s, q) <= 0;
+}
+
+// Distance from point p to segment rs.
+double distance_to_segment(const Eigen::Vector2d& p, const Eigen::Vector2d& r, const Eigen::Vector2d& s) {
+  const Eigen::Vector2d d = s - r;
+  const double t = d.squaredNorm() > 0 ? std::clamp((p - r).dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
+  return (p - (r + t * d)).norm();
+}
+
+// Within this distance in the plot's unit square a continued curve has met another: a hair on
+// the chart, and a pair of boundaries closer than this is one line to the eye.
+constexpr double meeting_distance = 5e-3;
+
+// The parts of the traced curves that are drawn. A curve's cores are its runs of points of order
+// ≤ max_order; from each end of a core it is continued along its own traced points, whatever their
+// names, until it meets another curve (crosses any traced curve, or comes within meeting_distance
+// of another's core), reaches its next core, or its traced points end (it leaves the plot, or
+// passes into orders beyond those traced). Continued to its end instead, a thin high-order tongue
+// would cross the whole plot (measured on the paper blade at Ω = 300 rad/s: the −1 pair of mode 2,
+// order 7, "order 3" above F̄ = 9, would run down to θ = 426 rad/s on the axis). Each point drawn
+// is a traced boundary point: the meeting point is the first beyond, not interpolated. A drawn
+// part is named as at its lowest load, where a region opens on the F̄ = 0 axis at θ ≈ 2ω/n.
+std::vector<BoundaryCurve> drawn_curves(const std::vector<TracedCurve>& curves, const CurveWindow& w) {
+  std::vector<std::vector<Eigen::Vector2d>> unit(curves.size());
+  for (std::size_t c = 0; c < curves.size(); ++c) {
+    for (std::size_t k = 0; k < curves[c].x.size(); ++k) unit[c].push_back(w.unit(curves[c].x[k], curves[c].fbar[k]));
+  }
+  const auto in_core = [&](std::size_t c, std::size_t k) { return curves[c].order[k] <= w.max_order; };
+  // Whether the step from point k to point next of curve c meets another curve.
+  const auto meets = [&](std::size_t c, std::size_t k, std::size_t next) {
+    const Eigen::Vector2d &p = unit[c][k], &q = unit[c][next];
+    for (std::size_t o = 0; o < curves.size(); ++o) {
+      if (o == c) continue;
+      for (std::size_t j = 0; j < unit[o].size(); ++j) {
+        const bool segment = j + 1 < unit[o].size();
+        if (segment && segments_cross(p, q, unit[o][j], unit[o][j + 1])) return true;
+        if (!in_core(o, j)) continue;
+        const bool core_segment = segment && in_core(o, j + 1);
+        if (distance_to_segment(q, unit[o][j], unit[o][core_segment ? j + 1 : j]) <= meeting_distance) return true;
+      }
+    }
+    return false;
+  };
+  std::vector<BoundaryCurve> out;
+  for (std::size_t c = 0; c < curves.size(); ++c) {
+    const TracedCurve& t = curves[c];
+    const std::size_t n = t.x.size();
+    // Each core continued both ways, as index ranges [first, last]; overlapping ones are one part.
+    std::vector<std::pair<std::size_t, std::size_t>> parts;
+    for (std::size_t k = 0; k < n; ++k) {
+      if (!in_core(c, k) || (k > 0 && in_core(c, k - 1))) continue;
+      std::size_t first = k, last = k;
+      while (last + 1 < n && in_core(c, last + 1)) ++last;
+      while (first > 0 && !in_core(c, first - 1) && !meets(c, first, first - 1)) --first;
+      if (first > 0 && !in_core(c, first - 1)) --first;  // the point that meets
+      while (last + 1 < n && !in_core(c, last + 1) && !meets(c, last, last + 1)) ++last;
+      if (last + 1 < n && !in_core(c, last + 1)) ++last;
+      if (!parts.empty() && first <= parts.back().second + 1) {
+        parts.back().second = last;
+      } else {
+        parts.emplace_back(first, last);
+      }
+    }
+    for (const auto& [first, last] : parts) {
+      if (last == first) continue;
+      const std::size_t name = std::min_element(t.fbar.begin() + first, t.fbar.begin() + last + 1) - t.fbar.begin();
+      out.push_back({t.multiplier, t.mode[name], t.order[name],
+                     std::vector<double>(t.x.begin() + first, t.x.begin() + last + 1),
+                     std::vector<double>(t.fbar.begin() + first, t.fbar.begin() + last + 1)});
+    }
   }
   return out;
 }
@@ -583,30 +708,24 @@ StabilityMap stability_map(const Scene& scene, const MapOptions& o, const std::f
   });
   Tracer tracer(0.05 * window.span());
   for (std::size_t i = 0; i < o.trace.size(); ++i) {
-    std::vector<Boundary> shown;
+    std::vector<Boundary> traced;
     std::vector<double> along;
     for (const Boundary& b : found[i]) {
-      if (window.shown(b, curve_model.approximation)) shown.push_back(b), along.push_back(window.along(b));
+      if (window.traced(b, curve_model.approximation)) traced.push_back(b), along.push_back(window.along(b));
     }
-    tracer.add(static_cast<int>(i), shown, along, o.trace[i], theta_plane);
+    tracer.add(static_cast<int>(i), traced, along, o.trace[i], theta_plane);
   }
-  // The unloaded frequencies of the curves' model at the map's speed: the tips of the θ plane's
-  // regions on the F̄ = 0 axis (the speed plane has no such line).
-  const Eigen::VectorXd unloaded_omega =
-      theta_plane ? periodic_system(model, scene_at(scene, speed, two_pi, 0), load_series(scene_at(scene, speed, two_pi, 0)),
-                                    curve_model.reduction)
-                        .modal_frequencies
-                  : Eigen::VectorXd();
-  map.curves = close_folds(tracer.curves(), o.trace, theta_plane, 0.05 * window.span(), o.threads,
-                           [&](int multiplier, double line) {
-    std::vector<double> values;
-    for (const Boundary& b : cache.on_line(window, scene, curve_model, line, multiplier)) {
-      if (window.shown(b, curve_model.approximation)) values.push_back(window.along(b));
-    }
-    return values;
-  }, unloaded_omega);
-  map.curves.erase(std::remove_if(map.curves.begin(), map.curves.end(), [](const BoundaryCurve& c) { return c.x.size() < 2; }),
-                   map.curves.end());
+  const std::vector<TracedCurve> closed = close_folds(
+      tracer.curves(), o.trace, theta_plane, 0.05 * window.span(), o.threads,
+      [&](int multiplier, double line) {
+        std::vector<double> values;
+        for (const Boundary& b : cache.on_line(window, scene, curve_model, line, multiplier)) {
+          if (window.traced(b, curve_model.approximation)) values.push_back(window.along(b));
+        }
+        return values;
+      },
+      [&](const TracedCurve& c) { return window.drawn(c); });
+  map.curves = drawn_curves(closed, window);
 
   // The shading's reduction: the window's vectors, doubled while the check on the grid fails.
   const auto scene_at_point = [&](double x, double fbar) {

@@ -20,18 +20,31 @@ std::vector<double> linspace(double a, double b, int n) {
   return v;
 }
 
-// The multiplier closest to `target` (±1) at a map point.
-double distance_to_multiplier(const Scene& base, double speed, double theta, double fbar, double target) {
+// A θ-plane map's options: shading grid in θ and F̄, trace lines in F̄.
+MapOptions theta_plane(std::vector<double> theta, std::vector<double> fbar, std::vector<double> trace) {
+  MapOptions o;
+  o.plane = MapPlane::theta_fmax;
+  o.grid_x = std::move(theta);
+  o.grid_fbar = std::move(fbar);
+  o.trace = std::move(trace);
+  return o;
+}
+
+// The Floquet multipliers at a map point, by the whole model's monodromy (4096 Magnus steps).
+Eigen::VectorXcd multipliers_at(const Scene& base, double speed, double theta, double fbar) {
   Scene s = base;
   s.operation.speed_rad_s = speed;
   s.load.pulse_frequency_hz = theta / (2 * 3.14159265358979323846);
   s.load.fmax_over_fcr = fbar;
   const BladeModel m = assemble_model(s);
   const PeriodicSystem sys = periodic_system(m, speed, damping_matrix(m, s.damping, speed), load_series(s));
-  const Eigen::VectorXcd rho = monodromy_multipliers(sys, 4096);
-  double best = 1e300;
-  for (Eigen::Index k = 0; k < rho.size(); ++k) best = std::min(best, std::abs(rho(k) - target));
-  return best;
+  return monodromy_multipliers(sys, 4096);
+}
+
+// The multiplier closest to `target` (±1) at a map point.
+double distance_to_multiplier(const Scene& base, double speed, double theta, double fbar, double target) {
+  const Eigen::VectorXcd rho = multipliers_at(base, speed, theta, fbar);
+  return (rho.array() - target).abs().minCoeff();
 }
 }  // namespace
 
@@ -103,11 +116,7 @@ TEST_CASE("theta-plane map of Mathieu's equation: unstable inside the principal 
 TEST_CASE("refined shading: leaves tile the lattice, agree at their corners, and samples match the whole model",
           "[map][refinement][slow]") {
   const Scene scene = paper_scene({"model.terms=4"});
-  MapOptions o;
-  o.plane = MapPlane::theta_fmax;
-  o.grid_x = linspace(150, 650, 6);
-  o.grid_fbar = linspace(0, 6, 4);
-  o.trace = linspace(0, 6, 7);
+  MapOptions o = theta_plane(linspace(150, 650, 6), linspace(0, 6, 4), linspace(0, 6, 7));
   o.tolerance = 1e-7;
   o.resolution_x = 40;
   o.resolution_y = 24;
@@ -227,4 +236,138 @@ TEST_CASE("50 random refined samples of the theta-plane map match the whole mode
 TEST_CASE("50 random refined samples of the speed-plane map match the whole model's monodromy to the map's tolerance",
           "[map][samples][slow]") {
   check_random_samples(false);
+}
+
+namespace {
+// Distance in the plot's unit square from point p to the polyline (xs, ys).
+double distance_to_polyline(double px, double py, const std::vector<double>& xs, const std::vector<double>& ys) {
+  double best = 1e300;
+  for (std::size_t j = 0; j < xs.size(); ++j) {
+    const std::size_t k = std::min(j + 1, xs.size() - 1);
+    const double dx = xs[k] - xs[j], dy = ys[k] - ys[j], length2 = dx * dx + dy * dy;
+    const double t = length2 > 0 ? std::clamp(((px - xs[j]) * dx + (py - ys[j]) * dy) / length2, 0.0, 1.0) : 0.0;
+    best = std::min(best, std::hypot(px - xs[j] - t * dx, py - ys[j] - t * dy));
+  }
+  return best;
+}
+}  // namespace
+
+TEST_CASE("theta-plane map of the paper blade: curves followed through their changes of name end on the plot's edge "
+          "or at another curve, and their points are boundaries of the whole model",
+          "[map][slow]") {
+  // The main job's θ plane. At high loads a boundary's name (its eigenvector's dominant mode and
+  // harmonic) changes along it: the −1 pair of mode 2, order 7 near θ = 307 rad/s is "mode 1,
+  // order 3" from F̄ = 9, and the 2ω₁ boundary near θ = 500 rad/s, F̄ = 5.5 becomes "mode 2,
+  // order 5". Cut where the name left the orders drawn, 9 curve ends hung in mid-air.
+  const Scene scene = paper_scene({"model.terms=8"});
+  MapOptions o = theta_plane(linspace(100, 1000, 3), linspace(0, 10, 3), linspace(0, 10, 101));
+  o.resolution_x = 2;  // the curves are under test: the shading stays on the 3 × 3 grid
+  o.resolution_y = 2;
+  const StabilityMap map = stability_map(scene, o);
+  REQUIRE(map.curve_fidelity.tolerance_met);
+  REQUIRE(map.curves.size() >= 10);
+  const auto ux = [](double x) { return (x - 100) / 900; };
+  const auto uy = [](double fbar) { return fbar / 10; };
+  int ends_on_edge = 0, ends_at_curve = 0;
+  for (std::size_t c = 0; c < map.curves.size(); ++c) {
+    const BoundaryCurve& curve = map.curves[c];
+    REQUIRE(curve.x.size() >= 2);
+    for (const bool at_start : {true, false}) {
+      const std::size_t e = at_start ? 0 : curve.x.size() - 1, before = at_start ? 1 : curve.x.size() - 2;
+      const double px = ux(curve.x[e]), py = uy(curve.fbar[e]);
+      // On the edge: the last trace line inside the window is at most one step (5 % of the θ
+      // span for a steep curve, 0.1 in F̄) from it.
+      const bool edge = py <= 0.0 || py >= 1.0 || px <= 0.05 || px >= 0.95;
+      // At another curve: it crossed one in its last step, or came within the meeting distance
+      // (5e-3 of the unit square), so the end is within that step's length (+ 5e-3) of it.
+      const double step = std::hypot(px - ux(curve.x[before]), py - uy(curve.fbar[before]));
+      double nearest = 1e300;
+      for (std::size_t other = 0; other < map.curves.size(); ++other) {
+        if (other == c) continue;
+        std::vector<double> xs, ys;
+        for (double x : map.curves[other].x) xs.push_back(ux(x));
+        for (double f : map.curves[other].fbar) ys.push_back(uy(f));
+        nearest = std::min(nearest, distance_to_polyline(px, py, xs, ys));
+      }
+      INFO("curve ρ = " << curve.multiplier << " (mode " << curve.mode << ", order " << curve.order << ") ends at θ = "
+                        << curve.x[e] << ", F̄ = " << curve.fbar[e] << "; nearest other curve " << nearest
+                        << ", last step " << step);
+      CHECK((edge || nearest <= step + 5e-3));
+      ends_on_edge += edge;
+      ends_at_curve += !edge;
+    }
+  }
+  CHECK(ends_on_edge >= 10);
+  CHECK(ends_at_curve >= 2);
+  // The curve through the change of name near θ = 307 rad/s: drawn across F̄ = 9 (both its
+  // names), not from F̄ = 9 up only.
+  bool across = false;
+  for (const BoundaryCurve& c : map.curves) {
+    bool below = false, above = false;
+    for (std::size_t k = 0; k < c.x.size(); ++k) {
+      if (c.multiplier == -1 && std::abs(c.x[k] - 307) < 6) {
+        below = below || c.fbar[k] < 8.95;
+        above = above || c.fbar[k] > 9.05;
+      }
+    }
+    across = across || (below && above);
+  }
+  CHECK(across);
+  // Every point drawn, of whatever name, is a boundary of the whole Ritz model (no reduction) at
+  // 12 harmonics within the error the map states for its curves, on 4 lines of F̄. And each
+  // reference boundary is one by monodromy: across it a pair of multipliers leaves the unit
+  // circle along the real axis at ±1, so the count of real multipliers of its sign (exactly real
+  // in the real Schur form) differs by two between 0.05 rad/s below and above it (or 0.3 of the
+  // way to the next boundary of its family, inside a thin tongue), where the monodromy can tell
+  // (max|ρ| ≤ 10). The gap to ±1 at the boundary itself is no test here: the two multipliers meet
+  // there in a Jordan block, so a boundary 1e-5 rad/s off (converged in the harmonics to 0.01
+  // rad/s) already has its multiplier 3e-3 from +1.
+  const double allowed = 900 * map.curve_fidelity.budget.total() + 1e-6 * 900;
+  int checked = 0, sides_checked = 0;
+  for (const double line : {2.0, 4.3, 6.0, 9.0}) {
+    Scene at = scene;
+    at.load.fmax_over_fcr = line;
+    at.load.pulse_frequency_hz = 1;  // θ is the unknown
+    const BladeModel model = assemble_model(at);
+    const LoadSeries load = load_series(at);
+    const PeriodicSystem whole = periodic_system(model, at, load);
+    const double peak = -load.minimum();
+    const std::vector<Boundary> reference = boundary_frequencies(whole, peak, 12);
+    for (const BoundaryCurve& c : map.curves) {
+      for (std::size_t k = 0; k < c.x.size(); ++k) {
+        if (std::abs(c.fbar[k] - line) > 1e-9) continue;
+        const Boundary* nearest = nullptr;
+        for (const Boundary& b : reference) {
+          if (b.multiplier == c.multiplier &&
+              (!nearest || std::abs(b.theta_rad_s - c.x[k]) < std::abs(nearest->theta_rad_s - c.x[k]))) {
+            nearest = &b;
+          }
+        }
+        REQUIRE(nearest != nullptr);
+        INFO("ρ = " << c.multiplier << " at θ = " << c.x[k] << ", F̄ = " << line << "; whole model's nearest "
+                    << nearest->theta_rad_s);
+        CHECK(std::abs(nearest->theta_rad_s - c.x[k]) <= allowed);
+        ++checked;
+        // The step to each side: within the region, whose other edge may be a hair away (thin tongues).
+        double h = 0.05;
+        for (const Boundary& b : reference) {
+          if (&b != nearest && b.multiplier == c.multiplier) h = std::min(h, 0.3 * std::abs(b.theta_rad_s - nearest->theta_rad_s));
+        }
+        int real[2];
+        bool tells = true;
+        for (int side = 0; side < 2; ++side) {
+          const Eigen::VectorXcd rho =
+              multipliers_at(scene, scene.operation.speed_rad_s, nearest->theta_rad_s + (side ? h : -h), line);
+          tells = tells && rho.cwiseAbs().maxCoeff() <= 10;
+          real[side] = static_cast<int>((rho.array().imag() == 0 && rho.array().real() * c.multiplier > 0).count());
+        }
+        if (!tells) continue;
+        INFO("real multipliers of its sign below and above: " << real[0] << ", " << real[1]);
+        CHECK(std::abs(real[0] - real[1]) == 2);
+        ++sides_checked;
+      }
+    }
+  }
+  CHECK(checked >= 40);
+  CHECK(sides_checked >= 20);
 }

@@ -28,7 +28,7 @@ struct MapOptions {
   std::vector<double> trace;              // curve parameter: F̄ values (θ plane) or Ω values (speed plane)
   int engine_order = 1;                   // speed plane: θ = k Ω
   int approximation = 4;                  // harmonics per family in the boundary equations (at least)
-  int max_order = 4;                      // boundary curves of orders n ≤ max_order (θ ≈ 2ω/n)
+  int max_order = 4;                      // boundary curves drawn from orders n ≤ max_order (θ ≈ 2ω/n); traced to 2·max_order
   double tolerance = 1e-3;                // on max|ρ| of the shading and on the curves (CurveFidelity)
   int resolution_x = 400, resolution_y = 200;  // effective cells of the refined shading (at least)
   int threads = 0;  // worker threads (0: one per core)
@@ -46,6 +46,9 @@ struct MapCell {
   double max_abs_multiplier = 0;
 };
 
+// A drawn boundary curve: a part of order ≤ max_order continued, through its changes of name,
+// to where it meets another curve or leaves the plot (stability_map.cpp, drawn_curves). Named by
+// its lowest-load point's dominant mode and order (θ ≈ 2ω_mode/order there).
 struct BoundaryCurve {
   int multiplier = -1, mode = 0, order = 0;
   std::vector<double> x, fbar;  // θ or Ω, F̄
