@@ -598,7 +598,7 @@ LoadVariation pulse_variation(const PeriodicSystem& sys, const PulseTrain& train
 }  // namespace
 
 FloquetResult pulse_train_multipliers(const PeriodicSystem& sys, const PulseTrain& train, const FloquetOptions& options) {
-  const PulseMonodromy p = exact_pulse_monodromy(sys, train, options.tolerance);
+  const PulseMonodromy p = exact_pulse_monodromy(sys, train, options.tolerance, options.progress);
   const Attempt attempt{p.multipliers, p.error_estimate, 0, p.steps, p.monodromy};
   const LoadVariation load = options.independent_check ? pulse_variation(sys, train) : LoadVariation{};
   return result_of(FloquetMethod::monodromy, attempt,

@@ -64,7 +64,8 @@ Eigen::MatrixXd pulse_monodromy(const PeriodicSystem& sys, const PulseTrain& tra
   return pulse_monodromy(free_flight(sys, train), sys, train, steps);
 }
 
-PulseMonodromy exact_pulse_monodromy(const PeriodicSystem& sys, const PulseTrain& train, double tolerance) {
+PulseMonodromy exact_pulse_monodromy(const PeriodicSystem& sys, const PulseTrain& train, double tolerance,
+                                     const std::function<void(int, int)>& progress) {
   if (!(tolerance > 0)) throw std::invalid_argument(fmt::format("exact_pulse_monodromy: tolerance {} must be > 0", tolerance));
   PulseMonodromy result;
   const FreeFlight flight = free_flight(sys, train);
@@ -82,6 +83,10 @@ PulseMonodromy exact_pulse_monodromy(const PeriodicSystem& sys, const PulseTrain
     const int first_steps = std::max(2, 1 << static_cast<int>(std::ceil(std::log2(std::max(1.0, contact_steps / 32)))));
     Eigen::VectorXcd previous = sorted_multipliers(pulse_monodromy(flight, sys, train, first_steps));
     double previous_distance = std::numeric_limits<double>::infinity();
+    // The levels done and the most the ladder can take: log2(max_steps / first_steps) + 1.
+    const int most = static_cast<int>(std::lround(std::log2(static_cast<double>(max_steps) / first_steps))) + 1;
+    int done = 1;
+    if (progress) progress(done, most);
     for (int steps = 2 * first_steps;; steps *= 2) {
       if (steps > max_steps) {
         throw NumericalError(fmt::format("the exact pulse monodromy did not converge to {:g} within {} steps",
@@ -91,12 +96,14 @@ PulseMonodromy exact_pulse_monodromy(const PeriodicSystem& sys, const PulseTrain
       result.multipliers = sorted_multipliers(result.monodromy);
       result.steps = steps;
       result.error_estimate = multiplier_set_distance(result.multipliers, previous);
+      if (progress) progress(++done, most);
       const double scale = std::max(1.0, result.multipliers.cwiseAbs().maxCoeff());
       const bool contracting = 4 * result.error_estimate <= previous_distance || steps >= contact_steps;
       if (std::isfinite(result.error_estimate) && result.error_estimate <= tolerance * scale && contracting) break;
       previous = result.multipliers;
       previous_distance = result.error_estimate;
     }
+    if (progress) progress(done, done);
   }
   return result;
 }

@@ -250,8 +250,13 @@ TEST_CASE("answers do not depend on --threads: stability's budget and campbell's
 }
 
 TEST_CASE("stability's progress counts the answer's levels and its variants, and leaves the answer alone", "[budget]") {
-  const Scene scene = paper_scene({"model.terms=8"});
-  for (const FloquetMethod method : {FloquetMethod::automatic, FloquetMethod::koopman_hill}) {
+  // The cosine approximation by the automatic method and by Koopman–Hill, and the true pulse train
+  // (its contact's step ladder).
+  for (const auto& [approximation, method] : {std::pair{"cosine", FloquetMethod::automatic},
+                                              std::pair{"cosine", FloquetMethod::koopman_hill},
+                                              std::pair{"exact", FloquetMethod::automatic}}) {
+    const Scene scene = paper_scene({"model.terms=8", std::string("load.approximation=") + approximation});
+    INFO("load.approximation = " << approximation);
     std::vector<std::pair<int, int>> calls;
     StabilityRequest counted{method, 0, 1e-5, 2};
     counted.progress = [&calls](int done, int total) { calls.emplace_back(done, total); };

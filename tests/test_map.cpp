@@ -258,7 +258,7 @@ TEST_CASE("theta-plane map of the paper blade: curves followed through their cha
   // The main job's θ plane. At high loads a boundary's name (its eigenvector's dominant mode and
   // harmonic) changes along it: the −1 pair of mode 2, order 7 near θ = 307 rad/s is "mode 1,
   // order 3" from F̄ = 9, and the 2ω₁ boundary near θ = 500 rad/s, F̄ = 5.5 becomes "mode 2,
-  // order 5". Cut where the name left the orders drawn, 9 curve ends hung in mid-air.
+  // order 5". Cut where the name left the orders drawn, 5 curve ends hung in mid-air.
   const Scene scene = paper_scene({"model.terms=8"});
   MapOptions o = theta_plane(linspace(100, 1000, 3), linspace(0, 10, 3), linspace(0, 10, 101));
   o.resolution_x = 2;  // the curves are under test: the shading stays on the 3 × 3 grid

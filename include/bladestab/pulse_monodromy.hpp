@@ -38,8 +38,10 @@ Eigen::MatrixXd pulse_monodromy(const PeriodicSystem& system, const PulseTrain& 
 
 // Φ(T_p) with the contact's steps doubled until two successive counts give multipliers within
 // `tolerance` > 0, relative above max|ρ| = 1 (multiplier_set_distance). Throws NumericalError if
-// 2^16 steps do not reach it.
-PulseMonodromy exact_pulse_monodromy(const PeriodicSystem& system, const PulseTrain& train, double tolerance);
+// 2^16 steps do not reach it. progress(done, total) after each step count of the ladder (total:
+// the most it can take, then done at its end).
+PulseMonodromy exact_pulse_monodromy(const PeriodicSystem& system, const PulseTrain& train, double tolerance,
+                                     const std::function<void(int, int)>& progress = {});
 
 // F(t) − F₀ of the true train, the load variation that multiplies B.
 std::function<double(double)> pulse_load_variation(const PeriodicSystem& system, const PulseTrain& train);
