@@ -483,14 +483,21 @@ def _label_regions(ax, curves):
     for (multiplier, mode, order), (y, x) in sorted(tips.items()):
         if not (x_lo <= x <= x_hi and y_lo <= y <= y_hi):
             continue
-        right = x > x_lo + 0.85 * (x_hi - x_lo)  # keep labels near the right edge inside
-        ax.annotate(_region_label(mode, order), xy=(x, y),
-                    xytext=(-3 if right else 3, 2), textcoords="offset points",
-                    ha="right" if right else "left", va="bottom", fontsize=7,
-                    color=MAP_FAMILIES[multiplier][1], zorder=5,
-                    bbox=dict(boxstyle="round,pad=0.1", fc="white", ec="none",
-                              alpha=0.75),
-                    annotation_clip=True)
+        _annotate_point(ax, _region_label(mode, order), x, y, above=True,
+                        color=MAP_FAMILIES[multiplier][1])
+
+
+def _annotate_point(ax, text, x, y, above, **style):
+    """A small label on a white box beside (x, y): above or below it, and to
+    its left near the plot's right edge so that it stays inside."""
+    x_lo, x_hi = ax.get_xlim()
+    right = x > x_lo + 0.85 * (x_hi - x_lo)
+    ax.annotate(text, xy=(x, y),
+                xytext=(-3 if right else 3, 2 if above else -2), textcoords="offset points",
+                ha="right" if right else "left", va="bottom" if above else "top",
+                fontsize=7, zorder=5,
+                bbox=dict(boxstyle="round,pad=0.1", fc="white", ec="none", alpha=0.75),
+                annotation_clip=True, **style)
 
 
 def _combination_label(region):
@@ -503,8 +510,8 @@ def _combination_label(region):
 
 
 def _label_combinations(ax, data):
-    """Each combination region named in the JSON, at its tip (its lowest
-    sample), in the contour's colour."""
+    """Each combination region named in the JSON, at its sample of largest
+    max|rho|, in italic dark grey."""
     regions = _optional_list(data, "combination_regions")
     for k, region in enumerate(regions):
         if not isinstance(region, dict):
@@ -517,17 +524,9 @@ def _label_combinations(ax, data):
         _number(region.get("y"), f"combination_regions[{k}].y")
     if len(regions) > MAX_REGION_LABELS:
         return
-    x_lo, x_hi = ax.get_xlim()
     for region in regions:
-        x, y = region["x"], region["y"]
-        right = x > x_lo + 0.85 * (x_hi - x_lo)
-        ax.annotate(_combination_label(region), xy=(x, y),
-                    xytext=(-3 if right else 3, -2), textcoords="offset points",
-                    ha="right" if right else "left", va="top", fontsize=7,
-                    color="0.15", style="italic", zorder=5,
-                    bbox=dict(boxstyle="round,pad=0.1", fc="white", ec="none",
-                              alpha=0.75),
-                    annotation_clip=True)
+        _annotate_point(ax, _combination_label(region), region["x"], region["y"],
+                        above=False, color="0.15", style="italic")
 
 
 def _map_markers(data):

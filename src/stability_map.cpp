@@ -178,19 +178,16 @@ struct CurveWindow {
   }
   // The boundary's coordinate along the line: θ, or F̄.
   double along(const Boundary& b) const { return theta_plane ? b.theta_rad_s : b.peak_force_n / fcr; }
-  // In the window and of an order the K-th approximation resolves: beyond the first, its highest
-  // harmonics (2K − 1 and 2K) are dropped as truncation artefacts (boundaries.hpp), so orders up
-  // to 2K − 2. Curves are followed through all of them (TracedCurve).
+  // In the window, of order ≤ 2·max_order, and of an order the K-th approximation resolves:
+  // beyond the first, its highest harmonics (2K − 1 and 2K) are dropped as truncation artefacts
+  // (boundaries.hpp), so orders up to 2K − 2. Curves are followed through all of them
+  // (TracedCurve), and the checks against K + 2 compare all of them.
   bool traced(const Boundary& b, int approximation) const {
     const double v = along(b);
     const int resolved = approximation == 1 ? 2 : 2 * approximation - 2;
     return b.order <= std::min(resolved, 2 * max_order) && (theta_plane ? v >= x_lo && v <= x_hi : v <= y_hi);
   }
-  // Traced and of order ≤ max_order: the points a curve is drawn from (drawn_curves), and the
-  // ones the checks against K + 2 compare.
-  bool shown(const Boundary& b, int approximation) const {
-    return b.order <= max_order && traced(b, approximation);
-  }
+  // Whether a traced curve has a point of order ≤ max_order, where a drawn part starts (drawn_curves).
   bool drawn(const TracedCurve& c) const {
     return std::any_of(c.order.begin(), c.order.end(), [&](int n) { return n <= max_order; });
   }
