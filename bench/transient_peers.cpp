@@ -36,13 +36,13 @@
 #include <nvector/nvector_serial.h>
 #include <sundials/sundials_context.h>
 
-#include "blas_threads.hpp"
-#include "bladestab/damping.hpp"
-#include "bladestab/model.hpp"
-#include "bladestab/periodic_load.hpp"
-#include "bladestab/rkf45.hpp"
-#include "bladestab/scene.hpp"
-#include "bladestab/transient.hpp"
+#include "support/blas_threads.hpp"
+#include "bladestab/blade/damping.hpp"
+#include "bladestab/blade/model.hpp"
+#include "bladestab/stability/periodic_load.hpp"
+#include "bladestab/ltp/rkf45.hpp"
+#include "bladestab/scene/scene.hpp"
+#include "bladestab/transient/transient.hpp"
 
 namespace {
 

@@ -7,10 +7,10 @@
 #include <cmath>
 #include <functional>
 
-#include "bladestab/boundaries.hpp"
-#include "bladestab/damping.hpp"
-#include "bladestab/instability_regions.hpp"
-#include "bladestab/stability_analysis.hpp"
+#include "bladestab/stability/boundaries.hpp"
+#include "bladestab/blade/damping.hpp"
+#include "bladestab/stability/instability_regions.hpp"
+#include "bladestab/stability/stability_analysis.hpp"
 #include "reference/mathieu.hpp"
 #include "support/scenes.hpp"
 

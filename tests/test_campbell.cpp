@@ -10,10 +10,10 @@
 
 #include <boost/math/tools/toms748_solve.hpp>
 
-#include "bladestab/campbell.hpp"
-#include "bladestab/damping.hpp"
-#include "bladestab/input_error.hpp"
-#include "bladestab/mode_convergence.hpp"
+#include "bladestab/modal/campbell.hpp"
+#include "bladestab/blade/damping.hpp"
+#include "bladestab/base/input_error.hpp"
+#include "bladestab/modal/mode_convergence.hpp"
 #include "support/scenes.hpp"
 
 using namespace bladestab;

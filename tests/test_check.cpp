@@ -10,11 +10,11 @@
 
 #include <catch2/catch.hpp>
 
-#include "bladestab/damping.hpp"
-#include "bladestab/model.hpp"
-#include "bladestab/modes.hpp"
-#include "bladestab/requirements_check.hpp"
-#include "bladestab/stability_analysis.hpp"
+#include "bladestab/blade/damping.hpp"
+#include "bladestab/blade/model.hpp"
+#include "bladestab/modal/modes.hpp"
+#include "bladestab/stability/requirements_check.hpp"
+#include "bladestab/stability/stability_analysis.hpp"
 #include "support/json.hpp"
 #include "support/run_cli.hpp"
 

@@ -7,11 +7,11 @@
 #include <cmath>
 #include <vector>
 
-#include "bladestab/combination_resonance.hpp"
-#include "bladestab/floquet.hpp"
-#include "bladestab/periodic_system.hpp"
-#include "bladestab/stability_map.hpp"
-#include "bladestab/undamped_modes.hpp"
+#include "bladestab/stability/combination_resonance.hpp"
+#include "bladestab/ltp/floquet.hpp"
+#include "bladestab/stability/periodic_system.hpp"
+#include "bladestab/stability/stability_map.hpp"
+#include "bladestab/blade/undamped_modes.hpp"
 #include "support/scenes.hpp"
 
 using namespace bladestab;

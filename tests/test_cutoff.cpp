@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "bladestab/boundaries.hpp"
-#include "bladestab/floquet.hpp"
+#include "bladestab/stability/boundaries.hpp"
+#include "bladestab/ltp/floquet.hpp"
 #include "support/json.hpp"
 #include "support/run_cli.hpp"
 #include "support/scenes.hpp"

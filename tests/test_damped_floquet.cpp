@@ -21,7 +21,7 @@
 #include <tuple>
 #include <vector>
 
-#include "bladestab/floquet.hpp"
+#include "bladestab/ltp/floquet.hpp"
 #include "reference/first_order_modes.hpp"
 #include "reference/mathieu.hpp"
 #include "reference/odeint_monodromy.hpp"

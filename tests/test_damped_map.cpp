@@ -9,12 +9,12 @@
 
 #include <boost/numeric/odeint.hpp>
 
-#include "bladestab/boundaries.hpp"
-#include "bladestab/damping.hpp"
-#include "bladestab/floquet.hpp"
-#include "bladestab/periodic_load.hpp"
-#include "bladestab/periodic_system.hpp"
-#include "bladestab/stability_map.hpp"
+#include "bladestab/stability/boundaries.hpp"
+#include "bladestab/blade/damping.hpp"
+#include "bladestab/ltp/floquet.hpp"
+#include "bladestab/stability/periodic_load.hpp"
+#include "bladestab/stability/periodic_system.hpp"
+#include "bladestab/stability/stability_map.hpp"
 #include "support/scenes.hpp"
 
 using namespace bladestab;

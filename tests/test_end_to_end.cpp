@@ -16,8 +16,8 @@
 
 #include <sys/wait.h>
 
-#include "bladestab/floquet.hpp"
-#include "bladestab/transient.hpp"
+#include "bladestab/ltp/floquet.hpp"
+#include "bladestab/transient/transient.hpp"
 #include "reference/first_order_modes.hpp"
 #include "reference/odeint_monodromy.hpp"
 #include "support/json.hpp"

@@ -21,11 +21,11 @@
 #include <string>
 #include <vector>
 
-#include "bladestab/campbell.hpp"
-#include "bladestab/floquet.hpp"
-#include "bladestab/numerical_error.hpp"
-#include "bladestab/periodic_system.hpp"
-#include "bladestab/stability_analysis.hpp"
+#include "bladestab/modal/campbell.hpp"
+#include "bladestab/ltp/floquet.hpp"
+#include "bladestab/base/numerical_error.hpp"
+#include "bladestab/stability/periodic_system.hpp"
+#include "bladestab/stability/stability_analysis.hpp"
 #include "support/scenes.hpp"
 
 using namespace bladestab;

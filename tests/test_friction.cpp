@@ -6,7 +6,7 @@
 #include <cmath>
 #include <vector>
 
-#include "bladestab/transient.hpp"
+#include "bladestab/transient/transient.hpp"
 #include "reference/blade_transient.hpp"
 #include "reference/pulse_profiles.hpp"
 #include "support/scenes.hpp"

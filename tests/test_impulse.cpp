@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "bladestab/transient.hpp"
+#include "bladestab/transient/transient.hpp"
 #include "reference/first_order_modes.hpp"
 #include "support/run_cli.hpp"
 #include "support/scenes.hpp"

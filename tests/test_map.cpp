@@ -5,9 +5,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include "bladestab/boundaries.hpp"
-#include "bladestab/damping.hpp"
-#include "bladestab/stability_map.hpp"
+#include "bladestab/stability/boundaries.hpp"
+#include "bladestab/blade/damping.hpp"
+#include "bladestab/stability/stability_map.hpp"
 #include "support/scenes.hpp"
 
 using namespace bladestab;

@@ -12,10 +12,10 @@
 
 #include <catch2/catch.hpp>
 
-#include "bladestab/matrix_export.hpp"
-#include "bladestab/model.hpp"
-#include "bladestab/periodic_load.hpp"
-#include "bladestab/periodic_system.hpp"
+#include "bladestab/stability/matrix_export.hpp"
+#include "bladestab/blade/model.hpp"
+#include "bladestab/stability/periodic_load.hpp"
+#include "bladestab/stability/periodic_system.hpp"
 #include "support/scenes.hpp"
 
 namespace {

@@ -11,10 +11,10 @@
 #include <utility>
 #include <vector>
 
-#include "basis.hpp"
-#include "bladestab/model.hpp"
-#include "bladestab/numerical_error.hpp"
-#include "quadrature.hpp"
+#include "blade/basis.hpp"
+#include "bladestab/blade/model.hpp"
+#include "bladestab/base/numerical_error.hpp"
+#include "blade/quadrature.hpp"
 #include "support/scenes.hpp"
 
 using namespace bladestab;

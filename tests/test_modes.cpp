@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
-#include "bladestab/damping.hpp"
-#include "bladestab/mode_convergence.hpp"
-#include "bladestab/modes.hpp"
+#include "bladestab/blade/damping.hpp"
+#include "bladestab/modal/mode_convergence.hpp"
+#include "bladestab/modal/modes.hpp"
 #include "reference/timoshenko_cantilever.hpp"
 #include "support/scenes.hpp"
 

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "bladestab/floquet.hpp"
+#include "bladestab/ltp/floquet.hpp"
 #include "reference/odeint_monodromy.hpp"
 #include "support/json.hpp"
 #include "support/run_cli.hpp"

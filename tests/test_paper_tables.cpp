@@ -15,8 +15,8 @@
 #include <utility>
 #include <vector>
 
-#include "bladestab/damping.hpp"
-#include "bladestab/modes.hpp"
+#include "bladestab/blade/damping.hpp"
+#include "bladestab/modal/modes.hpp"
 #include "reference/timoshenko_cantilever.hpp"
 #include "support/scenes.hpp"
 

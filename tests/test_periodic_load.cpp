@@ -5,11 +5,11 @@
 #include <boost/math/quadrature/gauss.hpp>
 #include <cmath>
 
-#include "bladestab/constants.hpp"
-#include "bladestab/model.hpp"
-#include "bladestab/periodic_load.hpp"
-#include "bladestab/periodic_system.hpp"
-#include "quadrature.hpp"
+#include "bladestab/base/constants.hpp"
+#include "bladestab/blade/model.hpp"
+#include "bladestab/stability/periodic_load.hpp"
+#include "bladestab/stability/periodic_system.hpp"
+#include "blade/quadrature.hpp"
 #include "support/scenes.hpp"
 
 using namespace bladestab;

@@ -11,9 +11,9 @@
 
 #include <unsupported/Eigen/MatrixFunctions>
 
-#include "bladestab/floquet.hpp"
-#include "bladestab/input_error.hpp"
-#include "bladestab/pulse_monodromy.hpp"
+#include "bladestab/ltp/floquet.hpp"
+#include "bladestab/base/input_error.hpp"
+#include "bladestab/ltp/pulse_monodromy.hpp"
 #include "reference/odeint_monodromy.hpp"
 #include "reference/pulse_profiles.hpp"
 #include "support/scenes.hpp"

@@ -12,8 +12,8 @@
 
 #include <boost/math/quadrature/gauss.hpp>
 
-#include "bladestab/floquet.hpp"
-#include "bladestab/transient.hpp"
+#include "bladestab/ltp/floquet.hpp"
+#include "bladestab/transient/transient.hpp"
 #include "reference/blade_transient.hpp"
 #include "reference/odeint_monodromy.hpp"
 #include "reference/pulse_profiles.hpp"

@@ -1,7 +1,7 @@
 // Scene reading: values, derived inertia, overrides.
 #include <catch2/catch.hpp>
 
-#include "bladestab/input_error.hpp"
+#include "bladestab/base/input_error.hpp"
 #include "support/scenes.hpp"
 
 using namespace bladestab;

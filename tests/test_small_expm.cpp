@@ -7,7 +7,7 @@
 
 #include <Eigen/Dense>
 
-#include "bladestab/small_expm.hpp"
+#include "bladestab/ltp/small_expm.hpp"
 
 using bladestab::SmallExpm;
 

@@ -7,10 +7,10 @@
 #include <complex>
 #include <functional>
 
-#include "bladestab/boundaries.hpp"
-#include "bladestab/constants.hpp"
-#include "bladestab/floquet.hpp"
-#include "bladestab/reduction.hpp"
+#include "bladestab/stability/boundaries.hpp"
+#include "bladestab/base/constants.hpp"
+#include "bladestab/ltp/floquet.hpp"
+#include "bladestab/blade/reduction.hpp"
 #include "reference/mathieu.hpp"
 #include "support/scenes.hpp"
 

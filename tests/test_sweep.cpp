@@ -13,10 +13,10 @@
 
 #include <catch2/catch.hpp>
 
-#include "bladestab/input_error.hpp"
-#include "bladestab/parameter_sweep.hpp"
-#include "bladestab/static_buckling.hpp"
-#include "bladestab/transient.hpp"
+#include "bladestab/base/input_error.hpp"
+#include "bladestab/modal/parameter_sweep.hpp"
+#include "bladestab/blade/static_buckling.hpp"
+#include "bladestab/transient/transient.hpp"
 #include "support/json.hpp"
 #include "support/scenes.hpp"
 

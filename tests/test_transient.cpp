@@ -10,14 +10,14 @@
 
 #include <boost/numeric/odeint.hpp>
 
-#include "bladestab/constants.hpp"
-#include "bladestab/crosscheck.hpp"
-#include "bladestab/damping.hpp"
-#include "bladestab/floquet.hpp"
-#include "bladestab/modes.hpp"
-#include "bladestab/pulse_monodromy.hpp"
-#include "bladestab/response_analysis.hpp"
-#include "bladestab/transient.hpp"
+#include "bladestab/base/constants.hpp"
+#include "bladestab/transient/crosscheck.hpp"
+#include "bladestab/blade/damping.hpp"
+#include "bladestab/ltp/floquet.hpp"
+#include "bladestab/modal/modes.hpp"
+#include "bladestab/ltp/pulse_monodromy.hpp"
+#include "bladestab/transient/response_analysis.hpp"
+#include "bladestab/transient/transient.hpp"
 #include "support/scenes.hpp"
 
 using namespace bladestab;

@@ -12,8 +12,8 @@
 #include <fstream>
 #include <sstream>
 
-#include "bladestab/transient.hpp"
-#include "bladestab/transient_checks.hpp"
+#include "bladestab/transient/transient.hpp"
+#include "bladestab/transient/transient_checks.hpp"
 #include "support/run_cli.hpp"
 #include "support/scenes.hpp"
 

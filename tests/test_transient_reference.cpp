@@ -5,7 +5,7 @@
 
 #include <vector>
 
-#include "bladestab/transient.hpp"
+#include "bladestab/transient/transient.hpp"
 #include "reference/blade_transient.hpp"
 #include "reference/pulse_profiles.hpp"
 #include "support/scenes.hpp"

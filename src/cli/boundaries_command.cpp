@@ -7,14 +7,14 @@
 
 #include <fmt/format.h>
 
-#include "bladestab/boundaries.hpp"
-#include "bladestab/input_error.hpp"
-#include "bladestab/instability_regions.hpp"
-#include "bladestab/message_text.hpp"
-#include "bladestab/mode_convergence.hpp"
-#include "bladestab/periodic_load.hpp"
-#include "bladestab/periodic_system.hpp"
-#include "bladestab/scene_limits.hpp"
+#include "bladestab/stability/boundaries.hpp"
+#include "bladestab/base/input_error.hpp"
+#include "bladestab/stability/instability_regions.hpp"
+#include "support/message_text.hpp"
+#include "bladestab/modal/mode_convergence.hpp"
+#include "bladestab/stability/periodic_load.hpp"
+#include "bladestab/stability/periodic_system.hpp"
+#include "bladestab/scene/scene_limits.hpp"
 #include "commands.hpp"
 #include "error_output.hpp"
 #include "finite_results.hpp"

@@ -3,11 +3,11 @@
 
 #include <fmt/format.h>
 
-#include "bladestab/campbell.hpp"
-#include "bladestab/constants.hpp"
-#include "bladestab/input_error.hpp"
-#include "bladestab/mode_convergence.hpp"
-#include "bladestab/scene_limits.hpp"
+#include "bladestab/modal/campbell.hpp"
+#include "bladestab/base/constants.hpp"
+#include "bladestab/base/input_error.hpp"
+#include "bladestab/modal/mode_convergence.hpp"
+#include "bladestab/scene/scene_limits.hpp"
 #include "chart.hpp"
 #include "commands.hpp"
 #include "error_output.hpp"

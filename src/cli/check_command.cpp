@@ -8,9 +8,9 @@
 
 #include <fmt/format.h>
 
-#include "bladestab/input_error.hpp"
-#include "bladestab/mode_convergence.hpp"
-#include "bladestab/requirements_check.hpp"
+#include "bladestab/base/input_error.hpp"
+#include "bladestab/modal/mode_convergence.hpp"
+#include "bladestab/stability/requirements_check.hpp"
 #include "commands.hpp"
 #include "json_writer.hpp"
 #include "number_options.hpp"

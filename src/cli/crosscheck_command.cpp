@@ -1,11 +1,11 @@
 // bladestab crosscheck SCENE: frequency domain against time domain, point by point.
 #include <fmt/format.h>
 
-#include "bladestab/constants.hpp"
-#include "bladestab/crosscheck.hpp"
-#include "bladestab/input_error.hpp"
-#include "bladestab/scene_limits.hpp"
-#include "bladestab/transient.hpp"
+#include "bladestab/base/constants.hpp"
+#include "bladestab/transient/crosscheck.hpp"
+#include "bladestab/base/input_error.hpp"
+#include "bladestab/scene/scene_limits.hpp"
+#include "bladestab/transient/transient.hpp"
 #include "commands.hpp"
 #include "finite_results.hpp"
 #include "json_writer.hpp"

@@ -3,7 +3,7 @@
 // `error_budget` {basis, reduction, load, method, unbounded}, and one table line.
 #include <string>
 
-#include "bladestab/error_budget.hpp"
+#include "bladestab/base/error_budget.hpp"
 #include "json_writer.hpp"
 
 namespace bladestab::cli {

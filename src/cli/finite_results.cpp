@@ -4,7 +4,7 @@
 
 #include <fmt/format.h>
 
-#include "bladestab/numerical_error.hpp"
+#include "bladestab/base/numerical_error.hpp"
 
 namespace bladestab::cli {
 

@@ -15,9 +15,9 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
-#include "blas_threads.hpp"
-#include "bladestab/input_error.hpp"
-#include "bladestab/message_text.hpp"
+#include "support/blas_threads.hpp"
+#include "bladestab/base/input_error.hpp"
+#include "support/message_text.hpp"
 #include "commands.hpp"
 #include "interruption.hpp"
 #include "work_limits.hpp"

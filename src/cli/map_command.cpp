@@ -8,12 +8,12 @@
 
 #include <fmt/format.h>
 
-#include "bladestab/damping.hpp"
-#include "bladestab/input_error.hpp"
-#include "bladestab/message_text.hpp"
-#include "bladestab/scene_limits.hpp"
-#include "bladestab/modes.hpp"
-#include "bladestab/stability_map.hpp"
+#include "bladestab/blade/damping.hpp"
+#include "bladestab/base/input_error.hpp"
+#include "support/message_text.hpp"
+#include "bladestab/scene/scene_limits.hpp"
+#include "bladestab/modal/modes.hpp"
+#include "bladestab/stability/stability_map.hpp"
 #include "chart.hpp"
 #include "error_output.hpp"
 #include "commands.hpp"

@@ -5,9 +5,9 @@
 
 #include <fmt/format.h>
 
-#include "bladestab/constants.hpp"
-#include "bladestab/input_error.hpp"
-#include "bladestab/mode_convergence.hpp"
+#include "bladestab/base/constants.hpp"
+#include "bladestab/base/input_error.hpp"
+#include "bladestab/modal/mode_convergence.hpp"
 #include "commands.hpp"
 #include "error_output.hpp"
 #include "finite_results.hpp"

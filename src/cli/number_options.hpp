@@ -10,7 +10,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "bladestab/allowed_range.hpp"
+#include "bladestab/scene/allowed_range.hpp"
 
 namespace bladestab::cli {
 

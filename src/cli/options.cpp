@@ -6,9 +6,9 @@
 
 #include <fmt/format.h>
 
-#include "bladestab/input_error.hpp"
-#include "bladestab/message_text.hpp"
-#include "bladestab/worker_threads.hpp"
+#include "bladestab/base/input_error.hpp"
+#include "support/message_text.hpp"
+#include "support/worker_threads.hpp"
 #include "number_options.hpp"
 #include "work_limits.hpp"
 

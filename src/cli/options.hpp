@@ -5,10 +5,10 @@
 
 #include <CLI/CLI.hpp>
 
-#include "bladestab/allowed_range.hpp"
-#include "bladestab/model.hpp"
-#include "bladestab/modes.hpp"
-#include "bladestab/scene.hpp"
+#include "bladestab/scene/allowed_range.hpp"
+#include "bladestab/blade/model.hpp"
+#include "bladestab/modal/modes.hpp"
+#include "bladestab/scene/scene.hpp"
 
 namespace bladestab::cli {
 

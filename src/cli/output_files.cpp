@@ -11,8 +11,8 @@
 
 #include <fmt/format.h>
 
-#include "bladestab/input_error.hpp"
-#include "bladestab/message_text.hpp"
+#include "bladestab/base/input_error.hpp"
+#include "support/message_text.hpp"
 #include "interruption.hpp"
 
 namespace bladestab::cli {

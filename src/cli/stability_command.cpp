@@ -5,12 +5,12 @@
 
 #include <fmt/format.h>
 
-#include "bladestab/stability_analysis.hpp"
-#include "bladestab/input_error.hpp"
-#include "bladestab/matrix_export.hpp"
-#include "bladestab/message_text.hpp"
-#include "bladestab/scene_limits.hpp"
-#include "bladestab/periodic_system.hpp"
+#include "bladestab/stability/stability_analysis.hpp"
+#include "bladestab/base/input_error.hpp"
+#include "bladestab/stability/matrix_export.hpp"
+#include "support/message_text.hpp"
+#include "bladestab/scene/scene_limits.hpp"
+#include "bladestab/stability/periodic_system.hpp"
 #include "commands.hpp"
 #include "error_output.hpp"
 #include "finite_results.hpp"

@@ -6,8 +6,8 @@
 
 #include <fmt/format.h>
 
-#include "bladestab/message_text.hpp"
-#include "bladestab/parameter_sweep.hpp"
+#include "support/message_text.hpp"
+#include "bladestab/modal/parameter_sweep.hpp"
 #include "chart.hpp"
 #include "commands.hpp"
 #include "json_writer.hpp"

@@ -2,12 +2,12 @@
 
 #include <fmt/format.h>
 
-#include "bladestab/constants.hpp"
-#include "bladestab/input_error.hpp"
-#include "bladestab/message_text.hpp"
-#include "bladestab/response_analysis.hpp"
-#include "bladestab/transient.hpp"
-#include "bladestab/transient_checks.hpp"
+#include "bladestab/base/constants.hpp"
+#include "bladestab/base/input_error.hpp"
+#include "support/message_text.hpp"
+#include "bladestab/transient/response_analysis.hpp"
+#include "bladestab/transient/transient.hpp"
+#include "bladestab/transient/transient_checks.hpp"
 #include "chart.hpp"
 #include "commands.hpp"
 #include "json_writer.hpp"

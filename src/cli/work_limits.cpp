@@ -2,9 +2,9 @@
 
 #include <fmt/format.h>
 
-#include "bladestab/allowed_range.hpp"
-#include "bladestab/input_error.hpp"
-#include "bladestab/mode_convergence.hpp"
+#include "bladestab/scene/allowed_range.hpp"
+#include "bladestab/base/input_error.hpp"
+#include "bladestab/modal/mode_convergence.hpp"
 #include "number_options.hpp"
 
 namespace bladestab::cli {

@@ -8,7 +8,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "bladestab/model.hpp"
+#include "bladestab/blade/model.hpp"
 
 namespace bladestab::cli {
 

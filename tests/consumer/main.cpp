@@ -8,9 +8,9 @@
 #include <fstream>
 #include <sstream>
 
-#include "bladestab/mode_convergence.hpp"
-#include "bladestab/scene.hpp"
-#include "bladestab/stability_analysis.hpp"
+#include "bladestab/modal/mode_convergence.hpp"
+#include "bladestab/scene/scene.hpp"
+#include "bladestab/stability/stability_analysis.hpp"
 
 int main(int argc, char** argv) {
   if (argc != 2) {

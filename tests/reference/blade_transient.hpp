@@ -19,7 +19,7 @@
 #include <boost/numeric/odeint.hpp>
 #include <Eigen/Dense>
 
-#include "bladestab/model.hpp"
+#include "bladestab/blade/model.hpp"
 
 namespace reference {
 

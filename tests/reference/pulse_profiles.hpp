@@ -6,7 +6,7 @@
 #include <cmath>
 #include <vector>
 
-#include "bladestab/scene.hpp"
+#include "bladestab/scene/scene.hpp"
 
 namespace reference {
 

@@ -3,7 +3,7 @@
 #include <string>
 #include <vector>
 
-#include "bladestab/scene.hpp"
+#include "bladestab/scene/scene.hpp"
 
 namespace testing_support {
 

@@ -1,0 +1,84 @@
+#pragma once
+// Error estimates for computed modes ("model only what a scene needs"): each mode is compared
+// with the same mode (same family, same rank within it) of a richer model, and the number of
+// terms can be raised until every requested mode meets a tolerance.
+#include <optional>
+#include <vector>
+
+#include "bladestab/base/error_budget.hpp"
+#include "bladestab/base/input_error.hpp"
+#include "bladestab/modal/modes.hpp"
+#include "bladestab/scene/scene.hpp"
+
+namespace bladestab {
+
+struct ConvergedModes {
+  BladeModel model;                   // the model the modes belong to
+  ModalSolution solution;
+  int reference_terms = 0;            // terms of the richest model used for the estimate
+  std::vector<double> relative_error; // estimated |f_N − f_∞| / f_∞ per mode (the basis part)
+  std::vector<double> rounding;       // frequency_rounding per mode (the method part)
+  double max_relative_error() const;
+  // Mode k's whole error: basis = relative_error[k], method = rounding[k]; no cut-off
+  // (reduction 0), no load (0).
+  ErrorBudget budget(std::size_t k) const;
+  ErrorBudget worst_budget() const;  // each part the largest over the modes
+};
+
+// Relative rounding of a dense eigensolve of the modal problem (LAPACK, double precision, a few
+// hundred dofs: ≲ 1e-13 on the frequencies; 1e-12 bounds it) where the problem is well scaled.
+inline constexpr double eigensolver_rounding = 1e-12;
+
+// Relative rounding of a computed frequency with shape q: eigensolver_rounding or, where larger,
+// that of the stiffness form qᴴKq itself, which cancels for a slender blade's low modes (their
+// shear energy κGA∫(v' − θ)² is a small difference of large terms): 10·ε·(|q|ᵀ|K||q|)/(qᴴKq),
+// ε the machine epsilon, half of it for ω = (k/m)^½ and 20 for the summation (measured on the
+// paper blade's first mode, |q|ᵀ|K||q|/qᴴKq = 4.9e3 at rest: dense eigenvalue and Rayleigh
+// quotient 1.8e-12 apart, where 1e-12 was assumed; at d̄ = 0.001 the ratio is 4.9e5).
+// `absolute_stiffness` is |K| entry by entry.
+double frequency_rounding(const Eigen::MatrixXd& absolute_stiffness, const Eigen::VectorXd& absolute_shape,
+                          double stiffness_form);
+
+// Terms of the richer model used to estimate the error of an N-term model: Legendre (exponential
+// convergence) N + max(4, N/2); sine (algebraic convergence) 2N, and a third level 4N to measure
+// the rate of convergence.
+int reference_terms(BasisKind basis, int terms);
+
+// How much a single comparison |f_N − f_ref| (ref: reference_terms) understates the error of an
+// N-term result: 1.1 for Legendre (exponential convergence; the margin covers the richer model's
+// own error); for sine (f_N − f_∞ ∝ N^−p, p → 1)
+// 1/(1 − 2^−0.9) = 2.15, the rate its modes' estimate trusts at most.
+double basis_tail_factor(BasisKind basis);
+
+// Relative basis error of f[0] (n[0] terms) from the same mode in richer models: f[1] (n[1]
+// terms) and, for the sine basis' algebraic convergence, f[2] (n[2] terms). `relative` is
+// `factor` · |f[0] − f[1]| / |f[1]|: 1.1 for exponential convergence, 1/(1 − (n₀/n₁)^p) for
+// algebraic convergence at the measured rate p (at most 0.9).
+struct BasisTail {
+  double relative = 0;
+  double factor = 1;
+};
+BasisTail basis_tail(const std::vector<double>& f, const std::vector<int>& n);
+
+// The terms to try next for `tolerance` when an N-term model's estimate is `estimate`: Legendre
+// N + 2, sine 2N (at most 200); none when N is at that limit, or for the sine basis when even a
+// convergence like N^−2 (its asymptotic rate is 1) would need more than 200 terms.
+std::optional<int> terms_for_tolerance(BasisKind basis, int terms, double estimate, double tolerance);
+
+// InputError (naming --tolerance) unless 0 < tolerance < 1 and tolerance > 1e-12, the
+// eigensolver's rounding that every estimate includes.
+void check_tolerance(double tolerance);
+
+// The one-line InputError for a tolerance that raising the terms cannot meet.
+ParameterError tolerance_not_met(double tolerance, const ModelSpec& spec, double estimate);
+// ... and for one below the rounding of the frequencies themselves (more terms do not lower it).
+ParameterError tolerance_below_rounding(double tolerance, double rounding);
+
+// Modes of `scene` at its speed with their error estimates. With a tolerance, the number of terms
+// starts at the scene's and grows until every one of the `count` lowest modes has a whole
+// estimate (basis + method) within it; an InputError when raising cannot get there
+// (terms_for_tolerance) or the tolerance is out of range (check_tolerance).
+ConvergedModes modes_with_error_estimate(const Scene& scene, int count, EigenSolverKind solver,
+                                         std::optional<double> tolerance = std::nullopt);
+
+}  // namespace bladestab

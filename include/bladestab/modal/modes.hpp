@@ -1,0 +1,61 @@
+#pragma once
+// Free vibration at one speed: the gyroscopic (and possibly damped) quadratic eigenproblem
+// (λ² M + λ C + K) q = 0, solved densely (LAPACK through Eigen) or, for large models, for the
+// lowest modes only with ARPACK in shift-invert mode.
+#include <complex>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "bladestab/blade/model.hpp"
+#include "bladestab/blade/second_order_system.hpp"
+
+namespace bladestab {
+
+enum class ModeFamily { bending, axial, rotation };
+const char* to_string(ModeFamily);
+
+enum class EigenSolverKind { automatic, dense, arpack };
+const char* to_string(EigenSolverKind);
+
+// Eigenvalues λ (one per conjugate pair, Im λ ≥ 0) with their dof-space vectors q.
+struct Eigenpairs {
+  Eigen::VectorXcd values;
+  Eigen::MatrixXcd vectors;
+};
+
+struct Mode {
+  int index = 0;                   // 1-based, by frequency
+  double frequency_hz = 0;         // Im λ / 2π
+  double lambda = 0;               // Λ = ω L² sqrt(ρA/(EI)), ω = Im λ
+  double damping_ratio = 0;        // −Re λ / |λ|
+  ModeFamily family = ModeFamily::bending;
+  Eigen::Vector3d energy_share;    // kinetic-energy share of the θ, v, u fields
+  std::complex<double> eigenvalue; // λ
+  Eigen::VectorXcd shape;          // q, M-normalized: qᴴ M q = 1
+};
+
+struct ModalSolution {
+  double speed_rad_s = 0;
+  EigenSolverKind solver = EigenSolverKind::dense;  // the one actually used
+  std::vector<Mode> modes;                          // sorted by |λ| (natural frequency)
+};
+
+// All eigenpairs, dense. Undamped gyroscopic systems with K > 0 go through a Hermitian form, so
+// their eigenvalues come out exactly imaginary.
+Eigenpairs dense_eigenpairs(const SecondOrderSystem& system);
+
+// The `count` eigenpairs of smallest |λ| by ARPACK (dnaupd/dneupd), shift-invert about 0.
+Eigenpairs arpack_eigenpairs(const SecondOrderSystem& system, int count);
+
+// Models with at least this many dofs use ARPACK under EigenSolverKind::automatic.
+constexpr int arpack_threshold_dofs = 120;
+
+// The lowest `count` modes (all if count ≤ 0).
+ModalSolution solve_modes(const BladeModel& model, const SecondOrderSystem& system, double speed_rad_s, int count,
+                          EigenSolverKind solver = EigenSolverKind::automatic);
+
+// Mass-weighted modal assurance criterion |aᴴ M b|² / ((aᴴ M a)(bᴴ M b)), in [0, 1].
+double modal_assurance(const Eigen::VectorXcd& a, const Eigen::VectorXcd& b, const Eigen::MatrixXd& M);
+
+}  // namespace bladestab

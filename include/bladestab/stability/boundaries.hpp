@@ -1,0 +1,112 @@
+#pragma once
+// Boundaries of the regions of dynamic instability (SPEC §4, (B.15)–(B.23)). On a boundary a
+// Floquet multiplier sits at −1 (a 2T-periodic solution, odd harmonics of θ/2) or +1 (T-periodic,
+// even harmonics). In modal coordinates η (q = Φη), with the ansatz η = Σ_{k∈S} c_k e^{ikθt/2},
+//
+//   [Λ + F₀Ĝ + i(kθ/2)Ĉ − (kθ/2)² I] c_k + Σ_{m≠0} F_m Ĝ c_{k−2m} = 0,   k ∈ S,
+//
+// S = {±1, ±3, …, ±(2K−1)} (−1) or {0, ±2, …, ±2K} (+1) for the K-th approximation. This is a
+// quadratic eigenproblem in θ at fixed load (K = 1 is Bolotin's first approximation (B.15)) and,
+// since every F_m is proportional to F_max, a linear one in F_max at fixed θ.
+// Beyond the first approximation, a root whose eigenvector peaks in the highest harmonic kept is
+// not resolved by the truncation and is dropped; raise the approximation to see high-order (thin)
+// regions.
+// Combination resonances (|ρ| leaving the unit circle away from ±1) are not boundaries of this
+// kind; only the Floquet multipliers show them.
+#include <functional>
+#include <optional>
+#include <utility>
+#include <vector>
+
+#include "bladestab/base/error_budget.hpp"
+#include "bladestab/stability/periodic_system.hpp"
+#include "bladestab/scene/scene.hpp"
+
+namespace bladestab {
+
+struct Boundary {
+  double theta_rad_s = 0;  // pulse angular frequency θ on the boundary
+  double peak_force_n = 0; // F_max on the boundary
+  int multiplier = -1;     // −1 or +1
+  int mode = 0;            // 1-based index of the dominant mode
+  int order = 0;           // n in θ ≈ 2ω_mode / n
+};
+
+// `system` supplies the modal matrices and the load shape; its load is scaled to `peak_force_n`.
+// All boundary θ > 0 at that load, sorted by θ: of both families, or of the one whose multiplier is
+// `family` (−1 or +1; each family is its own eigenproblem, so one costs half).
+std::vector<Boundary> boundary_frequencies(const PeriodicSystem& system, double peak_force_n, int approximation,
+                                           int family = 0);
+
+// All boundary F_max ≥ 0 at pulse frequency θ (the load shape per newton of F_max is the system's
+// load divided by `system_peak_force_n`), sorted by F_max; both families or `family` as above.
+std::vector<Boundary> boundary_loads(const PeriodicSystem& system, double system_peak_force_n, double theta_rad_s,
+                                     int approximation, int family = 0);
+
+// |ρ − b.multiplier| for the Floquet multiplier ρ of `system` closest to ±1 at the boundary point
+// (θ = b.theta_rad_s, F_max = b.peak_force_n; the system's load is at `system_peak_force_n`),
+// from the monodromy matrix by Magnus steps, doubled until Φ(T) settles to `tolerance` relative to
+// its largest entry: a check that shares nothing with the boundary eigenproblem. On a boundary it
+// is 0; it grows like the square root of the distance from it.
+double multiplier_gap(const PeriodicSystem& system, double system_peak_force_n, const Boundary& b, double tolerance);
+
+// Boundaries with an estimate of their whole error against the continuum model of the scene.
+struct BoundaryRequest {
+  std::optional<double> theta_rad_s;  // set: boundary F_max at this θ; unset: boundary θ at the scene's F_max
+  double cutoff_hz = 0;               // keep only the modes below (0: all)
+  // The window of θ [rad/s] (or of F_max [N] with theta_rad_s) whose boundaries are reported and
+  // converged; unset: θ/2 to 2θ of the scene's θ (0 to 2 F_max of the scene). The set of
+  // boundaries is infinite (orders n → ∞ accumulate at θ → 0, thin high-order tongues at every
+  // F_max) and new ones appear with every k, so only a window can converge.
+  std::optional<std::pair<double, double>> window;
+  // Orders n (θ ≈ 2ω/n) reported and converged: the thin tongues of high order converge slowly in
+  // k (measured on the paper blade: mode 2, order 13 still moves 4e-3 from k = 8 to 10) and new
+  // ones appear with every k.
+  int max_order = 4;
+  double tolerance = 1e-6;            // on the harmonics' part, relative on θ or F_max
+  int first_approximation = 2;        // k to start from
+  int max_approximation = 40;
+  int threads = 1;                    // the two families' eigenproblems side by side (0: one per core)
+  // progress(done, total) after each harmonic level of each model: `total` is what the answer needs
+  // if the current k converges (an upper bound), so it grows when k is raised; (done, done) at the end.
+  std::function<void(int, int)> progress = {};
+};
+
+struct EstimatedBoundary {
+  Boundary boundary;
+  int approximation = 0;  // k its value comes from
+  ErrorBudget budget;     // relative on θ (boundaries in θ) or on F_max (in F_max)
+};
+
+struct BoundaryCheck {
+  Boundary boundary;      // the boundary checked, in the check's model
+  double cutoff_hz = 0;   // the check's modal cut-off (0: all modes)
+  double gap = 0;         // multiplier_gap there
+  double allowed = 0;     // the largest gap accepted
+};
+
+struct BoundaryAnalysis {
+  int approximation = 0;  // the chosen k: boundaries of k (and, those that appear only there, of k + 2)
+  std::pair<double, double> window;  // the window used
+  std::vector<EstimatedBoundary> boundaries;  // sorted by θ or F_max
+  std::vector<BoundaryCheck> checks;
+  ErrorBudget total() const;  // each part the largest over the boundaries
+};
+
+// Raises k from request.first_approximation in steps of 2 until every boundary found at k in the
+// window, of order ≤ max_order, moves by at most request.tolerance (relative) at k + 2 — boundaries are matched by family, mode, order
+// and nearest value; one that first appears at k + 2 is reported from k + 2 with its change at
+// k + 4. The error budget of each boundary (SPEC §2–§4):
+//   basis      change against the richer Ritz basis reference_terms(basis, N) (for the sine basis
+//              times basis_tail_factor)
+//   reduction  change against all modes kept (with a cut-off)
+//   load       change against a series with a 10 times smaller tail (load.approximation =
+//              "fourier"); 0 for the cosine approximation (42), which is the scene's load
+//   method     twice the change from k to k + 2 harmonics (or k + 2 to k + 4), plus the
+//              eigensolver's rounding
+// Then the multiplier at the (one or two) lowest-order boundaries is checked by multiplier_gap on
+// a system cut off at 200·order·θ/2π (few Magnus steps a period); a failed check raises k, and at
+// max_approximation it is a std::runtime_error, never a number.
+BoundaryAnalysis boundaries_with_error_estimate(const Scene& scene, const BoundaryRequest& request);
+
+}  // namespace bladestab

@@ -1,0 +1,35 @@
+#pragma once
+// The regions of dynamic instability along one line of the load plane — θ at the scene's F̄_max,
+// or F̄_max at a given θ — as intervals between boundaries (SPEC §4), for CI scripts that ask
+// "is this operating range clear?".
+//
+// Between two consecutive boundaries of one family (multiplier ±1) lies either a region of that
+// family or a gap; the window's ends close the first and last intervals. Which one is decided by
+// the Floquet multipliers at the interval's middle (a check that shares nothing with the boundary
+// equations): unstable there, with the dominant multiplier real and of the family's sign, it is a
+// region. Families, not kinds (mode, order), are paired: at high loads the label of a boundary,
+// the dominant harmonic of its eigenvector, can differ between a region's two edges (measured on
+// the paper blade at F̄ = 5: the order-3 region from 177.7 to 209.9 rad/s has its lower edge
+// labelled order 1). A region is labelled by its edges, the higher order where they differ. Regions of
+// different kinds may overlap; combination resonances have no ±1 boundaries and are not listed
+// (the map's shading shows them).
+#include <vector>
+
+#include "bladestab/stability/boundaries.hpp"
+#include "bladestab/scene/scene.hpp"
+
+namespace bladestab {
+
+struct InstabilityRegion {
+  double lower = 0, upper = 0;  // θ [rad/s], or F_max [N] along F̄; a window end where open
+  bool lower_open = false, upper_open = false;  // ends at the window, not at a boundary
+  int multiplier = -1, mode = 0, order = 0;  // mode and order 0 where both ends are the window's
+  double middle_max_abs_multiplier = 0;  // the check: max|ρ| at the middle, > 1 + its error
+};
+
+// `analysis` from boundaries_with_error_estimate(scene, request); each middle is checked by
+// analyse_stability at `tolerance`.
+std::vector<InstabilityRegion> instability_regions(const Scene& scene, const BoundaryRequest& request,
+                                                   const BoundaryAnalysis& analysis, double tolerance = 1e-4);
+
+}  // namespace bladestab

@@ -1,0 +1,58 @@
+#pragma once
+// The blade under a periodic tip load as a linear time-periodic (LTP) system ẏ = A(t) y
+// (SPEC §4), written in scaled modal coordinates of the unloaded (reduced) blade at speed Ω:
+//
+//   q = Φ η,  Φᵀ M Φ = I,  Φᵀ K(Ω) Φ = Λ = diag(ω_k²),  y = [D η; η̇],  D = diag(ω_k)
+//
+//   A(t) = A₀ + (F(t) − F₀) B,   A₀ = [[0, D], [−(Λ + F₀ Ĝ) D⁻¹, −Ĉ]],   B = [[0, 0], [−Ĝ D⁻¹, 0]]
+//
+// with Ĝ = Φᵀ G Φ and Ĉ = Φᵀ C Φ. Displacements and velocities then carry the same units, so the
+// monodromy matrix is well conditioned. The system is built on a reduced model (reduction.hpp):
+// by default the span of the loaded modes, which keeps the 46 kHz rotation modes and the Ritz
+// basis's spurious top modes out of the time integration (SPEC §6).
+#include <complex>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "bladestab/blade/model.hpp"
+#include "bladestab/stability/periodic_load.hpp"
+#include "bladestab/blade/reduction.hpp"
+
+namespace bladestab {
+
+struct PeriodicSystem {
+  Eigen::MatrixXd A0;  // mean state matrix (includes the mean load F₀)
+  Eigen::MatrixXd B;   // state matrix per newton of tip force
+  std::vector<std::complex<double>> load;  // F_m, m = 0..M (F_{−m} = conj F_m)
+  double angular_frequency = 0;            // θ
+  Eigen::VectorXd modal_frequencies;       // ω_k of the kept modes [rad/s]
+  Eigen::MatrixXd modal_G, modal_C;        // Ĝ = Φᵀ G Φ, Ĉ = Φᵀ C Φ (second-order modal form)
+  int kept_modes = 0, all_modes = 0;      // size of the reduced model, dofs of the Ritz model
+
+  double period() const;
+  int state_size() const { return static_cast<int>(A0.rows()); }
+  // F(t) − F₀ from the series.
+  double load_variation(double t) const;
+  // A_m of A(t) = Σ A_m e^{imθt}: A₀ for m = 0, F_m B otherwise.
+  Eigen::MatrixXcd harmonic(int m) const;
+};
+
+PeriodicSystem periodic_system(const ReducedSystem& reduced, const LoadSeries& load);
+
+// The blade reduced by `reduction` for this load.
+PeriodicSystem periodic_system(const BladeModel& model, double speed_rad_s, const Eigen::MatrixXd& damping,
+                               const LoadSeries& load, const ReductionSpec& reduction = {});
+
+// The same at the scene's speed with the scene's damping.
+PeriodicSystem periodic_system(const BladeModel& model, const Scene& scene, const LoadSeries& load,
+                               const ReductionSpec& reduction = {});
+
+// Modes per load level of an automatic reduction that holds every region of instability of order
+// n ≤ max_order with θ ≤ theta_max (θ ≈ 2ω/n): the unloaded modes of `scene` at its speed with
+// ω < max_order·θ_max — twice the highest ω such a region sits at, since the load lowers the
+// frequencies it couples — and never fewer than two. Take the slowest speed of a range, where the
+// modes are lowest.
+int tongue_vectors(const BladeModel& model, const Scene& scene, double theta_max, int max_order);
+
+}  // namespace bladestab

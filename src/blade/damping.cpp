@@ -1,0 +1,46 @@
+#include "bladestab/blade/damping.hpp"
+
+#include <fmt/format.h>
+
+#include "bladestab/base/constants.hpp"
+#include "bladestab/base/input_error.hpp"
+#include "bladestab/blade/undamped_modes.hpp"
+
+namespace bladestab {
+
+Eigen::MatrixXd damping_matrix(const BladeModel& model, const DampingSpec& spec, double speed) {
+  const int n = model.layout.size();
+  switch (spec.model) {
+    case DampingModel::none:
+      return Eigen::MatrixXd::Zero(n, n);
+    case DampingModel::paper:
+      if (speed <= 0) {
+        throw InputError(fmt::format("damping.model = \"paper\": C_D = (2ζ/Ω) K_S is undefined at Ω = {} rad/s; "
+                                     "use \"modal\" or \"rayleigh\" for speeds down to 0", speed));
+      }
+      return (2 * spec.ratio / speed) * model.elastic_stiffness();  // (37)
+    case DampingModel::rayleigh: {
+      // ζ(ω) = α/(2ω) + βω/2 equal to ζ at ω1 and ω2.
+      const double w1 = two_pi * spec.frequencies_hz[0], w2 = two_pi * spec.frequencies_hz[1];
+      const double alpha = 2 * spec.ratio * w1 * w2 / (w1 + w2);
+      const double beta = 2 * spec.ratio / (w1 + w2);
+      return alpha * model.M + beta * model.elastic_stiffness();
+    }
+    case DampingModel::modal: {
+      const UndampedModes modes = undamped_modes(model, speed);
+      if (modes.omega2(0) <= 0) {
+        throw InputError(fmt::format("damping.model = \"modal\": the stiffness at operation.speed_rad_s = {} is not "
+                                     "positive definite (the blade of blade.length = {:g} m, blade.youngs_modulus = "
+                                     "{:g} Pa is statically unstable there), so modal damping is undefined",
+                                     speed, model.blade.L, model.blade.E));
+      }
+      const Eigen::MatrixXd MPhi = model.M * modes.shapes;  // Φ is M-orthonormal
+      const Eigen::VectorXd two_zeta_omega = 2 * spec.ratio * modes.omega2.cwiseSqrt();
+      Eigen::MatrixXd C = MPhi * two_zeta_omega.asDiagonal() * MPhi.transpose();
+      return 0.5 * (C + C.transpose());
+    }
+  }
+  return Eigen::MatrixXd::Zero(n, n);
+}
+
+}  // namespace bladestab

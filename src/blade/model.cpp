@@ -1,0 +1,151 @@
+// Assembly of the Ritz matrices of SPEC §2. Every entry is one weighted Gram product
+// ∫ c(s) a_i(s) b_j(s) ds of sampled shape functions, evaluated by Gauss–Legendre quadrature
+// that is exact for the Legendre basis and accurate to rounding for the sine basis.
+#include "bladestab/blade/model.hpp"
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "blade/basis.hpp"
+#include "bladestab/base/numerical_error.hpp"
+#include "blade/quadrature.hpp"
+#include "bladestab/blade/static_buckling.hpp"
+
+namespace bladestab {
+
+DofLayout dof_layout(const ModelSpec& spec) {
+  DofLayout layout;
+  layout.theta_count = spec.theory == BeamTheory::timoshenko ? spec.terms : 0;
+  layout.lateral_count = spec.terms;
+  layout.axial_count = spec.axial ? spec.terms : 0;
+  return layout;
+}
+
+namespace {
+
+// ∫ c(s) a_i(s) b_j(s) ds  =  aᵀ diag(w ∘ c) b.
+Eigen::MatrixXd gram(const Eigen::VectorXd& weighted_coefficient, const Eigen::MatrixXd& a,
+                     const Eigen::MatrixXd& b) {
+  return a.transpose() * weighted_coefficient.asDiagonal() * b;
+}
+
+Eigen::MatrixXd symmetrized(const Eigen::MatrixXd& m) { return 0.5 * (m + m.transpose()); }
+
+// Every matrix finite and the mass positive definite, or a NumericalError that names what the
+// scene gave: within the scene's limits (scene_limits.hpp) this does not happen, and if it does the
+// message says which numbers to look at rather than which factorization failed later.
+void check_model(const BladeModel& model, const BladeSpec& blade) {
+  const bool finite = model.M.allFinite() && model.K_S.allFinite() && model.K_C1.allFinite() &&
+                      model.C_G1.allFinite() && model.G.allFinite() && model.P_cf1.allFinite();
+  const bool positive_mass = finite && Eigen::LLT<Eigen::MatrixXd>(model.M).info() == Eigen::Success;
+  if (positive_mass) return;
+  throw NumericalError(fmt::format(
+      "the Ritz model's {} (blade.length = {:g}, blade.area = {:g}, I = {:g} m^4 from blade.slenderness or "
+      "blade.inertia, blade.youngs_modulus = {:g}, blade.density = {:g}, model.basis = \"{}\", model.terms = {}); "
+      "fewer model.terms or the legendre basis condition it better",
+      finite ? "mass matrix is not positive definite" : "matrices are not finite", blade.length, blade.area,
+      blade.inertia, blade.youngs_modulus, blade.density, to_string(model.spec.basis), model.spec.terms));
+}
+
+BladeModel assemble_blade(const BladeSpec& blade_spec, const ModelSpec& spec) {
+  BladeModel model{BladeProperties(blade_spec), spec, {}, 0, {}, {}, {}, {}, {}, {}, {}, {}, {}};
+  const BladeProperties& b = model.blade;
+  const bool timoshenko = spec.theory == BeamTheory::timoshenko;
+  const int N = spec.terms;
+
+  const DofLayout& layout = model.layout = dof_layout(spec);
+  const int n = layout.size();
+  const int th = layout.theta_offset(), lv = layout.lateral_offset(), ax = layout.axial_offset();
+
+  const QuadratureRule rule = gauss_legendre(quadrature_points_needed(spec.basis, N), 0, b.L);
+  const Eigen::VectorXd& s = rule.points;
+  const Eigen::VectorXd w = rule.weights;
+  const Eigen::VectorXd one = Eigen::VectorXd::Ones(s.size());
+  // T_cf(s)/Ω² = ρA [r(L − s) + (L² − s²)/2]   (SPEC §1)
+  const Eigen::VectorXd tension1 =
+      b.rho * b.A * (b.r * (b.L - s.array()) + 0.5 * (b.L * b.L - s.array().square())).matrix();
+
+  const Eigen::VectorXd tip = Eigen::VectorXd::Constant(1, b.L);
+  const BasisSamples V = sample_basis(spec.basis, timoshenko ? FieldRole::lateral : FieldRole::lateral_clamped,
+                                      N, b.L, s);
+  const BasisSamples V_tip = sample_basis(spec.basis, timoshenko ? FieldRole::lateral : FieldRole::lateral_clamped,
+                                          N, b.L, tip);
+
+  model.M = Eigen::MatrixXd::Zero(n, n);
+  model.K_S = Eigen::MatrixXd::Zero(n, n);
+  model.K_C1 = Eigen::MatrixXd::Zero(n, n);
+  model.C_G1 = Eigen::MatrixXd::Zero(n, n);
+  model.G = Eigen::MatrixXd::Zero(n, n);
+  model.P_cf1 = Eigen::VectorXd::Zero(n);
+  model.tip_lateral = Eigen::RowVectorXd::Zero(n);
+  model.tip_axial = Eigen::RowVectorXd::Zero(n);
+  model.tip_slope = Eigen::RowVectorXd::Zero(n);
+
+  const double cos_beta = std::cos(b.beta_rad);
+  const double kGA = b.kappa * b.shear_modulus * b.A;
+
+  // Lateral field v.
+  model.M.block(lv, lv, N, N) = gram(w * (b.rho * b.A), V.value, V.value);
+  model.K_C1.block(lv, lv, N, N) = gram(w.cwiseProduct(tension1), V.slope, V.slope)       // ∫T_cf V_i'V_j'
+                                   - gram(w * (b.rho * b.A * cos_beta * cos_beta), V.value, V.value);
+  model.G.block(lv, lv, N, N) = gram(w, V.slope, V.slope);
+  model.tip_lateral.segment(lv, N) = V_tip.value.row(0);
+  model.tip_slope.segment(lv, N) = V_tip.slope.row(0);
+
+  if (timoshenko) {
+    const BasisSamples U = sample_basis(spec.basis, FieldRole::rotation, N, b.L, s);
+    model.M.block(th, th, N, N) = gram(w * (b.rho * b.I), U.value, U.value);
+    model.K_S.block(th, th, N, N) = gram(w * (b.E * b.I), U.slope, U.slope) + gram(w * kGA, U.value, U.value);
+    model.K_S.block(th, lv, N, N) = -gram(w * kGA, U.value, V.slope);
+    model.K_S.block(lv, th, N, N) = model.K_S.block(th, lv, N, N).transpose();
+    model.K_S.block(lv, lv, N, N) = gram(w * kGA, V.slope, V.slope);
+    model.K_C1.block(th, th, N, N) = -gram(w * (b.rho * b.I), U.value, U.value);
+  } else {
+    // Euler–Bernoulli: θ = v', shear-rigid, no rotary inertia: U = ½∫EI v''².
+    model.K_S.block(lv, lv, N, N) = gram(w * (b.E * b.I), V.curvature, V.curvature);
+  }
+
+  if (spec.axial) {
+    const BasisSamples W = sample_basis(spec.basis, FieldRole::axial, N, b.L, s);
+    const BasisSamples W_tip = sample_basis(spec.basis, FieldRole::axial, N, b.L, tip);
+    model.M.block(ax, ax, N, N) = gram(w * (b.rho * b.A), W.value, W.value);
+    model.K_S.block(ax, ax, N, N) = gram(w * (b.E * b.A), W.slope, W.slope);
+    model.K_C1.block(ax, ax, N, N) = -gram(w * (b.rho * b.A), W.value, W.value);
+    // Steady centrifugal load ρAΩ²(r + s) per unit length on u.
+    model.P_cf1.segment(ax, N) = W.value.transpose() * (w * (b.rho * b.A)).cwiseProduct((b.r + s.array()).matrix());
+    model.tip_axial.segment(ax, N) = W_tip.value.row(0);
+    if (spec.coriolis) {
+      // Coriolis force −2ρAΩ cos β u̇ on v and +2ρAΩ cos β v̇ on u (SPEC §1), moved to the left
+      // side of (23): C_vu = 2ρA cos β ∫V_i W_j per Ω, C_uv = −C_vuᵀ.
+      const Eigen::MatrixXd C_vu = gram(w * (2 * b.rho * b.A * cos_beta), V.value, W.value);
+      model.C_G1.block(lv, ax, N, N) = C_vu;
+      model.C_G1.block(ax, lv, N, N) = -C_vu.transpose();
+    }
+  }
+
+  // Quadrature sums are symmetric only to rounding; make M, K and G symmetric exactly.
+  model.M = symmetrized(model.M);
+  model.K_S = symmetrized(model.K_S);
+  model.K_C1 = symmetrized(model.K_C1);
+  model.G = symmetrized(model.G);
+  check_model(model, blade_spec);
+  return model;
+}
+
+}  // namespace
+
+BladeModel assemble_model(const Scene& scene) { return assemble_model(scene, scene.model); }
+
+BladeModel assemble_model(const Scene& scene, const ModelSpec& spec) {
+  BladeModel model = assemble_blade(scene.blade, spec);
+  // A static tip compression F_a = c F_cr is a constant tip tension −F_a: its geometric stiffness
+  // −F_a G joins the speed-free stiffness (SPEC (23), (40) with F(t) = −F_a), its axial push the
+  // steady load (steady_load()).
+  model.static_tip_force_n = -scene.operation.tip_compression_over_fcr * model.blade.critical_load();
+  if (model.static_tip_force_n != 0) model.K_S += model.static_tip_force_n * model.G;
+  if (std::optional<InputError> unstable = static_instability(model, scene.operation)) throw *unstable;
+  return model;
+}
+
+}  // namespace bladestab

@@ -1,0 +1,94 @@
+// Lowest modes of a large model with ARPACK's implicitly restarted Arnoldi method in
+// shift-invert mode about σ = 0. With z = [q; q̇] the first-order form is B ż = A z,
+// B = diag(I, M), A = [[0, I], [−K, −C]]; ARPACK iterates OP = A⁻¹B, whose eigenvalues 1/λ are
+// largest in magnitude for the smallest |λ|. Applying A⁻¹ costs one solve with K:
+//   A [a; b] = [c; d]  ⇔  b = c,  a = −K⁻¹ (d + C c).
+#include <arpack/arpack.hpp>
+#undef I  // <complex.h>, pulled in by arpack.hpp, defines I as a macro
+
+#include <algorithm>
+#include <stdexcept>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "bladestab/modal/modes.hpp"
+
+namespace bladestab {
+
+Eigenpairs arpack_eigenpairs(const SecondOrderSystem& sys, int count) {
+  const int n = static_cast<int>(sys.M.rows());
+  const int dim = 2 * n;
+  const int nev = std::min(2 * count + 1, dim - 2);  // both members of each conjugate pair, plus one spare
+  const int ncv = std::min(dim, std::max(2 * nev + 1, 30));
+  if (count < 1 || nev < 2 * count) {
+    throw std::invalid_argument(fmt::format("ARPACK needs fewer modes than the model has ({} of {})", count, n));
+  }
+  const Eigen::PartialPivLU<Eigen::MatrixXd> K(sys.K);
+
+  std::vector<double> resid(dim), V(static_cast<std::size_t>(dim) * ncv), workd(3 * dim);
+  const int lworkl = 3 * ncv * ncv + 6 * ncv;
+  std::vector<double> workl(lworkl);
+  a_int iparam[11] = {1, 0, 10 * dim + 1000, 1, 0, 0, 1, 0, 0, 0, 0};  // exact shifts, mode 1 (OP given)
+  a_int ipntr[14] = {0};
+  a_int ido = 0, info = 0;
+  const double tol = 0;  // machine precision
+
+  auto apply_op = [&](const double* x, double* y) {
+    const Eigen::Map<const Eigen::VectorXd> c(x, n), x2(x + n, n);
+    const Eigen::VectorXd d = sys.M * x2;
+    Eigen::Map<Eigen::VectorXd> a(y, n), b(y + n, n);
+    a = -K.solve(d + sys.C * c);
+    b = c;
+  };
+
+  while (true) {
+    arpack::naupd(ido, arpack::bmat::identity, dim, arpack::which::largest_magnitude, nev, tol, resid.data(), ncv,
+                  V.data(), dim, iparam, ipntr, workd.data(), workl.data(), lworkl, info);
+    if (ido != -1 && ido != 1) break;
+    apply_op(&workd[ipntr[0] - 1], &workd[ipntr[1] - 1]);
+  }
+  // info = 1 (iteration limit) still leaves the converged pairs usable; need both members of `count` pairs.
+  if (info < 0 || iparam[4] < 2 * count) {
+    throw std::runtime_error(fmt::format("ARPACK dnaupd failed (info {}, {} of {} converged)", info, iparam[4], nev));
+  }
+
+  std::vector<a_int> select(ncv, 1);
+  std::vector<double> dr(nev + 1), di(nev + 1), Z(static_cast<std::size_t>(dim) * (nev + 1)), workev(3 * ncv);
+  arpack::neupd(1, arpack::howmny::ritz_vectors, select.data(), dr.data(), di.data(), Z.data(), dim, 0.0, 0.0,
+                workev.data(), arpack::bmat::identity, dim, arpack::which::largest_magnitude, nev, tol,
+                resid.data(), ncv, V.data(), dim, iparam, ipntr, workd.data(), workl.data(), lworkl, info);
+  if (info != 0) throw std::runtime_error(fmt::format("ARPACK dneupd failed (info {})", info));
+
+  // Ritz pairs of OP: ν = 1/λ. A complex pair occupies columns j, j+1 as real and imaginary parts.
+  std::vector<std::pair<std::complex<double>, Eigen::VectorXcd>> found;
+  const int converged = static_cast<int>(iparam[4]);
+  for (int j = 0; j < converged; ++j) {
+    const Eigen::Map<const Eigen::VectorXd> re(&Z[static_cast<std::size_t>(j) * dim], dim);
+    Eigen::VectorXcd z = re.cast<std::complex<double>>();
+    const std::complex<double> nu(dr[j], di[j]);
+    if (di[j] != 0) {
+      if (j + 1 >= converged) break;  // half a pair at the end
+      const Eigen::Map<const Eigen::VectorXd> im(&Z[static_cast<std::size_t>(j + 1) * dim], dim);
+      z.imag() = im;
+      ++j;
+    }
+    // λ = 1/ν; keep the member with Im λ ≥ 0, i.e. Im ν ≤ 0 (the conjugate has the conjugate vector).
+    const std::complex<double> lambda = 1.0 / nu;
+    if (lambda.imag() >= 0) {
+      found.emplace_back(lambda, z.head(n));
+    } else {
+      found.emplace_back(std::conj(lambda), z.head(n).conjugate());
+    }
+  }
+  std::sort(found.begin(), found.end(), [](const auto& a, const auto& b) { return std::abs(a.first) < std::abs(b.first); });
+  if (static_cast<int>(found.size()) > count) found.resize(count);
+  Eigenpairs out{Eigen::VectorXcd(found.size()), Eigen::MatrixXcd(n, found.size())};
+  for (std::size_t k = 0; k < found.size(); ++k) {
+    out.values(k) = found[k].first;
+    out.vectors.col(k) = found[k].second;
+  }
+  return out;
+}
+
+}  // namespace bladestab

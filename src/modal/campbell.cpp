@@ -1,0 +1,497 @@
+#include "bladestab/modal/campbell.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <future>
+#include <memory>
+#include <optional>
+
+#include "bladestab/base/constants.hpp"
+#include "bladestab/modal/mode_convergence.hpp"
+#include "bladestab/modal/mode_tracking.hpp"
+#include "support/scalar_search.hpp"
+#include "bladestab/modal/speed_sweep.hpp"
+#include "support/worker_threads.hpp"
+
+namespace bladestab {
+namespace {
+// A richer model's mode is the counterpart of a base mode if their shapes correlate at least this
+// well (MAC); below it nothing is known about that point's basis error.
+constexpr double counterpart_mac = 0.5;
+
+int tracked_count(const BladeModel& model, const CampbellOptions& options) {
+  return std::min(options.mode_count, model.layout.size());
+}
+
+// Modes solved per speed: a few more than tracked, so that modes entering from above can be followed.
+int solve_count(const BladeModel& model, const CampbellOptions& options) {
+  return tracking_candidates(tracked_count(model, options), model.layout.size());
+}
+
+// Index of the mode in `modes` most like `shape` (unit columns: MAC = |aᴴ b|²).
+int most_like(const SpeedModes& modes, const Eigen::VectorXcd& shape, double* mac = nullptr) {
+  Eigen::Index best = 0;
+  const double value = (modes.shapes.adjoint() * shape).cwiseAbs2().maxCoeff(&best);
+  if (mac) *mac = value;
+  return static_cast<int>(best);
+}
+
+// Greedy assignment by largest MAC (unit columns: MAC = |aᴴ b|²): result[i] = index in
+// `candidates` for tracked shape i.
+std::vector<int> match_by_shape(const Eigen::MatrixXcd& tracked, const Eigen::MatrixXcd& candidates,
+                                std::vector<double>& mac_out) {
+  return assign_by_correlation((tracked.adjoint() * candidates).cwiseAbs2(), mac_out);
+}
+
+// The sweep's frequency [Hz] at `speed` of the mode most like `shape`: the curve between the speeds.
+double frequency_of(SpeedSweep& sweep, const Eigen::VectorXcd& shape, double speed) {
+  const SpeedModes modes = sweep.at(speed, false);
+  return modes.frequency_hz[most_like(modes, shape)];
+}
+
+// The sweep's modes at every speed and, per curve, which of them it follows.
+struct Tracked {
+  std::vector<SpeedModes> modes;       // per speed
+  std::vector<std::vector<int>> pick;  // [curve][speed]
+};
+
+Tracked track(SpeedSweep& sweep, const BladeModel& model, const CampbellOptions& options, CampbellDiagram& d,
+              const std::function<void(int, int)>& progress) {
+  const auto& speeds = options.speeds_rad_s;
+  const int ns = static_cast<int>(speeds.size()), nt = tracked_count(model, options);
+  Tracked t{sweep.solve(speeds, progress), std::vector<std::vector<int>>(nt, std::vector<int>(ns))};
+  d = CampbellDiagram{};
+  d.speeds_rad_s = speeds;
+  d.engine_orders = options.engine_orders;
+  d.curves.resize(nt);
+  d.solver = sweep.solver();
+  d.reduced = sweep.reduced();
+  d.basis_vectors = sweep.vectors();
+  d.sample_speeds_rad_s = sweep.sample_speeds();
+  for (CampbellCurve& c : d.curves) {
+    c.frequency_hz.reserve(ns);
+    c.damping_ratio.reserve(ns);
+    c.correlation.reserve(ns);
+    c.reduction_bound.reserve(ns);
+    c.rounding.reserve(ns);
+  }
+  Eigen::MatrixXcd previous;
+  std::vector<int> pick(nt);
+  std::vector<double> mac(nt, 1.0);
+  for (int s = 0; s < ns; ++s) {
+    const SpeedModes& here = t.modes[s];
+    if (s == 0) {
+      for (int i = 0; i < nt; ++i) {
+        pick[i] = i;
+        d.curves[i].mode = i + 1;
+        d.curves[i].family = here.family[i];
+      }
+    } else {
+      previous.resize(here.shapes.rows(), nt);
+      for (int i = 0; i < nt; ++i) previous.col(i) = t.modes[s - 1].shapes.col(t.pick[i][s - 1]);
+      pick = match_by_shape(previous, here.shapes, mac);
+    }
+    for (int i = 0; i < nt; ++i) {
+      CampbellCurve& c = d.curves[i];
+      t.pick[i][s] = pick[i];
+      c.frequency_hz.push_back(here.frequency_hz[pick[i]]);
+      c.damping_ratio.push_back(here.damping_ratio[pick[i]]);
+      c.correlation.push_back(mac[i]);
+      c.reduction_bound.push_back(here.bound[pick[i]]);
+      c.rounding.push_back(here.rounding[pick[i]]);
+    }
+  }
+  return t;
+}
+
+// Engine-order crossings, refined on the sweep's modes and then confirmed and corrected on the
+// whole model. `shapes` receives, per crossing, the shape it followed.
+void find_crossings(SpeedSweep& sweep, const Tracked& t, CampbellDiagram& d, std::vector<Eigen::VectorXcd>& shapes) {
+  const auto& speeds = d.speeds_rad_s;
+  const int ns = static_cast<int>(speeds.size());
+  std::vector<std::pair<EngineOrderCrossing, Eigen::VectorXcd>> found;
+  for (int k : d.engine_orders) {
+    const double line = k / two_pi;  // Hz per rad/s
+    for (std::size_t i = 0; i < d.curves.size(); ++i) {
+      const CampbellCurve& curve = d.curves[i];
+      for (int s = 0; s + 1 < ns; ++s) {
+        const double g0 = curve.frequency_hz[s] - line * speeds[s];
+        const double g1 = curve.frequency_hz[s + 1] - line * speeds[s + 1];
+        if (!((g0 > 0 && g1 <= 0) || (g0 < 0 && g1 >= 0))) continue;
+        // A pair that does not oscillate at either end (heavy damping) meets no line.
+        if (curve.frequency_hz[s] <= 0 || curve.frequency_hz[s + 1] <= 0) continue;
+        const Eigen::VectorXcd shape = t.modes[s].shapes.col(t.pick[i][s]);
+        const auto g = [&](double speed) { return frequency_of(sweep, shape, speed) - line * speed; };
+        const double root = g1 == 0 ? speeds[s + 1] : illinois_root(g, speeds[s], g0, speeds[s + 1], g1);
+        // Slope of g by a central difference on the sweep's modes.
+        const double h = 1e-4 * (speeds[s + 1] - speeds[s]);
+        const double lo = std::max(speeds[s], root - h), hi = std::min(speeds[s + 1], root + h);
+        const double slope = (g(hi) - g(lo)) / (hi - lo);
+        // The whole model at the root, one secant step with that slope, and the whole model again.
+        const double first = sweep.whole_frequency(root, shape) - line * root;
+        const bool steep = std::abs(slope) > 1e-9 * line;
+        double speed = steep ? root - first / slope : root;
+        if (!(speed >= speeds[s] && speed <= speeds[s + 1])) speed = root;
+        const double residual = sweep.whole_frequency(speed, shape) - line * speed;
+        EngineOrderCrossing x;
+        x.engine_order = k;
+        x.mode = curve.mode;
+        x.speed_rad_s = speed;
+        x.frequency_hz = line * speed;
+        x.residual = x.frequency_hz > 0 ? std::abs(residual) / x.frequency_hz : std::abs(residual);
+        x.amplification = steep ? line / std::abs(slope) : 1e9;
+        found.emplace_back(x, shape);
+      }
+    }
+  }
+  std::stable_sort(found.begin(), found.end(),
+                   [](const auto& a, const auto& b) { return a.first.speed_rad_s < b.first.speed_rad_s; });
+  d.crossings.clear();
+  shapes.clear();
+  for (auto& [x, shape] : found) {
+    d.crossings.push_back(x);
+    shapes.push_back(std::move(shape));
+  }
+}
+
+// Each curve's closest approach to each engine-order line (EngineOrderApproach), after the
+// crossings. `shapes` receives, per approach, the shape it followed.
+void find_closest_approaches(SpeedSweep& sweep, const Tracked& t, CampbellDiagram& d,
+                             std::vector<Eigen::VectorXcd>& shapes) {
+  const auto& speeds = d.speeds_rad_s;
+  const int ns = static_cast<int>(speeds.size());
+  d.approaches.clear();
+  shapes.clear();
+  for (int k : d.engine_orders) {
+    const double line = k / two_pi;  // Hz per rad/s
+    for (std::size_t i = 0; i < d.curves.size(); ++i) {
+      const CampbellCurve& curve = d.curves[i];
+      EngineOrderApproach a;
+      a.engine_order = k;
+      a.mode = curve.mode;
+      const auto crossing = std::find_if(d.crossings.begin(), d.crossings.end(), [&](const EngineOrderCrossing& x) {
+        return x.engine_order == k && x.mode == curve.mode;
+      });
+      // The speed of least |f − kΩ/2π| / f among those where the pair oscillates.
+      int nearest = -1;
+      double least = 0;
+      for (int s = 0; s < ns; ++s) {
+        const double f = curve.frequency_hz[s];
+        if (f <= 0) continue;
+        const double distance = std::abs(f - line * speeds[s]) / f;
+        if (nearest < 0 || distance < least) nearest = s, least = distance;
+      }
+      if (nearest < 0) continue;  // overdamped throughout: it meets no line
+      Eigen::VectorXcd shape = t.modes[nearest].shapes.col(t.pick[i][nearest]);
+      if (crossing != d.crossings.end()) {
+        a.speed_rad_s = crossing->speed_rad_s;
+        a.frequency_hz = crossing->frequency_hz;
+        a.distance = 0;
+      } else {
+        const auto distance = [&](double speed) {
+          const double f = frequency_of(sweep, shape, speed);
+          return f > 0 ? std::abs(f - line * speed) / f : 1.0;
+        };
+        const double lo = speeds[std::max(0, nearest - 1)], hi = speeds[std::min(ns - 1, nearest + 1)];
+        a.speed_rad_s = golden_minimum(distance, lo, hi, 1e-10 * std::max(1.0, hi));
+        a.frequency_hz = sweep.whole_frequency(a.speed_rad_s, shape);
+        a.distance = std::abs(a.frequency_hz - line * a.speed_rad_s) / a.frequency_hz;
+      }
+      d.approaches.push_back(a);
+      shapes.push_back(std::move(shape));
+    }
+  }
+}
+
+// The diagram from one sweep; a reduced sweep that cannot certify some speed gives way to the
+// dense one.
+CampbellDiagram diagram_from(const BladeModel& model, const DampingSpec& damping, const CampbellOptions& options,
+                             const std::function<void(int, int)>& progress) {
+  const double lo = options.speeds_rad_s.front(), hi = options.speeds_rad_s.back();
+  std::unique_ptr<SpeedSweep> sweep = make_speed_sweep(model, damping, solve_count(model, options), options.solver,
+                                                       options.reduction_tolerance, lo, hi);
+  CampbellDiagram d;
+  Tracked t;
+  try {
+    t = track(*sweep, model, options, d, progress);
+  } catch (const ReducedSweepUnavailable&) {
+    sweep = make_dense_speed_sweep(model, damping, solve_count(model, options), options.solver);
+    t = track(*sweep, model, options, d, progress);
+  }
+  std::vector<Eigen::VectorXcd> shapes;
+  find_crossings(*sweep, t, d, shapes);
+  if (options.closest_approaches) find_closest_approaches(*sweep, t, d, shapes);
+  return d;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Error estimates.
+
+// The richer models of the basis estimate, each with its sweep and the map from the base
+// sweep's coordinates into its own.
+struct Reference {
+  std::unique_ptr<BladeModel> model;
+  std::unique_ptr<SpeedSweep> sweep;
+  Eigen::MatrixXcd map;
+};
+
+// Base dofs → richer dofs: the bases are hierarchical (the first N shape functions of each field
+// are the same in both), so a base vector is the richer vector with zeros in the added terms.
+Eigen::MatrixXd embedding(const BladeModel& base, const BladeModel& richer) {
+  const DofLayout &a = base.layout, &b = richer.layout;
+  Eigen::MatrixXd E = Eigen::MatrixXd::Zero(b.size(), a.size());
+  const int from[3] = {a.theta_offset(), a.lateral_offset(), a.axial_offset()};
+  const int to[3] = {b.theta_offset(), b.lateral_offset(), b.axial_offset()};
+  const int count[3] = {a.theta_count, a.lateral_count, a.axial_count};
+  for (int f = 0; f < 3; ++f) {
+    for (int k = 0; k < count[f]; ++k) E(to[f] + k, from[f] + k) = 1;
+  }
+  return E;
+}
+
+Eigen::MatrixXcd coordinate_map(const SpeedSweep& base, const BladeModel& base_model, const SpeedSweep& richer,
+                                const BladeModel& richer_model) {
+  return (richer.metric() * (embedding(base_model, richer_model) * base.dofs())).cast<std::complex<double>>();
+}
+
+// Budget of one point: mode j of the base model's modes `here`, with its shape, against the
+// richer models' modes at the same speed. Relative on the frequency; on |λ| for a pair that does
+// not oscillate (frequency 0, heavy damping), as `modes` does.
+ErrorBudget point_budget(const SpeedModes& here, int j, const Eigen::VectorXcd& shape,
+                         const std::vector<Reference>& refs, const std::vector<const SpeedModes*>& at,
+                         const std::vector<int>& terms) {
+  const bool oscillates = here.frequency_hz[j] > 0;
+  const auto value = [&](const SpeedModes& m, int k) { return oscillates ? m.frequency_hz[k] : m.natural_hz[k]; };
+  ErrorBudget b;
+  const double f0 = value(here, j), b0 = here.bound[j];
+  b.reduction = b0;
+  b.method = here.rounding[j];
+  std::vector<double> f{f0};
+  double f1_bound = 0;
+  for (std::size_t r = 0; r < refs.size(); ++r) {
+    double mac = 0;
+    const int k = most_like(*at[r], refs[r].map * shape, &mac);
+    if (mac < counterpart_mac || value(*at[r], k) <= 0) {
+      b.basis = 1;  // no counterpart: nothing is known
+      return b;
+    }
+    f.push_back(value(*at[r], k));
+    if (r == 0) f1_bound = f.back() * at[r]->bound[k];
+  }
+  // |f_N − f_ref| of the whole models is at most the reduced values' difference plus both bounds.
+  const BasisTail tail = basis_tail(f, terms);
+  b.basis = tail.relative + tail.factor * (f0 * b0 + f1_bound) / std::abs(f[1]);
+  return b;
+}
+
+// The largest whole estimate over the points that oscillate. A pair that does not (frequency 0,
+// heavy damping) keeps its estimate on |λ| but does not steer the terms: the 0 printed for it is
+// right whatever they are, as long as the pair stays overdamped.
+double worst_total(const CampbellDiagram& d, const std::vector<std::vector<ErrorBudget>>& budget) {
+  double worst = 0;
+  for (std::size_t i = 0; i < budget.size(); ++i) {
+    for (std::size_t s = 0; s < budget[i].size(); ++s) {
+      if (d.curves[i].frequency_hz[s] > 0) worst = std::max(worst, budget[i][s].total());
+    }
+  }
+  return worst;
+}
+
+void take_worst(ErrorBudget& worst, const ErrorBudget& b) {
+  worst.basis = std::max(worst.basis, b.basis);
+  worst.reduction = std::max(worst.reduction, b.reduction);
+  worst.load = std::max(worst.load, b.load);
+  worst.method = std::max(worst.method, b.method);
+  for (const std::string& u : b.unbounded) {
+    if (std::find(worst.unbounded.begin(), worst.unbounded.end(), u) == worst.unbounded.end()) {
+      worst.unbounded.push_back(u);
+    }
+  }
+}
+
+}  // namespace
+
+CampbellDiagram campbell_diagram(const BladeModel& model, const DampingSpec& damping, const CampbellOptions& options,
+                                 const std::function<void(int, int)>& progress) {
+  return diagram_from(model, damping, options, progress);
+}
+
+ErrorBudget CampbellWithErrors::worst() const {
+  ErrorBudget w;
+  for (const auto& curve : budget) {
+    for (const ErrorBudget& b : curve) take_worst(w, b);
+  }
+  for (const ErrorBudget& b : crossing_budget) take_worst(w, b);
+  return w;
+}
+
+ErrorBudget CampbellWithErrors::worst_at(std::size_t speed) const {
+  ErrorBudget w;
+  for (const auto& curve : budget) take_worst(w, curve[speed]);
+  return w;
+}
+
+CampbellWithErrors campbell_with_error_estimate(const Scene& scene, const CampbellOptions& options, double tolerance,
+                                                const std::function<void(int, int)>& progress) {
+  check_tolerance(tolerance);
+  const std::vector<double>& speeds = options.speeds_rad_s;
+  const double lo = speeds.front(), hi = speeds.back();
+  CampbellOptions wanted = options;
+  // The richer models' solves beside the base model's, or in turn where one thread is allowed.
+  const std::launch richer_policy = beside_or_deferred(options.threads);
+  wanted.reduction_tolerance = tolerance / 20;
+  ModelSpec spec = scene.model;
+  bool dense = false;  // set when a reduced sweep could not certify some speed
+  while (true) {
+    auto model = std::make_unique<BladeModel>(assemble_model(scene, spec));
+    const int count = solve_count(*model, wanted), nt = tracked_count(*model, wanted);
+    // The richer models are solved densely where they are solved whole, as `modes` does (ARPACK
+    // is for the lowest modes of large models, and some damped pairs defeat it).
+    const auto sweep_of = [&](const BladeModel& m, int modes, EigenSolverKind solver) {
+      return dense ? make_dense_speed_sweep(m, scene.damping, modes, solver)
+                   : make_speed_sweep(m, scene.damping, modes, solver, wanted.reduction_tolerance, lo, hi);
+    };
+    std::vector<int> terms{spec.terms};
+    std::vector<Reference> refs;
+    for (int level = 0; level < (spec.basis == BasisKind::sine ? 2 : 1); ++level) {
+      ModelSpec richer = spec;
+      richer.terms = reference_terms(spec.basis, terms.back());
+      terms.push_back(richer.terms);
+      refs.push_back({std::make_unique<BladeModel>(assemble_model(scene, richer)), nullptr, {}});
+    }
+    const auto raise = [&](double estimate) {
+      const std::optional<int> next = terms_for_tolerance(spec.basis, spec.terms, estimate, tolerance);
+      if (!next) throw tolerance_not_met(tolerance, spec, estimate);
+      spec.terms = *next;
+    };
+    try {
+      // The richer models' sweeps run beside the base model's, on a second thread (each sweep is
+      // its own; BLAS runs single-threaded and is thread-safe).
+      const EigenSolverKind richer_solver =
+          wanted.solver == EigenSolverKind::arpack ? EigenSolverKind::dense : wanted.solver;
+      auto richer_sweeps = std::async(richer_policy, [&] {
+        for (Reference& r : refs) {
+          r.sweep = reduced_sweep_applies(*r.model, scene.damping) ? sweep_of(*r.model, count, richer_solver)
+                                                                   : sweep_of(*r.model, count, EigenSolverKind::dense);
+        }
+      });
+      std::unique_ptr<SpeedSweep> base;
+      try {
+        base = sweep_of(*model, count, wanted.solver);
+      } catch (...) {
+        if (richer_policy == std::launch::async) richer_sweeps.wait();
+        throw;
+      }
+      richer_sweeps.get();
+      const auto maps = [&] {
+        for (Reference& r : refs) r.map = coordinate_map(*base, *model, *r.sweep, *r.model);
+      };
+      // Screen at the ends and the middle (the reduced sweeps' samples, where they are exact): a
+      // basis that misses there is raised before the whole sweep.
+      maps();
+      double screened = 0, rounding = 0;
+      for (double speed : {lo, 0.5 * (lo + hi), hi}) {
+        const SpeedModes here = base->at(speed, true);
+        std::vector<SpeedModes> richer;
+        for (Reference& r : refs) richer.push_back(r.sweep->at(speed, true));
+        std::vector<const SpeedModes*> at;
+        for (const SpeedModes& m : richer) at.push_back(&m);
+        for (int j = 0; j < nt; ++j) {
+          if (here.frequency_hz[j] > 0) {
+            const ErrorBudget b = point_budget(here, j, here.shapes.col(j), refs, at, terms);
+            screened = std::max(screened, b.total());
+            rounding = std::max(rounding, b.method);
+          }
+        }
+      }
+      if (rounding > tolerance) throw tolerance_below_rounding(tolerance, rounding);
+      if (screened > tolerance) {
+        raise(screened);
+        continue;
+      }
+
+      CampbellDiagram diagram;
+      std::vector<std::vector<SpeedModes>> richer(refs.size());
+      auto richer_solved = std::async(richer_policy, [&] {
+        for (std::size_t r = 0; r < refs.size(); ++r) richer[r] = refs[r].sweep->solve(speeds);
+      });
+      Tracked t;
+      try {
+        t = track(*base, *model, wanted, diagram, progress);
+      } catch (...) {
+        if (richer_policy == std::launch::async) richer_solved.wait();
+        throw;
+      }
+      richer_solved.get();
+      maps();
+      const int ns = static_cast<int>(speeds.size());
+      std::vector<std::vector<ErrorBudget>> budget(nt, std::vector<ErrorBudget>(ns));
+      std::vector<const SpeedModes*> at(refs.size());
+      for (int s = 0; s < ns; ++s) {
+        for (std::size_t r = 0; r < refs.size(); ++r) at[r] = &richer[r][s];
+        const SpeedModes& here = t.modes[s];
+        for (int i = 0; i < nt; ++i) {
+          const int j = t.pick[i][s];
+          budget[i][s] = point_budget(here, j, here.shapes.col(j), refs, at, terms);
+        }
+      }
+      const double worst = worst_total(diagram, budget);
+      if (worst > tolerance) {
+        for (const auto& curve : budget) {
+          for (const ErrorBudget& b : curve) rounding = std::max(rounding, b.method);
+        }
+        if (rounding > tolerance) throw tolerance_below_rounding(tolerance, rounding);
+        raise(worst);
+        continue;
+      }
+
+      // The budget of the frequency followed by `shape` at `speed` (relative).
+      const auto frequency_budget = [&](double speed, const Eigen::VectorXcd& shape) {
+        const SpeedModes here = base->at(speed, true);
+        std::vector<SpeedModes> there;
+        for (Reference& r : refs) there.push_back(r.sweep->at(speed, true));
+        for (std::size_t r = 0; r < refs.size(); ++r) at[r] = &there[r];
+        const int j = most_like(here, shape);
+        return point_budget(here, j, here.shapes.col(j), refs, at, terms);
+      };
+      std::vector<Eigen::VectorXcd> shapes;
+      find_crossings(*base, t, diagram, shapes);
+      std::vector<ErrorBudget> crossing_budget;
+      for (std::size_t c = 0; c < shapes.size(); ++c) {
+        const EngineOrderCrossing& x = diagram.crossings[c];
+        const ErrorBudget f = frequency_budget(x.speed_rad_s, shapes[c]);
+        ErrorBudget b;
+        b.basis = x.amplification * f.basis;
+        b.reduction = x.amplification * x.residual;
+        b.method = x.amplification * f.method;
+        crossing_budget.push_back(b);
+      }
+      std::vector<ErrorBudget> approach_budget;
+      if (wanted.closest_approaches) {
+        find_closest_approaches(*base, t, diagram, shapes);
+        for (std::size_t c = 0; c < shapes.size(); ++c) {
+          const EngineOrderApproach& a = diagram.approaches[c];
+          // distance = |1 − kΩ/(2πf)|: a relative error ε of f moves it by (kΩ/2πf)·ε.
+          const double sensitivity = a.engine_order * a.speed_rad_s / (two_pi * a.frequency_hz);
+          const ErrorBudget f = frequency_budget(a.speed_rad_s, shapes[c]);
+          ErrorBudget b;
+          b.basis = sensitivity * f.basis;
+          b.reduction = sensitivity * f.reduction;
+          b.method = sensitivity * f.method;
+          approach_budget.push_back(b);
+        }
+      }
+      return CampbellWithErrors{std::move(*model),
+                                std::move(diagram),
+                                tolerance,
+                                std::vector<int>(terms.begin() + 1, terms.end()),
+                                std::move(budget),
+                                std::move(crossing_budget),
+                                std::move(approach_budget)};
+    } catch (const ReducedSweepUnavailable&) {
+      dense = true;
+    }
+  }
+}
+
+}  // namespace bladestab

@@ -1,0 +1,197 @@
+#include "bladestab/modal/mode_convergence.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <optional>
+
+#include <fmt/format.h>
+
+#include "bladestab/blade/damping.hpp"
+#include "bladestab/base/input_error.hpp"
+
+namespace bladestab {
+namespace {
+
+constexpr int max_terms = 200;
+// Convergence rates p of f_N − f_∞ ∝ N^−p that the bisection resolves (beyond max_rate the tail
+// is |f₁ − f₂|), and the fastest rate the estimate trusts for the sine basis. Its V_n force
+// v'(0) = 0, which a Timoshenko root does not have: an O(1/N) error, so p → 1 as N grows, and the
+// faster pre-asymptotic rate measured from N, 2N, 4N understates the tail (measured against the
+// closed form, d̄ = 0.01 and 0.1, N = 10–40: estimate/true 0.93–1.0 with the measured p);
+// 0.9, 10 % below the asymptotic rate, is the margin (tests/test_modes.cpp).
+constexpr double min_rate = 0.05, max_rate = 40, max_trusted_rate = 0.9;
+// Exponential convergence: |f_N − f_ref| misses the richer model's own error; measured on the
+// paper blade's boundaries (N = 8 against 12, truth N = 14): 0.9985–0.9999 of the true error.
+// 10 % margin.
+constexpr double exponential_margin = 1.1;
+
+ModalSolution modes_of(const BladeModel& model, const Scene& scene, int count, EigenSolverKind solver) {
+  const double speed = scene.operation.speed_rad_s;
+  return solve_modes(model, system_at(model, speed, damping_matrix(model, scene.damping, speed)), speed, count,
+                     solver);
+}
+
+// Frequency (or |eigenvalue| for a non-oscillating mode) of the `rank`-th mode of `family` in
+// `reference`; none if it has no counterpart.
+std::optional<double> counterpart(const ModalSolution& reference, ModeFamily family, int rank, bool by_frequency) {
+  int seen = 0;
+  for (const Mode& r : reference.modes) {
+    if (r.family != family || seen++ != rank) continue;
+    return by_frequency ? r.frequency_hz : std::abs(r.eigenvalue);
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+// Relative error of f₁ (n[0] terms) from the same mode of richer models, f[1] (n[1] terms) and,
+// for algebraic convergence, f[2] (n[2] ≥ n[1] terms). Algebraic convergence f_N − f_∞ ≈ C N^−p (sine): |f₁ − f₂| understates the
+// tail by 1/(1 − (n₁/n₂)^p), 1.4–2× for the sine basis; p comes from the ratio of the two
+// differences (at most max_trusted_rate) and f₁ − f_∞ ≈ (f₁ − f₂) / (1 − (n₁/n₂)^p).
+// Exponential convergence (Legendre): exponential_margin · |f₁ − f₂|.
+BasisTail basis_tail(const std::vector<double>& f, const std::vector<int>& n) {
+  const double d1 = f[0] - f[1];
+  if (f.size() == 2 || d1 == 0) return {exponential_margin * std::abs(d1) / std::abs(f[1]), exponential_margin};
+  double p = max_trusted_rate;  // the richest model is capped (n[2] = n[1])
+  if (n[2] > n[1]) {
+    const auto ratio = [&](double q) {  // d2/d1 for f_N = C N^−q, decreasing in q
+      return (std::pow(n[1], -q) - std::pow(n[2], -q)) / (std::pow(n[0], -q) - std::pow(n[1], -q));
+    };
+    const double r = (f[1] - f[2]) / d1;
+    double lo = min_rate, hi = max_rate;
+    if (r >= ratio(lo)) hi = lo;
+    if (r <= ratio(hi)) lo = hi;
+    for (int i = 0; i < 60 && hi > lo; ++i) ((ratio(0.5 * (lo + hi)) > r) ? lo : hi) = 0.5 * (lo + hi);
+    p = std::min(lo, max_trusted_rate);  // lo: the slower rate of the bracket, the larger tail
+  }
+  const double factor = 1 / (1 - std::pow(static_cast<double>(n[0]) / n[1], p));
+  return {factor * std::abs(d1) / std::abs(f[1]), factor};
+}
+
+namespace {
+
+// Frequencies (|eigenvalue| for non-oscillating modes) and terms of the models compared: the
+// base, then the richer ones.
+std::vector<double> compare(const std::vector<ModalSolution>& models, const std::vector<int>& terms) {
+  std::vector<double> error;
+  int rank_in_family[3] = {0, 0, 0};
+  for (const Mode& m : models[0].modes) {
+    const int rank = rank_in_family[static_cast<int>(m.family)]++;
+    const bool by_frequency = m.frequency_hz > 0;
+    std::vector<double> f{by_frequency ? m.frequency_hz : std::abs(m.eigenvalue)};
+    for (std::size_t k = 1; k < models.size(); ++k) {
+      if (const std::optional<double> c = counterpart(models[k], m.family, rank, by_frequency)) f.push_back(*c);
+    }
+    error.push_back(f.size() == models.size() ? basis_tail(f, terms).relative : 1.0);  // no counterpart: nothing is known
+  }
+  return error;
+}
+
+}  // namespace
+
+ErrorBudget ConvergedModes::budget(std::size_t k) const {
+  ErrorBudget b;
+  b.basis = relative_error[k];
+  b.method = rounding[k];
+  return b;
+}
+
+double frequency_rounding(const Eigen::MatrixXd& absolute_stiffness, const Eigen::VectorXd& absolute_shape,
+                          double stiffness_form) {
+  const double spread = absolute_shape.dot(absolute_stiffness * absolute_shape) / std::abs(stiffness_form);
+  return std::max(eigensolver_rounding, 10 * std::numeric_limits<double>::epsilon() * spread);
+}
+
+ErrorBudget ConvergedModes::worst_budget() const {
+  ErrorBudget worst;
+  for (std::size_t k = 0; k < relative_error.size(); ++k) {
+    worst.basis = std::max(worst.basis, budget(k).basis);
+    worst.method = std::max(worst.method, budget(k).method);
+  }
+  return worst;
+}
+
+double ConvergedModes::max_relative_error() const {
+  return relative_error.empty() ? 0 : *std::max_element(relative_error.begin(), relative_error.end());
+}
+
+int reference_terms(BasisKind basis, int terms) {
+  const int richer = basis == BasisKind::legendre ? terms + std::max(4, terms / 2) : 2 * terms;
+  return std::min(richer, max_terms + 40);
+}
+
+double basis_tail_factor(BasisKind basis) {
+  return basis == BasisKind::legendre ? exponential_margin : 1 / (1 - std::pow(2.0, -max_trusted_rate));
+}
+
+std::optional<int> terms_for_tolerance(BasisKind basis, int terms, double estimate, double tolerance) {
+  if (terms >= max_terms) return std::nullopt;
+  if (basis == BasisKind::sine) {
+    // Algebraic convergence: the estimate falls like N^−p, p ≤ 1 asymptotically (v'(0) = 0 is an
+    // O(1/N) error). If even p = 2 would need more than max_terms, raising is futile.
+    if (terms * std::sqrt(estimate / tolerance) > max_terms) return std::nullopt;
+    return std::min(max_terms, 2 * terms);
+  }
+  return std::min(max_terms, terms + 2);
+}
+
+void check_tolerance(double tolerance) {
+  if (!(tolerance > 0 && tolerance < 1)) throw ParameterError("tolerance", fmt::format("{}: must be in (0, 1)", tolerance));
+  if (tolerance <= eigensolver_rounding) {
+    throw ParameterError("tolerance", fmt::format("{}: must be above {:g}, the eigensolver's rounding that every "
+                                                  "estimate includes",
+                                                  tolerance, eigensolver_rounding));
+  }
+}
+
+ParameterError tolerance_not_met(double tolerance, const ModelSpec& spec, double estimate) {
+  return ParameterError("tolerance", fmt::format("{}: not met with {} terms per field (estimated error {:.2g}); "
+                                "{}a looser tolerance",
+                                tolerance, spec.terms, estimate,
+                                spec.basis == BasisKind::sine ? "use model.basis = \"legendre\" (for model.basis = \"sine\") or " : ""));
+}
+
+ParameterError tolerance_below_rounding(double tolerance, double rounding) {
+  return ParameterError("tolerance", fmt::format("{}: below the rounding of these frequencies, {:.2g} (the stiffness "
+                                "form of a slender blade's low modes cancels); more terms do not lower it",
+                                tolerance, rounding));
+}
+
+ConvergedModes modes_with_error_estimate(const Scene& scene, int count, EigenSolverKind solver,
+                                         std::optional<double> tolerance) {
+  if (tolerance) check_tolerance(*tolerance);
+  ModelSpec spec = scene.model;
+  while (true) {
+    BladeModel model = assemble_model(scene, spec);
+    ModalSolution solution = modes_of(model, scene, count, solver);
+    // Richer models: one for the Legendre basis' exponential convergence, two for the sine
+    // basis' algebraic one. They need more modes so that every family is represented to the same rank.
+    std::vector<ModalSolution> models{solution};
+    std::vector<int> terms{spec.terms};
+    for (int level = 0; level < (spec.basis == BasisKind::sine ? 2 : 1); ++level) {
+      ModelSpec richer = spec;
+      richer.terms = reference_terms(spec.basis, terms.back());
+      models.push_back(modes_of(assemble_model(scene, richer), scene, 0, EigenSolverKind::dense));
+      terms.push_back(richer.terms);
+    }
+    std::vector<double> rounding;
+    const Eigen::MatrixXd K = model.stiffness(scene.operation.speed_rad_s);
+    const Eigen::MatrixXd absolute = K.cwiseAbs();
+    for (const Mode& m : solution.modes) {
+      rounding.push_back(frequency_rounding(absolute, m.shape.cwiseAbs(), (m.shape.adjoint() * K * m.shape)(0).real()));
+    }
+    ConvergedModes result{std::move(model), std::move(solution), terms.back(), compare(models, terms),
+                          std::move(rounding)};
+    // The whole estimate of every mode (basis + method), as printed, must meet the tolerance.
+    const double estimate = result.worst_budget().total();
+    if (!tolerance || estimate <= *tolerance) return result;
+    const double rounded = *std::max_element(result.rounding.begin(), result.rounding.end());
+    if (rounded > *tolerance) throw tolerance_below_rounding(*tolerance, rounded);
+    const std::optional<int> next = terms_for_tolerance(spec.basis, spec.terms, estimate, *tolerance);
+    if (!next) throw tolerance_not_met(*tolerance, spec, estimate);
+    spec.terms = *next;
+  }
+}
+
+}  // namespace bladestab

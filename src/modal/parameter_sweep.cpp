@@ -1,0 +1,208 @@
+#include "bladestab/modal/parameter_sweep.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <exception>
+#include <optional>
+#include <thread>
+
+#include <fmt/format.h>
+
+#include "bladestab/base/input_error.hpp"
+#include "bladestab/modal/mode_convergence.hpp"
+#include "bladestab/modal/mode_tracking.hpp"
+#include "bladestab/scene/scene.hpp"
+#include "support/worker_threads.hpp"
+
+namespace bladestab {
+namespace {
+
+constexpr double not_matched_by_shape = std::numeric_limits<double>::quiet_NaN();
+
+void check_key_form(const std::string& key) {
+  const auto dot = key.find('.');
+  if (dot == std::string::npos || dot == 0 || dot + 1 == key.size() || key.find('=') != std::string::npos) {
+    throw ParameterError("key", fmt::format("{}: must be section.key, a scene key that takes a number (e.g. "
+                                 "blade.slenderness, operation.tip_compression_over_fcr)",
+                                 key));
+  }
+}
+
+// The scene at one value. The scene without the swept key was read first, so what fails here
+// fails because of the key or its value.
+Scene scene_at(const std::string& text, const std::string& source, std::vector<std::string> overrides,
+               const ParameterSweepOptions& o, double value) {
+  overrides.push_back(o.key + "=" + scene_value_text(value));
+  try {
+    return parse_scene(text, source, overrides);
+  } catch (const SceneKeyError& e) {
+    switch (e.reason()) {
+      case SceneKeyError::Reason::unknown:
+      case SceneKeyError::Reason::unused:
+        throw ParameterError("key", fmt::format("{}: {}", o.key, e.what()));
+      case SceneKeyError::Reason::not_numeric:
+        throw ParameterError("key", fmt::format("{}: takes no number: {}", o.key, e.what()));
+      case SceneKeyError::Reason::not_allowed:
+        break;
+    }
+    throw ParameterError("values", fmt::format("{}: {}", o.values_text, e.what()));
+  } catch (const InputError& e) {
+    throw ParameterError("values", fmt::format("{}: {}", o.values_text, e.what()));
+  }
+}
+
+// The modes of the scene at one value with their error estimates; all of them where the dense
+// solver serves (so a tracked mode cannot leave the candidates), the tracking window with ARPACK.
+ConvergedModes modes_at(const Scene& scene, const ParameterSweepOptions& o) {
+  const int candidates =
+      o.solver == EigenSolverKind::arpack ? tracking_candidates(o.mode_count, std::numeric_limits<int>::max()) : 0;
+  try {
+    return modes_with_error_estimate(scene, candidates, o.solver);
+  } catch (const InputError& e) {  // e.g. a static compression the blade cannot carry
+    throw ParameterError("values", fmt::format("{}: {}", o.values_text, e.what()));
+  }
+}
+
+// The shapes of the modes `pick` (all of them when empty), as columns.
+Eigen::MatrixXcd shapes_of(const ModalSolution& solution, const std::vector<int>& pick = {}) {
+  const std::size_t count = pick.empty() ? solution.modes.size() : pick.size();
+  Eigen::MatrixXcd shapes(solution.modes.front().shape.size(), count);
+  for (std::size_t i = 0; i < count; ++i) shapes.col(i) = solution.modes[pick.empty() ? i : pick[i]].shape;
+  return shapes;
+}
+
+}  // namespace
+
+const char* to_string(ModeMatch m) {
+  switch (m) {
+    case ModeMatch::first: return "first";
+    case ModeMatch::shape: return "shape";
+    case ModeMatch::order: return "order";
+  }
+  return "?";
+}
+
+std::string scene_value_text(double value) {
+  if (std::abs(value) < 1e15 && value == std::round(value)) return fmt::format("{}", static_cast<long long>(value));
+  return fmt::format("{}", value);
+}
+
+double ParameterSweep::max_error_estimate() const {
+  double worst = 0;
+  for (const SweptMode& m : modes) {
+    for (double e : m.error_estimate) worst = std::max(worst, e);
+  }
+  return worst;
+}
+
+double ParameterSweep::min_correlation() const {
+  double lowest = 1;
+  for (const SweptMode& m : modes) {
+    for (double c : m.correlation) {
+      if (!std::isnan(c)) lowest = std::min(lowest, c);
+    }
+  }
+  return lowest;
+}
+
+ParameterSweep parameter_sweep(const std::string& text, const std::string& source,
+                               const std::vector<std::string>& overrides, const ParameterSweepOptions& o,
+                               const std::function<void(int, int)>& progress) {
+  check_key_form(o.key);
+  if (o.mode_count < 1) throw ParameterError("count", fmt::format("{}: must be an integer >= 1", o.mode_count));
+  if (o.values.size() < 2) throw ParameterError("values", fmt::format("{}: needs at least 2 values", o.values_text));
+  parse_scene(text, source, overrides);  // the scene itself, before the key is touched
+
+  const int nv = static_cast<int>(o.values.size());
+  std::vector<SweptMode> modes;
+  std::vector<double> speeds;
+  std::vector<int> dofs, reference_terms;
+  std::vector<ModeMatch> matched_by;
+  std::optional<BladeModel> first_model;
+  EigenSolverKind first_solver = EigenSolverKind::dense;
+  std::vector<int> pick;            // per tracked mode: its index among this value's modes
+  Eigen::MatrixXcd previous_shapes; // the tracked modes' shapes at the previous value
+
+  // One value's modes joined to the curves.
+  const auto track = [&](int v, const Scene& scene, const ConvergedModes& here) {
+    const ModalSolution& solution = here.solution;
+    const int n = here.model.layout.size(), available = static_cast<int>(solution.modes.size());
+    std::vector<double> correlation;
+    if (v == 0) {
+      first_model = here.model;
+      first_solver = solution.solver;
+      const int tracked = std::min(o.mode_count, available);
+      modes.resize(tracked);
+      pick.resize(tracked);
+      for (int i = 0; i < tracked; ++i) {
+        pick[i] = i;
+        modes[i].index = i + 1;
+        modes[i].family = solution.modes[i].family;
+      }
+      correlation.assign(tracked, 1.0);
+      matched_by.push_back(ModeMatch::first);
+    } else if (n == dofs.back()) {
+      // Same dofs: the mode most like each tracked shape, by MAC in this value's mass matrix.
+      pick = assign_by_correlation(modal_assurance_matrix(previous_shapes, shapes_of(solution), here.model.M),
+                                   correlation);
+      matched_by.push_back(ModeMatch::shape);
+    } else {
+      // Other dofs (another basis size or field set): the shapes do not compare; by frequency order.
+      for (std::size_t i = 0; i < pick.size(); ++i) pick[i] = static_cast<int>(i);
+      correlation.assign(pick.size(), not_matched_by_shape);
+      matched_by.push_back(ModeMatch::order);
+    }
+    if (std::any_of(pick.begin(), pick.end(), [&](int k) { return k < 0 || k >= available; })) {
+      throw ParameterError("count", fmt::format("{}: the model at {} = {} has only {} modes", o.mode_count, o.key,
+                                   scene_value_text(o.values[v]), available));
+    }
+    for (std::size_t i = 0; i < pick.size(); ++i) {
+      const Mode& m = solution.modes[pick[i]];
+      SweptMode& curve = modes[i];
+      curve.families.push_back(m.family);
+      curve.frequency_hz.push_back(m.frequency_hz);
+      curve.lambda.push_back(m.lambda);
+      curve.damping_ratio.push_back(m.damping_ratio);
+      curve.correlation.push_back(correlation[i]);
+      curve.error_estimate.push_back(here.budget(pick[i]).total());
+    }
+    previous_shapes = shapes_of(solution, pick);
+    speeds.push_back(scene.operation.speed_rad_s);
+    dofs.push_back(n);
+    reference_terms.push_back(here.reference_terms);
+  };
+
+  // The values are independent: solved a batch at a time, one per worker thread (BLAS runs single-threaded;
+  // ARPACK keeps its state in Fortran SAVE variables, so it runs alone), then tracked in order; a
+  // batch bounds the memory held for large models. The first value that fails, in the order
+  // given, is the one reported.
+  const int workers = o.solver == EigenSolverKind::arpack ? 1 : std::min(nv, worker_threads(o.threads));
+  for (int start = 0; start < nv; start += workers) {
+    const int batch = std::min(workers, nv - start);
+    std::vector<std::optional<Scene>> scenes(batch);
+    std::vector<std::optional<ConvergedModes>> solved(batch);
+    std::vector<std::exception_ptr> failed(batch);
+    const auto solve = [&](int b) {
+      try {
+        scenes[b] = scene_at(text, source, overrides, o, o.values[start + b]);
+        solved[b] = modes_at(*scenes[b], o);
+      } catch (...) {
+        failed[b] = std::current_exception();
+      }
+    };
+    std::vector<std::thread> threads;
+    for (int b = 1; b < batch; ++b) threads.emplace_back(solve, b);
+    solve(0);
+    for (std::thread& t : threads) t.join();
+    for (int b = 0; b < batch; ++b) {
+      if (failed[b]) std::rethrow_exception(failed[b]);
+      track(start + b, *scenes[b], *solved[b]);
+      if (progress) progress(start + b + 1, nv);
+    }
+  }
+  return ParameterSweep{std::move(*first_model), o.key, o.values, std::move(speeds), std::move(dofs),
+                        std::move(reference_terms), std::move(matched_by), first_solver, std::move(modes)};
+}
+
+}  // namespace bladestab

@@ -1,0 +1,659 @@
+#include "bladestab/modal/speed_sweep.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <limits>
+
+#include <fmt/format.h>
+#include <lapacke.h>
+
+#include "bladestab/base/constants.hpp"
+#include "bladestab/blade/damping.hpp"
+#include "bladestab/modal/mode_convergence.hpp"
+
+namespace bladestab {
+namespace {
+constexpr double unbounded = std::numeric_limits<double>::infinity();
+// Rounds of basis enrichment before the reduced sweep gives up on a speed (each adds that
+// speed's exact modes, so the bound there becomes rounding; far more than the paper blade needs).
+constexpr int max_enrichments = 40;
+
+// ---------------------------------------------------------------------------------------------
+// Dense: solve_modes at every speed.
+
+class DenseSweep final : public SpeedSweep {
+public:
+  DenseSweep(const BladeModel& model, const DampingSpec& damping, int count, EigenSolverKind solver)
+      : model_(model), damping_(damping), count_(std::min(count, model.layout.size())), requested_(solver) {
+    const Eigen::LLT<Eigen::MatrixXd> mass(model.M);
+    upper_ = mass.matrixU();
+    upper_complex_ = upper_.cast<std::complex<double>>();
+  }
+
+  std::vector<SpeedModes> solve(const std::vector<double>& speeds,
+                                const std::function<void(int, int)>& progress) override {
+    std::vector<SpeedModes> out;
+    out.reserve(speeds.size());
+    for (std::size_t s = 0; s < speeds.size(); ++s) {
+      out.push_back(at(speeds[s], true));
+      if (progress) progress(static_cast<int>(s) + 1, static_cast<int>(speeds.size()));
+    }
+    return out;
+  }
+
+  SpeedModes at(double speed, bool certify) override {
+    const ModalSolution sol = solve_modes(
+        model_, system_at(model_, speed, damping_matrix(model_, damping_, speed)), speed, count_, requested_);
+    used_ = sol.solver;
+    SpeedModes out;
+    out.speed_rad_s = speed;
+    const int k = static_cast<int>(sol.modes.size());
+    out.shapes.resize(model_.layout.size(), k);
+    for (int j = 0; j < k; ++j) {
+      const Mode& m = sol.modes[j];
+      out.frequency_hz.push_back(m.frequency_hz);
+      out.natural_hz.push_back(std::abs(m.eigenvalue) / two_pi);
+      out.damping_ratio.push_back(m.damping_ratio);
+      out.family.push_back(m.family);
+      out.shapes.col(j) = upper_complex_ * m.shape;  // Lᵀq: qᴴMq = 1 makes it a unit vector
+    }
+    if (certify) {
+      out.bound.assign(k, 0.0);
+      const Eigen::MatrixXd K = model_.stiffness(speed);
+      const Eigen::MatrixXd absolute = K.cwiseAbs();
+      for (const Mode& m : sol.modes) {
+        out.rounding.push_back(
+            frequency_rounding(absolute, m.shape.cwiseAbs(), (m.shape.adjoint() * K * m.shape)(0).real()));
+      }
+    }
+    return out;
+  }
+
+  double whole_frequency(double speed, const Eigen::VectorXcd& shape) override {
+    const SpeedModes modes = at(speed, false);
+    Eigen::Index best = 0;
+    (modes.shapes.adjoint() * shape).cwiseAbs2().maxCoeff(&best);
+    return modes.frequency_hz[best];
+  }
+
+  Eigen::MatrixXd dofs() const override {
+    return upper_.triangularView<Eigen::Upper>().solve(Eigen::MatrixXd::Identity(upper_.rows(), upper_.cols()));
+  }
+  Eigen::MatrixXd metric() const override { return upper_; }
+  EigenSolverKind solver() const override { return used_; }
+  bool reduced() const override { return false; }
+  int vectors() const override { return model_.layout.size(); }
+  std::vector<double> sample_speeds() const override { return {}; }
+
+private:
+  const BladeModel& model_;
+  DampingSpec damping_;
+  int count_;
+  EigenSolverKind requested_, used_ = EigenSolverKind::dense;
+  Eigen::MatrixXd upper_;  // Lᵀ, M = L Lᵀ
+  Eigen::MatrixXcd upper_complex_;
+};
+
+// ---------------------------------------------------------------------------------------------
+// LAPACK on preallocated workspace, for the per-speed solves.
+
+// Eigenpairs first .. first + count − 1 (0-based, ascending) of a symmetric matrix: Householder
+// tridiagonalization; the wanted eigenvalues of the tridiagonal matrix by bisection on Sturm
+// counts (all of them at once, each count narrowing every bracket); their eigenvectors by inverse
+// iteration on it (O(n) each; reorthogonalized within clusters, as LAPACK's dstein does), carried
+// back by the reflections. For these small matrices LAPACK's subset drivers (dsyevr, dstemr)
+// spent three quarters of the whole Campbell run in their bisection, and Eigen's tridiagonal QR
+// for all eigenvalues a third of it.
+class SubsetEigensolver {
+public:
+  // Uses the lower triangle of `a`. Values in values().head(count), vectors in vectors();
+  // `hints` (optional) are guesses of the values.
+  void solve(const Eigen::MatrixXd& a, int first, int count, const Eigen::VectorXd* hints = nullptr) {
+    const Eigen::Index n = a.rows();
+    tridiagonal_.compute(a);
+    diagonal_ = tridiagonal_.diagonal();
+    sub_ = tridiagonal_.subDiagonal();
+    bisect(first, count, hints);
+    if (start_.size() != n) {
+      start_.resize(n);
+      for (Eigen::Index i = 0; i < n; ++i) start_(i) = 1 + 0.5 * std::sin(1.7 * static_cast<double>(i));
+    }
+    z_.resize(n, count);
+    const double cluster = 1e-3 * norm_;  // dstein's reorthogonalization threshold
+    int cluster_start = 0;
+    for (int j = 0; j < count; ++j) {
+      if (j > 0 && values_(j) - values_(j - 1) > cluster) cluster_start = j;
+      factor(values_(j));
+      auto z = z_.col(j);
+      z = start_;
+      z(j % n) += 1;  // a different start for each member of a cluster
+      for (int iteration = 0; iteration < 3; ++iteration) {
+        z.normalize();
+        solve_factored(z);
+        for (int k = cluster_start; k < j; ++k) z -= z_.col(k).dot(z) * z_.col(k);
+      }
+      z.normalize();
+    }
+    // Back by the reflections one by one: Eigen's blocked product forms a triangular factor that
+    // costs more than it saves at these sizes.
+    vectors_ = z_;
+    const Eigen::MatrixXd& packed = tridiagonal_.packedMatrix();
+    const Eigen::VectorXd& tau = tridiagonal_.householderCoefficients();
+    workspace_.resize(count);
+    for (Eigen::Index k = n - 2; k >= 0; --k) {
+      vectors_.bottomRows(n - k - 1).applyHouseholderOnTheLeft(packed.col(k).tail(n - k - 2), tau(k),
+                                                                 workspace_.data());
+    }
+  }
+  const Eigen::VectorXd& values() const { return values_; }
+  const Eigen::MatrixXd& vectors() const { return vectors_; }
+
+private:
+  // Eigenvalues first .. first + count − 1 to a relative 1e-8: shifts for inverse iteration, whose
+  // three steps need no more (the Ritz values are recomputed from the vectors). `hints`, if as
+  // many, are guesses (the last speed's values): counts on either side of each narrow the
+  // brackets at once; wrong guesses cost only those counts.
+  void bisect(int first, int count, const Eigen::VectorXd* hints) {
+    const Eigen::Index n = diagonal_.size();
+    squares_ = sub_.cwiseAbs2();
+    double lo = diagonal_(0), hi = diagonal_(0);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const double radius = (i > 0 ? std::abs(sub_(i - 1)) : 0.0) + (i + 1 < n ? std::abs(sub_(i)) : 0.0);
+      lo = std::min(lo, diagonal_(i) - radius);
+      hi = std::max(hi, diagonal_(i) + radius);
+    }
+    norm_ = std::max(std::abs(lo), std::abs(hi));
+    pivmin_ = std::numeric_limits<double>::min() * std::max(1.0, squares_.size() ? squares_.maxCoeff() : 1.0);
+    lower_.assign(count, lo);
+    upper_.assign(count, hi);
+    if (hints && hints->size() == count) {
+      points_.resize(2 * static_cast<std::size_t>(count));
+      for (int k = 0; k < count; ++k) {
+        points_[2 * k] = (*hints)(k) - 0.02 * std::abs((*hints)(k));
+        points_[2 * k + 1] = (*hints)(k) + 0.02 * std::abs((*hints)(k));
+      }
+      narrow(first, count);
+    }
+    points_.resize(count);
+    for (int iteration = 0; iteration < 200; ++iteration) {
+      bool converged = true;
+      for (int k = 0; k < count; ++k) {
+        points_[k] = 0.5 * (lower_[k] + upper_[k]);
+        converged = converged && upper_[k] - lower_[k] <= 1e-8 * std::abs(points_[k]) + 1e3 * pivmin_;
+      }
+      if (converged) break;
+      narrow(first, count);
+    }
+    values_.resize(count);
+    for (int k = 0; k < count; ++k) values_(k) = 0.5 * (lower_[k] + upper_[k]);
+  }
+
+  // Sturm counts at points_ (the eigenvalues below each: signs of the LDLᵀ pivots of T − x I, the
+  // points interleaved so that their divisions overlap); each count places every wanted
+  // eigenvalue above or below its point.
+  void narrow(int first, int count) {
+    const Eigen::Index n = diagonal_.size();
+    const std::size_t np = points_.size();
+    q_.resize(np);
+    below_.resize(np);
+    const double* d = diagonal_.data();
+    const double* e2 = squares_.data();
+    for (std::size_t k = 0; k < np; ++k) {
+      double q = d[0] - points_[k];
+      if (std::abs(q) < pivmin_) q = -pivmin_;
+      q_[k] = q;
+      below_[k] = q < 0;
+    }
+    for (Eigen::Index i = 1; i < n; ++i) {
+      const double di = d[i], ei = e2[i - 1];
+      for (std::size_t k = 0; k < np; ++k) {
+        double q = (di - points_[k]) - ei / q_[k];
+        if (std::abs(q) < pivmin_) q = -pivmin_;
+        q_[k] = q;
+        below_[k] += q < 0;
+      }
+    }
+    for (std::size_t k = 0; k < np; ++k) {
+      for (int j = 0; j < count; ++j) {
+        if (below_[k] > first + j) {
+          upper_[j] = std::min(upper_[j], points_[k]);
+        } else {
+          lower_[j] = std::max(lower_[j], points_[k]);
+        }
+      }
+    }
+  }
+
+  // LU with partial pivoting of T − shift·I (tridiagonal; U gets a second superdiagonal).
+  void factor(double eigenvalue) {
+    const double norm = norm_;
+    // A shift a hair off the eigenvalue keeps the factorization regular.
+    const double shift = eigenvalue + 4 * std::numeric_limits<double>::epsilon() * norm;
+    const Eigen::Index n = diagonal_.size();
+    u0_.resize(n), u1_.resize(n), u2_.resize(n), l_.resize(n), swapped_.resize(n);
+    const double tiny = std::numeric_limits<double>::epsilon() * std::max(norm, std::numeric_limits<double>::min());
+    double d = diagonal_(0) - shift, up = n > 1 ? sub_(0) : 0.0;
+    for (Eigen::Index i = 0; i + 1 < n; ++i) {
+      const double below = sub_(i), next_diag = diagonal_(i + 1) - shift, next_up = i + 2 < n ? sub_(i + 1) : 0.0;
+      if (std::abs(d) >= std::abs(below)) {  // no swap
+        if (d == 0) d = tiny;
+        const double m = below / d;
+        u0_(i) = d, u1_(i) = up, u2_(i) = 0, l_(i) = m, swapped_[i] = false;
+        d = next_diag - m * up;
+        up = next_up;
+      } else {  // swap rows i and i + 1
+        const double m = d / below;
+        u0_(i) = below, u1_(i) = next_diag, u2_(i) = next_up, l_(i) = m, swapped_[i] = true;
+        d = up - m * next_diag;
+        up = -m * next_up;
+      }
+    }
+    u0_(n - 1) = d == 0 ? tiny : d;
+  }
+  void solve_factored(Eigen::Ref<Eigen::VectorXd> z) const {
+    const Eigen::Index n = z.size();
+    for (Eigen::Index i = 0; i + 1 < n; ++i) {  // L⁻¹ with the row swaps
+      if (swapped_[i]) std::swap(z(i), z(i + 1));
+      z(i + 1) -= l_(i) * z(i);
+    }
+    for (Eigen::Index i = n - 1; i >= 0; --i) {  // U⁻¹
+      double v = z(i);
+      if (i + 1 < n) v -= u1_(i) * z(i + 1);
+      if (i + 2 < n) v -= u2_(i) * z(i + 2);
+      z(i) = v / u0_(i);
+    }
+  }
+
+  Eigen::Tridiagonalization<Eigen::MatrixXd> tridiagonal_;
+  Eigen::VectorXd diagonal_, sub_, squares_, values_, start_, u0_, u1_, u2_, l_;
+  std::vector<double> lower_, upper_, points_, q_;
+  std::vector<int> below_;
+  double norm_ = 0, pivmin_ = 0;
+  std::vector<bool> swapped_;
+  Eigen::MatrixXd z_, vectors_;
+  Eigen::VectorXd workspace_;
+};
+
+// Number of negative eigenvalues of a symmetric matrix (lower triangle) by Bunch–Kaufman LDLᵀ
+// (dsytrf) and Sylvester's law of inertia; −1 if the matrix is singular.
+class InertiaCounter {
+public:
+  void reserve(int n) {
+    if (n == n_) return;
+    n_ = n;
+    ipiv_.resize(n);
+    Eigen::MatrixXd a = Eigen::MatrixXd::Identity(n, n);
+    double work_size = 0;
+    LAPACKE_dsytrf_work(LAPACK_COL_MAJOR, 'L', n, a.data(), n, ipiv_.data(), &work_size, -1);
+    work_.resize(std::max<std::size_t>(1, static_cast<std::size_t>(work_size)));
+  }
+  int negatives(Eigen::MatrixXd& a) {
+    const lapack_int n = static_cast<lapack_int>(a.rows());
+    reserve(static_cast<int>(n));
+    const lapack_int info = LAPACKE_dsytrf_work(LAPACK_COL_MAJOR, 'L', n, a.data(), n, ipiv_.data(), work_.data(),
+                                                static_cast<lapack_int>(work_.size()));
+    if (info != 0) return -1;  // info > 0: an exactly singular D
+    int negative = 0;
+    for (lapack_int k = 0; k < n; ++k) {
+      if (ipiv_[k] > 0) {
+        if (a(k, k) < 0) ++negative;
+      } else {  // 2×2 block in rows k, k+1
+        const double d11 = a(k, k), d21 = a(k + 1, k), d22 = a(k + 1, k + 1);
+        const double det = d11 * d22 - d21 * d21;
+        if (det < 0) {
+          negative += 1;
+        } else if (det > 0) {
+          negative += d11 + d22 < 0 ? 2 : 0;
+        } else {
+          return -1;
+        }
+        ++k;
+      }
+    }
+    return negative;
+  }
+
+private:
+  int n_ = -1;
+  std::vector<lapack_int> ipiv_;
+  std::vector<double> work_;
+};
+
+// The positive root θ of k − θc − θ²m = 0 (k = xᵀKx, c = xᵀĈx, m = xᵀMx): for an eigenvector its
+// frequency, for any vector the Rayleigh functional of the hyperbolic problem (stationary at the
+// eigenvectors, so its error is quadratic in theirs).
+double rayleigh_frequency(double k, double c, double m) {
+  const double root = std::sqrt(c * c + 4 * k * m);
+  return c >= 0 ? 2 * k / (c + root) : 0.5 * (root - c) / m;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Reduced: one basis for the whole speed range, every frequency bounded against the whole model.
+
+class ReducedSweep final : public SpeedSweep {
+public:
+  ReducedSweep(const BladeModel& model, int count, double tolerance, double lo, double hi)
+      : model_(model),
+        n_(model.layout.size()),
+        count_(std::min(count, model.layout.size())),
+        pairs_(std::min(count_ + 1, model.layout.size())),
+        tolerance_(tolerance),
+        mass_(model.M) {
+    // Ĉ₁ = J C_G1: the rows of u change sign.
+    C1_ = model.C_G1;
+    C1_.middleRows(model.layout.axial_offset(), model.layout.axial_count) *= -1;
+    C1_ = 0.5 * (C1_ + C1_.transpose());
+    gram_floor_ = std::clamp(0.002 * tolerance, 1e-24, 1e-10);
+    absolute_KS_ = model.K_S.cwiseAbs();
+    absolute_KC1_ = model.K_C1.cwiseAbs();
+    V_.resize(n_, 0);
+    for (double speed : {lo, 0.5 * (lo + hi), hi}) add_sample(speed);
+  }
+
+  std::vector<SpeedModes> solve(const std::vector<double>& speeds,
+                                const std::function<void(int, int)>& progress) override {
+    const int ns = static_cast<int>(speeds.size());
+    std::vector<SpeedModes> out(ns);
+    for (int s = 0; s < ns; ++s) {
+      out[s] = at(speeds[s], true);
+      if (progress) progress(s + 1, ns);
+    }
+    const auto worst_bound = [](const SpeedModes& m) {
+      return m.bound.empty() ? 0.0 : *std::max_element(m.bound.begin(), m.bound.end());
+    };
+    for (int round = 0; round < max_enrichments; ++round) {
+      int worst = -1;
+      double largest = tolerance_;
+      for (int s = 0; s < ns; ++s) {
+        const double b = worst_bound(out[s]);
+        if (b > largest) largest = b, worst = s;
+      }
+      if (worst < 0) break;
+      const Eigen::Index before = V_.cols();
+      add_sample(speeds[worst]);
+      if (V_.cols() == before) break;  // that speed's modes are in the basis already
+      for (int s = 0; s < ns; ++s) {
+        if (worst_bound(out[s]) > tolerance_) {
+          out[s] = at(speeds[s], true);
+        } else {  // the basis grew by appending: old coordinates stay valid, padded with zeros
+          const Eigen::Index rows = out[s].shapes.rows();
+          out[s].shapes.conservativeResize(V_.cols(), Eigen::NoChange);
+          out[s].shapes.bottomRows(V_.cols() - rows).setZero();
+        }
+      }
+    }
+    for (const SpeedModes& m : out) {
+      if (!std::isfinite(worst_bound(m))) {
+        throw ReducedSweepUnavailable(
+            fmt::format("the reduced model's modes could not be certified at {} rad/s", m.speed_rad_s));
+      }
+    }
+    return out;
+  }
+
+  SpeedModes at(double speed, bool certify) override {
+    const int m = static_cast<int>(V_.cols());
+    const int p = std::min(pairs_, m);
+    Kr_ = KSr_;
+    Kr_.noalias() += (speed * speed) * KC1r_;
+    Cr_ = speed * C1r_;
+    reduced_cholesky_.compute(Kr_);
+    if (reduced_cholesky_.info() != Eigen::Success) throw not_positive(speed);
+    // Hermitian form of Kr − ωĈr − ω²I: [[0, Rᵀ], [R, −Ĉr]] with Kr = R Rᵀ; eigenvalues ±ω.
+    H_.setZero(2 * m, 2 * m);
+    H_.bottomLeftCorner(m, m) = reduced_cholesky_.matrixL();
+    H_.bottomRightCorner(m, m) = -Cr_;
+    // The last speed's Ritz values guess these (the speeds come in order).
+    eigensolver_.solve(H_, m, p, theta_.size() == p ? &theta_ : nullptr);
+    Xr_ = eigensolver_.vectors().block(m, 0, m, p);
+    Xr_.colwise().normalize();
+    KrX_.noalias() = Kr_ * Xr_;
+    CrX_.noalias() = Cr_ * Xr_;
+    theta_.resize(p);
+    stiffness_form_.resize(p);
+    for (int j = 0; j < p; ++j) {
+      // The positive root of k − θc − θ² = 0 (xᵀx = 1): the Ritz value, as a Rayleigh quotient.
+      const double k = Xr_.col(j).dot(KrX_.col(j)), c = Xr_.col(j).dot(CrX_.col(j));
+      theta_(j) = rayleigh_frequency(k, c, 1.0);
+      stiffness_form_(j) = k;
+    }
+    SpeedModes out;
+    out.speed_rad_s = speed;
+    const int k = std::min(count_, p);
+    out.frequency_hz.resize(k);
+    out.damping_ratio.assign(k, 0.0);
+    for (int j = 0; j < k; ++j) out.frequency_hz[j] = theta_(j) / two_pi;
+    out.natural_hz = out.frequency_hz;
+    out.shapes = Xr_.leftCols(k).cast<std::complex<double>>();
+    if (certify) {
+      out.bound = bounds(speed, k);
+      families(out, speed, k);
+    }
+    return out;
+  }
+
+  double whole_frequency(double speed, const Eigen::VectorXcd& shape) override {
+    Eigen::VectorXd omega;
+    Eigen::MatrixXd X;
+    whole_modes(speed, pairs_, omega, X);
+    const Eigen::VectorXcd overlap = X.transpose().cast<std::complex<double>>() * (MV_.cast<std::complex<double>>() * shape);
+    Eigen::Index best = 0;
+    overlap.cwiseAbs2().maxCoeff(&best);
+    return omega(best) / two_pi;
+  }
+
+  Eigen::MatrixXd dofs() const override { return V_; }
+  Eigen::MatrixXd metric() const override { return MV_.transpose(); }
+  EigenSolverKind solver() const override { return EigenSolverKind::dense; }
+  bool reduced() const override { return true; }
+  int vectors() const override { return static_cast<int>(V_.cols()); }
+  std::vector<double> sample_speeds() const override { return samples_; }
+
+private:
+  ReducedSweepUnavailable not_positive(double speed) const {
+    return ReducedSweepUnavailable(fmt::format("the stiffness is not positive definite at {} rad/s", speed));
+  }
+
+  // The `pairs` lowest modes of the whole model at `speed`: ω ascending, x M-normalized.
+  void whole_modes(double speed, int pairs, Eigen::VectorXd& omega, Eigen::MatrixXd& X) {
+    const Eigen::MatrixXd K = model_.stiffness(speed);
+    const auto L = mass_.matrixL();
+    Eigen::MatrixXd Kt = L.solve(K);
+    Kt = L.solve(Kt.transpose()).transpose();
+    Kt = 0.5 * (Kt + Kt.transpose());
+    Eigen::MatrixXd Ct = L.solve(speed * C1_);
+    Ct = L.solve(Ct.transpose()).transpose();
+    Ct = 0.5 * (Ct + Ct.transpose());
+    const Eigen::LLT<Eigen::MatrixXd> stiffness(Kt);
+    if (stiffness.info() != Eigen::Success) throw not_positive(speed);
+    Eigen::MatrixXd H = Eigen::MatrixXd::Zero(2 * n_, 2 * n_);
+    H.bottomLeftCorner(n_, n_) = stiffness.matrixL();
+    H.bottomRightCorner(n_, n_) = -Ct;
+    SubsetEigensolver eig;
+    eig.solve(H, n_, pairs);
+    X = mass_.matrixU().solve(eig.vectors().block(n_, 0, n_, pairs));
+    omega.resize(pairs);
+    for (int j = 0; j < pairs; ++j) {
+      X.col(j) /= std::sqrt(X.col(j).dot(model_.M * X.col(j)));
+      omega(j) = rayleigh_frequency(X.col(j).dot(K * X.col(j)), speed * X.col(j).dot(C1_ * X.col(j)), 1.0);
+    }
+  }
+
+  // Appends the whole model's modes at `speed` to the basis (their parts outside it, M-orthonormal).
+  void add_sample(double speed) {
+    Eigen::VectorXd omega;
+    Eigen::MatrixXd W;
+    whole_modes(speed, pairs_, omega, W);
+    // What the basis misses of each mode, measured in energy (the K norm, each mode scaled to 1):
+    // a part of energy share g changes the Ritz frequency by about g, whatever its mass share.
+    const Eigen::MatrixXd K = model_.stiffness(speed);
+    for (Eigen::Index j = 0; j < W.cols(); ++j) W.col(j) /= std::sqrt(W.col(j).dot(K * W.col(j)));
+    for (int pass = 0; pass < 2 && V_.cols() > 0; ++pass) W -= V_ * (MV_.transpose() * W);
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> energy(W.transpose() * K * W);
+    Eigen::Index first = 0;
+    while (first < energy.eigenvalues().size() && energy.eigenvalues()(first) < gram_floor_) ++first;
+    W = W * energy.eigenvectors().rightCols(energy.eigenvalues().size() - first);
+    // M-orthonormal, and M-orthogonal to the basis (twice: the second pass repairs the first's rounding).
+    Eigen::MatrixXd added(n_, 0);
+    for (int pass = 0; pass < 2 && W.cols() > 0; ++pass) {
+      const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> gram(W.transpose() * model_.M * W);
+      const Eigen::VectorXd g = gram.eigenvalues();
+      Eigen::Index dependent = 0;
+      while (dependent < g.size() && g(dependent) <= 1e-14 * g(g.size() - 1)) ++dependent;
+      const Eigen::Index kept = g.size() - dependent;
+      added = W * gram.eigenvectors().rightCols(kept) * g.tail(kept).cwiseSqrt().cwiseInverse().asDiagonal();
+      if (V_.cols() > 0) added -= V_ * (MV_.transpose() * added);
+      W = added;
+    }
+    samples_.push_back(speed);
+    if (added.cols() == 0) return;
+    const Eigen::Index old = V_.cols();
+    V_.conservativeResize(Eigen::NoChange, old + added.cols());
+    V_.rightCols(added.cols()) = added;
+    KSV_ = model_.K_S * V_;
+    KC1V_ = model_.K_C1 * V_;
+    C1V_ = C1_ * V_;
+    MV_ = model_.M * V_;
+    KSr_ = V_.transpose() * KSV_;
+    KC1r_ = V_.transpose() * KC1V_;
+    C1r_ = V_.transpose() * C1V_;
+    KSr_ = 0.5 * (KSr_ + KSr_.transpose());
+    KC1r_ = 0.5 * (KC1r_ + KC1r_.transpose());
+    C1r_ = 0.5 * (C1r_ + C1r_.transpose());
+  }
+
+  // Relative bounds on the first k Ritz frequencies of the last at() against the whole model;
+  // all unbounded if the Ritz intervals overlap or a mode could be missed.
+  std::vector<double> bounds(double speed, int k) {
+    const int p = static_cast<int>(theta_.size());
+    std::vector<double> failed(k, unbounded);
+    K_ = model_.K_S;
+    K_.noalias() += (speed * speed) * model_.K_C1;
+    stiffness_cholesky_.compute(K_);
+    if (stiffness_cholesky_.info() != Eigen::Success) throw not_positive(speed);
+    // Residuals Q(θ_j) x_j = K x − θ Ĉ x − θ² M x, in the K⁻¹ norm.
+    KX_.noalias() = KSV_ * Xr_;
+    KX_.noalias() += (speed * speed) * (KC1V_ * Xr_);
+    CX_.noalias() = C1V_ * Xr_;
+    MX_.noalias() = MV_ * Xr_;
+    residual_ = KX_ - CX_ * (speed * theta_).asDiagonal();
+    residual_.noalias() -= MX_ * theta_.cwiseAbs2().asDiagonal();
+    stiffness_cholesky_.matrixL().solveInPlace(residual_);
+    mu_.resize(p);
+    eps_.resize(p);
+    for (int j = 0; j < p; ++j) {
+      mu_(j) = 1 / theta_(j);
+      eps_(j) = residual_.col(j).norm() / (theta_(j) * std::sqrt(stiffness_form_(j) + theta_(j) * theta_(j)));
+    }
+    // Certify the lowest t ≥ k modes, t where the gap to mode t + 1 is widest; σ in that gap.
+    int t = p;
+    double tau = 0;  // all n modes present: no eigenvalue of the μ form lies in (0, 1/θ_n)
+    if (p < n_) {
+      double widest = 0;
+      t = -1;
+      for (int c = k; c < p; ++c) {  // c modes certified, mode c + 1 (index c) above them
+        const double gap = (mu_(c - 1) - eps_(c - 1) - (mu_(c) + eps_(c))) / mu_(c - 1);
+        if (gap > widest) widest = gap, t = c;
+      }
+      if (t < 0) return failed;
+      tau = 0.5 * (mu_(t - 1) - eps_(t - 1) + mu_(t) + eps_(t));
+      const double sigma = 1 / tau;
+      Q_ = K_;
+      Q_.noalias() -= (sigma * speed) * C1_;
+      Q_.noalias() -= (sigma * sigma) * model_.M;
+      if (inertia_.negatives(Q_) != t) return failed;
+    }
+    for (int j = 0; j + 1 < t; ++j) {
+      if (!(mu_(j) - eps_(j) > mu_(j + 1) + eps_(j + 1))) return failed;
+    }
+    std::vector<double> bound(k);
+    for (int j = 0; j < k; ++j) {
+      const double below = j + 1 < t ? mu_(j + 1) + eps_(j + 1) : tau;  // the next eigenvalue of the μ form is below this
+      bound[j] = eps_(j) * eps_(j) / (mu_(j) - below) / mu_(j);
+    }
+    return bound;
+  }
+
+  // Families from the kinetic-energy shares of the first k Ritz vectors, and their frequencies'
+  // rounding (after bounds()).
+  void families(SpeedModes& out, double speed, int k) {
+    X_.noalias() = V_ * Xr_.leftCols(k);
+    absolute_X_ = X_.cwiseAbs();
+    spread_.noalias() = absolute_KS_ * absolute_X_;
+    spread_.noalias() += (speed * speed) * (absolute_KC1_ * absolute_X_);
+    const DofLayout& l = model_.layout;
+    const int offsets[3] = {l.theta_offset(), l.lateral_offset(), l.axial_offset()};
+    const int counts[3] = {l.theta_count, l.lateral_count, l.axial_count};
+    out.family.resize(k);
+    out.rounding.resize(k);
+    for (int j = 0; j < k; ++j) {
+      Eigen::Vector3d share;
+      for (int f = 0; f < 3; ++f) {
+        share(f) = counts[f] ? X_.col(j).segment(offsets[f], counts[f]).dot(MX_.col(j).segment(offsets[f], counts[f]))
+                             : 0.0;
+      }
+      Eigen::Index family = 0;
+      share.maxCoeff(&family);
+      out.family[j] = family == 0 ? ModeFamily::rotation : family == 1 ? ModeFamily::bending : ModeFamily::axial;
+      // frequency_rounding with |K(Ω)| ≤ |K_S| + Ω²|K_C1|
+      out.rounding[j] = std::max(eigensolver_rounding, 10 * std::numeric_limits<double>::epsilon() *
+                                                           absolute_X_.col(j).dot(spread_.col(j)) / stiffness_form_(j));
+    }
+  }
+
+  const BladeModel& model_;
+  int n_, count_, pairs_;
+  double tolerance_, gram_floor_;
+  Eigen::LLT<Eigen::MatrixXd> mass_;
+  Eigen::MatrixXd C1_;
+  Eigen::MatrixXd V_, KSV_, KC1V_, C1V_, MV_, KSr_, KC1r_, C1r_;
+  std::vector<double> samples_;
+  // Workspace of at() and bounds(), reused from speed to speed.
+  Eigen::MatrixXd Kr_, Cr_, H_, Xr_, KrX_, CrX_, K_, Q_, KX_, CX_, MX_, residual_, X_, absolute_X_, spread_;
+  Eigen::MatrixXd absolute_KS_, absolute_KC1_;
+  Eigen::VectorXd theta_, stiffness_form_, mu_, eps_;
+  Eigen::LLT<Eigen::MatrixXd> reduced_cholesky_, stiffness_cholesky_;
+  SubsetEigensolver eigensolver_;
+  InertiaCounter inertia_;
+};
+
+}  // namespace
+
+bool reduced_sweep_applies(const BladeModel& model, const DampingSpec& damping) {
+  if (damping.model != DampingModel::none) return false;
+  const DofLayout& l = model.layout;
+  const int n = l.size();
+  const auto axial = [&](int i) { return i >= l.axial_offset() && i < l.axial_offset() + l.axial_count; };
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < n; ++i) {
+      if (model.C_G1(i, j) != -model.C_G1(j, i)) return false;  // gyroscopic, not damping
+      if (axial(i) != axial(j)) {
+        if (model.M(i, j) != 0 || model.K_S(i, j) != 0 || model.K_C1(i, j) != 0) return false;
+      } else if (model.C_G1(i, j) != 0) {
+        return false;
+      }
+    }
+  }
+  return true;
+}
+
+std::unique_ptr<SpeedSweep> make_dense_speed_sweep(const BladeModel& model, const DampingSpec& damping, int count,
+                                                   EigenSolverKind solver) {
+  return std::make_unique<DenseSweep>(model, damping, count, solver);
+}
+
+std::unique_ptr<SpeedSweep> make_speed_sweep(const BladeModel& model, const DampingSpec& damping, int count,
+                                             EigenSolverKind solver, double reduction_tolerance, double speed_lo,
+                                             double speed_hi) {
+  if (solver == EigenSolverKind::automatic && reduced_sweep_applies(model, damping)) {
+    try {
+      return std::make_unique<ReducedSweep>(model, count, reduction_tolerance, speed_lo, speed_hi);
+    } catch (const ReducedSweepUnavailable&) {
+      // statically unstable at a sample speed: the dense sweep says so properly
+    }
+  }
+  return make_dense_speed_sweep(model, damping, count, solver);
+}
+
+}  // namespace bladestab

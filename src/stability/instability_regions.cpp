@@ -1,0 +1,72 @@
+#include "bladestab/stability/instability_regions.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <map>
+
+#include "bladestab/blade/blade_properties.hpp"
+#include "bladestab/base/constants.hpp"
+#include "bladestab/stability/stability_analysis.hpp"
+
+namespace bladestab {
+namespace {
+
+}  // namespace
+
+std::vector<InstabilityRegion> instability_regions(const Scene& scene, const BoundaryRequest& request,
+                                                   const BoundaryAnalysis& analysis, double tolerance) {
+  const bool in_load = request.theta_rad_s.has_value();
+  const double fcr = BladeProperties(scene.blade).critical_load();
+  const auto value = [in_load](const Boundary& b) { return in_load ? b.peak_force_n : b.theta_rad_s; };
+  // The boundaries of each family, in order along the line.
+  std::map<int, std::vector<Boundary>> families;
+  for (const EstimatedBoundary& e : analysis.boundaries) families[e.boundary.multiplier].push_back(e.boundary);
+  // The scene at a point of the line: θ at the scene's load, or F_max at the given θ.
+  // Unstable at x in this family: the dominant multiplier real, beyond +1 or −1 as the family's
+  // (a complex one is a combination resonance; the other sign is the other family's region).
+  const auto unstable_at = [&](double x, int multiplier, double& max_abs) {
+    Scene at = scene;
+    if (in_load) {
+      at.load.pulse_frequency_hz = *request.theta_rad_s / two_pi;
+      at.load.fmax_over_fcr = x / fcr;
+    } else {
+      at.load.pulse_frequency_hz = x / two_pi;
+    }
+    const StabilityAnswer a = analyse_stability(at, {FloquetMethod::automatic, 0, tolerance});
+    max_abs = a.floquet.max_abs_multiplier;
+    const std::complex<double> rho = a.floquet.multipliers(0);
+    return !a.stable && std::abs(rho.imag()) <= 1e-6 * std::abs(rho) && rho.real() * multiplier > 0;
+  };
+  std::vector<InstabilityRegion> regions;
+  for (auto& [multiplier, bounds] : families) {
+    std::sort(bounds.begin(), bounds.end(),
+              [&](const Boundary& x, const Boundary& y) { return value(x) < value(y); });
+    // Interval k lies between boundary k − 1 and boundary k; the window closes the first and last.
+    for (std::size_t k = 0; k <= bounds.size(); ++k) {
+      const Boundary* below = k > 0 ? &bounds[k - 1] : nullptr;
+      const Boundary* above = k < bounds.size() ? &bounds[k] : nullptr;
+      const double lo = below ? value(*below) : analysis.window.first;
+      const double hi = above ? value(*above) : analysis.window.second;
+      if (!(hi > lo) || (in_load && hi <= 0)) continue;
+      InstabilityRegion r;
+      if (!unstable_at(0.5 * (lo + hi), multiplier, r.middle_max_abs_multiplier)) continue;
+      r.lower = lo;
+      r.upper = hi;
+      r.lower_open = below == nullptr;
+      r.upper_open = above == nullptr;
+      r.multiplier = multiplier;
+      // The label of an end; where the two differ, the higher order (the dominant harmonic of a
+      // boundary's eigenvector, which names it, drifts to lower orders at high loads).
+      const Boundary* named = below && above ? (below->order >= above->order ? below : above) : below ? below : above;
+      r.mode = named ? named->mode : 0;
+      r.order = named ? named->order : 0;
+      regions.push_back(r);
+    }
+  }
+  std::sort(regions.begin(), regions.end(),
+            [](const InstabilityRegion& a, const InstabilityRegion& b) { return a.lower < b.lower; });
+  return regions;
+}
+
+}  // namespace bladestab

@@ -1,0 +1,207 @@
+#include "bladestab/stability/stability_analysis.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <memory>
+#include <optional>
+
+#include <fmt/format.h>
+
+#include "bladestab/blade/damping.hpp"
+#include "bladestab/base/input_error.hpp"
+#include "bladestab/modal/mode_convergence.hpp"
+#include "bladestab/stability/periodic_system.hpp"
+#include "bladestab/blade/reduction.hpp"
+#include "support/worker_threads.hpp"
+
+namespace bladestab {
+namespace {
+
+constexpr int max_terms = 200;
+
+// One fidelity of the scene's LTP system: its basis, its reduction, its load series.
+struct Fidelity {
+  ModelSpec model;
+  ReductionSpec reduction;
+  LoadSeries load;
+};
+
+PeriodicSystem system_at(const Scene& scene, const Fidelity& f) {
+  return periodic_system(assemble_model(scene, f.model), scene, f.load, f.reduction);
+}
+
+// The multipliers of one fidelity: the true pulse train by its piecewise monodromy, a series by the
+// requested method.
+FloquetResult floquet_of(const Scene& scene, const Fidelity& f, const PeriodicSystem& sys, const FloquetOptions& o) {
+  if (!f.load.exact_pulse) return floquet_multipliers(sys, o);
+  if (o.method == FloquetMethod::hill || o.method == FloquetMethod::koopman_hill) {
+    throw ParameterError("method", fmt::format("{}: Hill methods need a Fourier load; load.approximation = \"exact\" is "
+                                               "integrated through each pulse (use monodromy or auto)",
+                                               to_string(o.method)));
+  }
+  return pulse_train_multipliers(sys, pulse_train(scene), o);
+}
+
+// max|ρ| of a variant and the error of that value.
+struct VariantRho {
+  double rho = 0, error = 0;
+};
+
+// max|ρ| of a variant of the scene's system and its error: Magnus levels from 1/16 of the count
+// where h‖A‖ ≤ 2 (minimum_magnus_steps), doubled until two levels agree within `tol` while the
+// differences contract at least 4× per level (or the level reaches that count): the difference is
+// then a bound on the finer level's error, and two levels that agree by chance after a larger
+// jump do not pass. A variant independent of the answer runs beside it; the budget's `method`
+// part counts the answer's own discretization once. Where the ladder does not settle within four
+// levels, and for the exact train, the variant takes the monodromy's own refinement to `tol`.
+VariantRho variant_max_rho(const Scene& scene, const Fidelity& f, double tol) {
+  const PeriodicSystem sys = system_at(scene, f);
+  if (!f.load.exact_pulse) {
+    const int safe = minimum_magnus_steps(sys), first = std::max(8, safe / 16);
+    std::optional<double> previous;
+    double previous_difference = std::numeric_limits<double>::infinity();
+    for (int steps = first; steps <= 8 * first; steps *= 2) {
+      const Eigen::MatrixXd phi = magnus_monodromy(sys, steps);
+      if (!phi.allFinite()) break;
+      const double rho = phi.eigenvalues().cwiseAbs().maxCoeff();
+      if (previous) {
+        const double difference = std::abs(rho - *previous);
+        const bool contracting = 4 * difference <= previous_difference || steps >= safe;
+        if (difference <= tol * std::max(1.0, rho) && contracting) return {rho, difference};
+        previous_difference = difference;
+      }
+      previous = rho;
+    }
+  }
+  const FloquetResult r = floquet_of(scene, f, sys, {FloquetMethod::monodromy, 0, tol, false});
+  return {r.max_abs_multiplier, r.error_estimate};
+}
+
+// The variants of the budget, each differing from `f` in one part only. They do not depend on the
+// answer, so they run beside it (SideTasks), the richer reduction first: its model is the largest.
+struct BudgetVariants {
+  static constexpr std::size_t none = static_cast<std::size_t>(-1);
+  std::unique_ptr<SideTasks<VariantRho>> tasks;
+  std::size_t basis = none, reduction = none, load = none;
+  double basis_factor = 1, reduction_factor = 1;
+};
+
+BudgetVariants start_variants(const Scene& scene, const Fidelity& f, double tol, int threads) {
+  const double variant_tol = tol / 8;
+  std::vector<std::function<VariantRho()>> tasks;
+  const auto add = [&](Fidelity variant) {
+    tasks.emplace_back([&scene, variant_tol, variant] { return variant_max_rho(scene, variant, variant_tol); });
+    return tasks.size() - 1;
+  };
+  BudgetVariants v;
+  if (f.reduction.kind == ReductionKind::automatic) {
+    Fidelity richer = f;
+    richer.reduction.vectors = 2 * f.reduction.vectors;
+    // Galerkin projections do not converge monotonically in max|ρ|: a factor 2 of safety.
+    v.reduction_factor = 2;
+    v.reduction = add(richer);
+  } else if (f.reduction.kind == ReductionKind::modal && f.reduction.cutoff_hz > 0) {
+    Fidelity reduced = f;
+    reduced.reduction = {ReductionKind::automatic, 2 * default_reduction_vectors, 0};
+    v.reduction = add(reduced);
+  }
+  Fidelity richer_basis = f;
+  richer_basis.model.terms = reference_terms(f.model.basis, f.model.terms);
+  // Algebraic convergence (sine basis): the difference to 2N understates the error up to 2×.
+  v.basis_factor = f.model.basis == BasisKind::sine ? 2 : 1;
+  v.basis = add(richer_basis);
+  if (!f.load.cosine_approximation && !f.load.exact_pulse) {
+    // The truncated series against the true pulse train it stands for.
+    Fidelity exact = f;
+    exact.load = exact_pulse_mean(pulse_train(scene));
+    v.load = add(exact);
+  }
+  v.tasks = std::make_unique<SideTasks<VariantRho>>(threads, std::move(tasks));
+  return v;
+}
+
+// Each part: factor · |ρ − ρ_variant| plus the variant's own error. `taken` after each variant.
+ErrorBudget budget_of(const FloquetResult& r, BudgetVariants& v, const std::function<void()>& taken) {
+  const auto part = [&](std::size_t variant, double factor) {
+    if (variant == BudgetVariants::none) return 0.0;
+    const VariantRho x = v.tasks->get(variant);
+    taken();
+    return factor * std::abs(r.max_abs_multiplier - x.rho) + x.error;
+  };
+  ErrorBudget b;
+  b.method = r.error_estimate;
+  b.basis = part(v.basis, v.basis_factor);
+  b.reduction = part(v.reduction, v.reduction_factor);
+  b.load = part(v.load, 1);
+  return b;
+}
+
+}  // namespace
+
+StabilityAnswer analyse_stability(const Scene& scene, const StabilityRequest& request) {
+  Fidelity f{scene.model, scene.model.reduction, load_series(scene)};
+  if (!f.load.frequency_known) {
+    throw InputError("operation.speed_rad_s = 0: the pulses have no frequency; give load.pulse_frequency_hz "
+                     "(in Hz, > 0) or a speed > 0");
+  }
+  const bool vectors_free = f.reduction.kind == ReductionKind::automatic && f.reduction.vectors == 0;
+  if (vectors_free && f.load.exact_pulse) {
+    // The true train integrates only through the contacts: the whole Ritz model is cheap unless the
+    // contact is long against its stiffest period, and it resolves the pulse's high harmonics,
+    // which the narrow tongues of the true train depend on.
+    const PeriodicSystem whole = system_at(scene, {f.model, {ReductionKind::none, 0, 0}, f.load});
+    const PulseTrain train = pulse_train(scene);
+    if (minimum_magnus_steps(whole) * train.contact_time_s / train.period_s <= 4096) f.reduction.kind = ReductionKind::none;
+  }
+  if (f.reduction.kind == ReductionKind::automatic && f.reduction.vectors == 0) {
+    f.reduction.vectors = default_reduction_vectors;
+  }
+  const double tol = request.tolerance;
+  StabilityAnswer a;
+  int done = 0;  // progress over the rounds: the answer's levels, then its variants
+  while (true) {
+    BudgetVariants variants = start_variants(scene, f, tol, request.threads);
+    const int variant_count = (variants.basis != BudgetVariants::none) + (variants.reduction != BudgetVariants::none) +
+                              (variants.load != BudgetVariants::none);
+    FloquetOptions options{request.method, request.harmonics, tol / 4, true, {}};
+    int levels = 0;
+    if (request.progress) {
+      options.progress = [&](int d, int total) { levels = d, request.progress(done + d, done + total + variant_count); };
+    }
+    const PeriodicSystem sys = system_at(scene, f);
+    a.floquet = floquet_of(scene, f, sys, options);
+    done += levels;
+    int variants_left = variant_count;
+    a.budget = budget_of(a.floquet, variants, [&] {
+      ++done, --variants_left;
+      if (request.progress) request.progress(done, done + variants_left);
+    });
+    a.reduced_size = sys.kept_modes;
+    a.full_size = sys.all_modes;
+    a.theta_rad_s = sys.angular_frequency;
+    const double allowed = tol * std::max(1.0, a.floquet.max_abs_multiplier);
+    if (a.budget.total() <= allowed) break;
+    // Raise the largest part that the scene leaves free; stop where none is.
+    const ErrorBudget& b = a.budget;
+    if (b.basis >= std::max(b.reduction, b.load) && f.model.terms < max_terms) {
+      f.model.terms = std::min(max_terms, reference_terms(f.model.basis, f.model.terms));
+    } else if (b.reduction >= b.load && vectors_free && 12 * f.reduction.vectors < sys.all_modes) {
+      // Only while the budget's richer variant (twice as many again) stays a reduced model.
+      f.reduction.vectors *= 2;
+    } else {
+      a.tolerance_met = false;
+      break;
+    }
+  }
+  a.model = f.model;
+  a.reference_terms = reference_terms(f.model.basis, f.model.terms);
+  a.reduction = f.reduction;
+  a.load = f.load;
+  a.stable = a.floquet.max_abs_multiplier <= 1 + std::max(a.budget.total(), 1e-9);
+  if (request.progress) request.progress(done, done);
+  return a;
+}
+
+}  // namespace bladestab

@@ -1,0 +1,82 @@
+#include "bladestab/transient/response_analysis.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <numeric>
+#include <stdexcept>
+
+#include <fmt/format.h>
+#include <unsupported/Eigen/FFT>
+
+#include "bladestab/base/constants.hpp"
+
+namespace bladestab {
+
+Spectrum amplitude_spectrum(const std::vector<double>& signal, double rate) {
+  const std::size_t n = signal.size();
+  if (n < 4) throw std::invalid_argument("a spectrum needs at least 4 samples");
+  const double mean = std::accumulate(signal.begin(), signal.end(), 0.0) / n;
+  std::vector<double> windowed(n);
+  double gain = 0;
+  for (std::size_t k = 0; k < n; ++k) {
+    const double w = 0.5 - 0.5 * std::cos(2 * pi * k / (n - 1));
+    windowed[k] = w * (signal[k] - mean);
+    gain += w;
+  }
+  Eigen::FFT<double> fft;
+  std::vector<std::complex<double>> bins;
+  fft.fwd(bins, windowed);
+  Spectrum s;
+  for (std::size_t k = 0; k <= n / 2; ++k) {
+    s.frequency_hz.push_back(k * rate / n);
+    s.amplitude.push_back((k == 0 ? 1.0 : 2.0) * std::abs(bins[k]) / gain);
+  }
+  return s;
+}
+
+double dominant_frequency(const Spectrum& s, double min_hz) {
+  std::size_t best = 0;
+  for (std::size_t k = 1; k + 1 < s.amplitude.size(); ++k) {
+    if (s.frequency_hz[k] >= min_hz && (best == 0 || s.amplitude[k] > s.amplitude[best])) best = k;
+  }
+  if (best == 0) return 0;
+  const double a = std::log(std::max(s.amplitude[best - 1], 1e-300)), b = std::log(s.amplitude[best]),
+               c = std::log(std::max(s.amplitude[best + 1], 1e-300));
+  const double offset = (a - c) / (2 * (a - 2 * b + c));
+  const double df = s.frequency_hz[1] - s.frequency_hz[0];
+  return s.frequency_hz[best] + (std::isfinite(offset) ? std::clamp(offset, -0.5, 0.5) : 0.0) * df;
+}
+
+GrowthFit fit_growth(const std::vector<double>& a, int min_revolutions, double max_standard_error) {
+  GrowthFit fit;
+  const int count = static_cast<int>(a.size());
+  if (count < min_revolutions) {
+    fit.omitted = fmt::format("{} whole revolutions; the fit needs {}", count, min_revolutions);
+    return fit;
+  }
+  const int first = count / 2, m = count - first;
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  for (int k = first; k < count; ++k) {
+    if (!(a[k] > 0 && std::isfinite(a[k]))) {
+      fit.omitted = fmt::format("revolution {} changed the state by {}: nothing to fit", k + 1, a[k]);
+      return fit;
+    }
+    const double y = std::log(a[k]);
+    sx += k, sy += y, sxx += double(k) * k, sxy += k * y;
+  }
+  // Least squares y = α + βk; the standard error of β from the residual with m − 2 degrees of freedom.
+  const double Sxx = sxx - sx * sx / m, slope = (sxy - sx * sy / m) / Sxx, intercept = (sy - slope * sx) / m;
+  double residual = 0;
+  for (int k = first; k < count; ++k) residual += std::pow(std::log(a[k]) - intercept - slope * k, 2);
+  fit.growth = std::exp(slope);
+  fit.standard_error = std::sqrt(residual / (m - 2) / Sxx);
+  if (!(fit.standard_error <= max_standard_error)) {
+    fit.omitted = fmt::format("not a steady exponential: the fit over revolutions {} to {} leaves ln growth uncertain by {:.2g} "
+                              "(allowed {:g}); run more revolutions",
+                              first + 1, count, fit.standard_error, max_standard_error);
+  }
+  return fit;
+}
+
+}  // namespace bladestab
