@@ -27,6 +27,7 @@ FloquetResult two_mode_multipliers(double w1, double w2, const Eigen::Matrix2d& 
   r.C = Eigen::MatrixXd::Zero(2, 2);
   r.G = G;
   r.full_size = 2;
+  r.undamped = true;
   LoadSeries load;
   load.angular_frequency = theta;
   load.coefficients = {0.0, a};

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "bladestab/ltp/floquet.hpp"
+#include "bladestab/stability/periodic_system.hpp"
 #include "reference/first_order_modes.hpp"
 #include "reference/mathieu.hpp"
 #include "reference/odeint_monodromy.hpp"

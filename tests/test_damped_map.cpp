@@ -145,7 +145,7 @@ double odeint_true_pulse_max_rho(const Scene& s) {
   const PeriodicSystem sys = periodic_system(m, speed, damping_matrix(m, s.damping, speed), load_series(s),
                                              {ReductionKind::none, 0, 0});
   const PulseTrain train = pulse_train(s);
-  const Eigen::MatrixXd A_free = sys.A0 - sys.load.at(0).real() * sys.B;  // the mean's share back out
+  const Eigen::MatrixXd A_free = sys.A0 - sys.coefficients.at(0).real() * sys.B;  // the mean's share back out
   const int n = sys.state_size();
   using State = std::vector<double>;
   Eigen::MatrixXd contact(n, n);

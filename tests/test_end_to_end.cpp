@@ -17,6 +17,7 @@
 #include <sys/wait.h>
 
 #include "bladestab/ltp/floquet.hpp"
+#include "bladestab/stability/periodic_system.hpp"
 #include "bladestab/transient/transient.hpp"
 #include "reference/first_order_modes.hpp"
 #include "reference/odeint_monodromy.hpp"
@@ -141,7 +142,7 @@ double odeint_max_rho(const Scene& s, const ReductionSpec& reduction) {
   const BladeModel m = assemble_model(s);
   const PeriodicSystem sys = periodic_system(m, s, load_series(s), reduction);
   const double peak = s.load.fmax_over_fcr * m.blade.critical_load(), theta = sys.angular_frequency;
-  const double F0 = sys.load[0].real();
+  const double F0 = sys.coefficients[0].real();
   const Eigen::MatrixXd phi = reference::odeint_propagator(
       sys.A0, sys.B, [&](double t) { return -peak / 2 + peak / 2 * std::cos(theta * t) - F0; }, {}, sys.period(), 1e-12);
   return phi.eigenvalues().cwiseAbs().maxCoeff();
@@ -233,7 +234,7 @@ TEST_CASE("end to end: boundaries, json and csv, a multiplier of the reference m
   const Scene s = small_scene(4, {"model.axial=false", "load.pulse_frequency_hz=" + std::to_string(theta / (2 * pi))});
   const BladeModel m = assemble_model(s);
   const PeriodicSystem sys = periodic_system(m, s, load_series(s), {ReductionKind::none, 0, 0});
-  const double peak = s.load.fmax_over_fcr * m.blade.critical_load(), F0 = sys.load[0].real();
+  const double peak = s.load.fmax_over_fcr * m.blade.critical_load(), F0 = sys.coefficients[0].real();
   const Eigen::MatrixXd phi = reference::odeint_propagator(
       sys.A0, sys.B, [&](double t) { return -peak / 2 + peak / 2 * std::cos(sys.angular_frequency * t) - F0; }, {},
       sys.period(), 1e-12);

@@ -48,7 +48,7 @@ double reference_max_rho(Scene scene, int vectors = 3) {
   // so (sixth-order Magnus) ~2e-11 from the limit, below the 1e-8 floor.
   const FloquetOptions o{FloquetMethod::monodromy, 0, exact ? 1e-9 : 1e-10, false};
   const double rho =
-      (exact ? pulse_train_multipliers(sys, pulse_train(scene), o) : floquet_multipliers(sys, o)).max_abs_multiplier;
+      (exact ? pulse_train_multipliers(sys, periodic_pulse(pulse_train(scene)), o) : floquet_multipliers(sys, o)).max_abs_multiplier;
   return rho > 10 && vectors < 12 && !exact ? reference_max_rho(scene, 12) : rho;
 }
 

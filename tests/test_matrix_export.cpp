@@ -80,9 +80,9 @@ void check_export(const std::vector<std::string>& overrides, const std::string& 
   const PeriodicSystem read = read_matrix_market((dir / "system").string());
   CHECK(relative_difference(read.A0, expected.A0) <= 1e-12);
   CHECK(relative_difference(read.B, expected.B) <= 1e-10);
-  REQUIRE(read.load.size() == expected.load.size());
-  for (std::size_t m = 0; m < read.load.size(); ++m) {
-    CHECK(std::abs(read.load[m] - expected.load[m]) <= 1e-15 * std::abs(expected.load[m]));
+  REQUIRE(read.coefficients.size() == expected.coefficients.size());
+  for (std::size_t m = 0; m < read.coefficients.size(); ++m) {
+    CHECK(std::abs(read.coefficients[m] - expected.coefficients[m]) <= 1e-15 * std::abs(expected.coefficients[m]));
   }
   // The program's own answer and its estimate are in the manifest (the value is 2.1992296566;
   // the 8-term model is 2e-6 below it, which its basis part reports).
@@ -109,13 +109,13 @@ TEST_CASE("Matrix Market files round-trip every double (export)", "[export]") {
   sys.A0(4, 1) = 4.9e-320;  // subnormal
   sys.B = Eigen::MatrixXd::Zero(7, 7);
   sys.B.bottomLeftCorner(3, 4) = Eigen::MatrixXd::Random(3, 4) * 1e-7;
-  sys.load = {{-1.5, 0}, {0.25, -1e-17}, {std::nextafter(1.0, 2.0), 3.0}};
+  sys.coefficients = {{-1.5, 0}, {0.25, -1e-17}, {std::nextafter(1.0, 2.0), 3.0}};
   const fs::path stem = fs::temp_directory_path() / ("bladestab_roundtrip_" + std::to_string(::getpid()));
   write_matrix_market(sys, stem.string());
   const PeriodicSystem read = read_matrix_market(stem.string());
   CHECK(read.A0 == sys.A0);
   CHECK(read.B == sys.B);
-  CHECK(read.load == sys.load);
+  CHECK(read.coefficients == sys.coefficients);
   for (const std::string& f : {matrix_market_files(stem.string()).A0, matrix_market_files(stem.string()).B,
                                matrix_market_files(stem.string()).load}) {
     fs::remove(f);

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "bladestab/ltp/floquet.hpp"
+#include "bladestab/stability/periodic_system.hpp"
 #include "reference/odeint_monodromy.hpp"
 #include "support/json.hpp"
 #include "support/run_cli.hpp"
@@ -24,7 +25,7 @@ constexpr double pi = 3.14159265358979323846;
 // The eigenvalues of Φ(T) for the cosine load (42), F(t) = −F_max/2 + (F_max/2) cos θt, by
 // Fehlberg 7(8) at 1e-12 on A(t) = A₀ + (F(t) − F₀) B.
 Eigen::VectorXcd reference_multipliers(const PeriodicSystem& sys, double peak) {
-  const double theta = sys.angular_frequency, F0 = sys.load[0].real();
+  const double theta = sys.angular_frequency, F0 = sys.coefficients[0].real();
   const Eigen::MatrixXd phi = reference::odeint_propagator(
       sys.A0, sys.B, [&](double t) { return -peak / 2 + peak / 2 * std::cos(theta * t) - F0; }, {}, sys.period(), 1e-12);
   return Eigen::EigenSolver<Eigen::MatrixXd>(phi, false).eigenvalues();

@@ -126,7 +126,7 @@ TEST_CASE("the periodic system carries the cosine load as the stiffness K(Omega)
                                        model.stiffness(300), model.M, Eigen::EigenvaluesOnly).eigenvalues();
   double worst = 0;
   for (double t : {0.0, T / 8, T / 4, 0.3 * T, T / 2, 3 * T / 4}) {
-    const Eigen::MatrixXd A = system.A0 + system.load_variation(t) * system.B;
+    const Eigen::MatrixXd A = system.A0 + system.variation(t) * system.B;
     const Eigen::MatrixXd S = -A.bottomLeftCorner(n, n) * D;
     const double F = -peak / 2 + peak / 2 * std::cos(two_pi * t / T);  // (42)
     const Eigen::VectorXd ours = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(0.5 * (S + S.transpose()),

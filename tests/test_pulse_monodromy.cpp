@@ -12,6 +12,7 @@
 #include <unsupported/Eigen/MatrixFunctions>
 
 #include "bladestab/ltp/floquet.hpp"
+#include "bladestab/stability/periodic_system.hpp"
 #include "bladestab/base/input_error.hpp"
 #include "bladestab/ltp/pulse_monodromy.hpp"
 #include "reference/odeint_monodromy.hpp"
@@ -54,7 +55,7 @@ Eigen::MatrixXd odeint_propagator(const PeriodicSystem& sys, const PulseTrain& t
   const reference::PulseTrainReference pulses{train.profile, train.peak_n, train.contact_time_s, train.period_s, 0};
   std::vector<double> pieces = pulses.edges(t1);
   for (double t0 = 0; t0 < t1; t0 += train.period_s) pieces.push_back(t0 + train.contact_time_s / 2);
-  const double F0 = sys.load[0].real();
+  const double F0 = sys.coefficients[0].real();
   return reference::odeint_propagator(sys.A0, sys.B, [&](double t) { return pulses.force(t) - F0; }, pieces, t1, tol);
 }
 
@@ -125,11 +126,11 @@ TEST_CASE("Meissner: one dof under rectangular pulses is a product of two closed
            "operation.speed_rad_s=0", "load.approximation=exact", "load.profile=rectangular",
            "load.pulse_frequency_hz=7", "load.fmax_over_fcr=" + std::to_string(fbar),
            "load.contact_time_rev=" + std::to_string(tc)}));
-      const double w0 = s.system.modal_frequencies(0), T = 1.0 / 7, c = tc * T;
+      const double w0 = s.system.modal->frequencies()(0), T = 1.0 / 7, c = tc * T;
       const Eigen::Matrix2d eta = oscillator_transfer(w0 * w0, T - c) * oscillator_transfer(w0 * w0 * (1 - fbar), c);
       const Eigen::Matrix2d S = Eigen::Vector2d(w0, 1).asDiagonal();  // y = [ω0 η; η̇]
       const Eigen::Matrix2d reference = S * eta * S.inverse();
-      const PulseMonodromy r = exact_pulse_monodromy(s.system, s.train, 1e-12);
+      const PulseMonodromy r = exact_pulse_monodromy(s.system, periodic_pulse(s.train), 1e-12);
       INFO("F̄ = " << fbar << ", t_c/T = " << tc);
       CHECK(relative_difference(r.monodromy, reference) < 1e-10);
       // det Φ = 1 (Liouville), to the rounding of a 2×2 determinant with entries of size ‖Φ‖
@@ -146,7 +147,7 @@ TEST_CASE("every profile: the exact monodromy matches Runge-Kutta 7(8) on the tr
       o.insert(o.end(), {std::string("load.profile=") + profile, "load.contact_time_rev=0.05"});
       if (zeta > 0) o.insert(o.end(), {"damping.model=modal", "damping.ratio=" + std::to_string(zeta)});
       const Setup s = setup(exact_scene(o));
-      const PulseMonodromy r = exact_pulse_monodromy(s.system, s.train, 1e-10);
+      const PulseMonodromy r = exact_pulse_monodromy(s.system, periodic_pulse(s.train), 1e-10);
       const Eigen::MatrixXd reference = odeint_propagator(s.system, s.train, s.train.period_s, 1e-12);
       const Eigen::VectorXcd rho = Eigen::EigenSolver<Eigen::MatrixXd>(reference, false).eigenvalues();
       INFO(profile << ", ζ = " << zeta << ": " << r.steps << " steps, estimate " << r.error_estimate);
@@ -164,10 +165,10 @@ TEST_CASE("the paper blade at N = 8, t_c = 0.01 rev: the stiff contact against R
   // half-sine at F̄ = 5, 118 rad/s lies in one of its narrow tongues.
   for (const double speed : {300.0, 118.0}) {
     const Setup s = setup(exact_scene({"model.terms=8", "operation.speed_rad_s=" + std::to_string(speed)}));
-    const PulseMonodromy r = exact_pulse_monodromy(s.system, s.train, 1e-9);
+    const PulseMonodromy r = exact_pulse_monodromy(s.system, periodic_pulse(s.train), 1e-9);
     // The reference integrates the contact only; the free flight is a plain matrix exponential.
     const double c = s.train.contact_time_s, T = s.train.period_s;
-    const Eigen::MatrixXd A_free = s.system.A0 - s.system.load[0].real() * s.system.B;
+    const Eigen::MatrixXd A_free = s.system.A0 - s.system.coefficients[0].real() * s.system.B;
     const Eigen::MatrixXd reference = (A_free * (T - c)).exp() * odeint_propagator(s.system, s.train, c, 1e-12);
     const Eigen::VectorXcd rho = Eigen::EigenSolver<Eigen::MatrixXd>(reference, false).eigenvalues();
     INFO("Ω = " << speed << ": " << r.steps << " steps, estimate " << r.error_estimate << ", max|ρ| " << std::abs(r.multipliers(0)));
@@ -188,7 +189,7 @@ TEST_CASE("the true train's independent check integrates the contact and takes t
   // A flight over the wrong time or with the wrong matrix would leave a residual of order one.
   for (const auto& [terms, speed] : {std::pair{8, 118.0}, std::pair{16, 300.0}}) {
     const Setup s = setup(exact_scene({"model.terms=" + std::to_string(terms), "operation.speed_rad_s=" + std::to_string(speed)}));
-    const FloquetResult r = pulse_train_multipliers(s.system, s.train, {FloquetMethod::monodromy, 0, 1e-8, true});
+    const FloquetResult r = pulse_train_multipliers(s.system, periodic_pulse(s.train), {FloquetMethod::monodromy, 0, 1e-8, true});
     INFO("N = " << terms << ", Ω = " << speed << ": max|ρ| " << r.max_abs_multiplier << ", residual " << r.checks.residual);
     CHECK(std::isfinite(r.checks.residual));
     CHECK(r.checks.residual < 1e-7);
@@ -202,7 +203,7 @@ TEST_CASE("two pulses per revolution: multipliers per pulse period, Φ(T_p)² ov
   const double revolution = 2 * pi / 300;
   CHECK(s.train.period_s == Approx(revolution / 2).epsilon(1e-14));
   CHECK(s.system.period() == Approx(revolution / 2).epsilon(1e-14));
-  const PulseMonodromy r = exact_pulse_monodromy(s.system, s.train, 1e-10);
+  const PulseMonodromy r = exact_pulse_monodromy(s.system, periodic_pulse(s.train), 1e-10);
   const Eigen::MatrixXd reference = odeint_propagator(s.system, s.train, revolution, 1e-12);
   CHECK(relative_difference(r.monodromy * r.monodromy, reference) < 1e-7);
   const Eigen::VectorXcd per_revolution = Eigen::EigenSolver<Eigen::MatrixXd>(reference, false).eigenvalues();
@@ -211,7 +212,7 @@ TEST_CASE("two pulses per revolution: multipliers per pulse period, Φ(T_p)² ov
 
 TEST_CASE("the impulse is the limit of ever shorter rectangles of the same impulse, error ∝ t_c", "[exact]") {
   const Setup s = setup(exact_scene({"model.terms=4", "load.profile=impulse", "load.contact_time_rev=0.01"}));
-  const PulseMonodromy jump = exact_pulse_monodromy(s.system, s.train, 1e-12);
+  const PulseMonodromy jump = exact_pulse_monodromy(s.system, periodic_pulse(s.train), 1e-12);
   CHECK(jump.steps == 0);
   CHECK(liouville_error(jump.monodromy, s.system) < 1e-12);
   const double J = s.train.peak_n * s.train.contact_time_s;
@@ -222,7 +223,7 @@ TEST_CASE("the impulse is the limit of ever shorter rectangles of the same impul
     rectangle.profile = PulseProfile::rectangular;
     rectangle.contact_time_s = tc * s.train.period_s;
     rectangle.peak_n = J / rectangle.contact_time_s;
-    errors.push_back(relative_difference(exact_pulse_monodromy(s.system, rectangle, 1e-13).monodromy, jump.monodromy));
+    errors.push_back(relative_difference(exact_pulse_monodromy(s.system, periodic_pulse(rectangle), 1e-13).monodromy, jump.monodromy));
   }
   for (std::size_t k = 1; k < errors.size(); ++k) {
     INFO("t_c/T = 1e-" << k + 3 << ": " << errors[k - 1] << " → " << errors[k]);
@@ -234,7 +235,7 @@ TEST_CASE("the Fourier series' monodromy converges to the exact one as the harmo
   // Four bending terms: ω_max = 1.5e4 rad/s, so harmonics beyond ω_max/θ ≈ 50 no longer meet a mode.
   const Setup s = setup(exact_scene({"model.theory=euler-bernoulli", "model.axial=false", "model.terms=4",
                                      "load.contact_time_rev=0.1"}));
-  const PulseMonodromy exact = exact_pulse_monodromy(s.system, s.train, 1e-12);
+  const PulseMonodromy exact = exact_pulse_monodromy(s.system, periodic_pulse(s.train), 1e-12);
   std::vector<double> errors;
   for (int M : {10, 20, 40, 80, 160}) {
     const PeriodicSystem series = periodic_system(s.model, s.scene, fourier_series(s.train, 0, M));

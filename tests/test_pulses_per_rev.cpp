@@ -13,6 +13,7 @@
 #include <boost/math/quadrature/gauss.hpp>
 
 #include "bladestab/ltp/floquet.hpp"
+#include "bladestab/stability/periodic_system.hpp"
 #include "bladestab/transient/transient.hpp"
 #include "reference/blade_transient.hpp"
 #include "reference/odeint_monodromy.hpp"
@@ -106,7 +107,7 @@ TEST_CASE("p = 2 and 3 pulses per revolution: Floquet per pulse period to the po
       // −F_max/2 + (F_max/2) cos pΩt, or the revolution harmonics of the true train (kept to the
       // library's truncation, harmonics p·m with m ≤ M: the others vanish).
       const reference::PulseTrainReference train = reference::scene_pulses(s);
-      std::vector<std::complex<double>> c(p * (sys.load.size() - 1) + 1, 0.0);
+      std::vector<std::complex<double>> c(p * (sys.coefficients.size() - 1) + 1, 0.0);
       if (std::string(approximation) == "cosine") {
         c[0] = -train.peak / 2;
         c[p] = train.peak / 4;
@@ -114,12 +115,12 @@ TEST_CASE("p = 2 and 3 pulses per revolution: Floquet per pulse period to the po
         c = revolution_harmonics(train, speed, static_cast<int>(c.size()) - 1);
       }
       // A(t) = A₀ + (F(t) − F₀) B with F₀ the mean the library put into A₀.
-      const double F0 = sys.load[0].real();
+      const double F0 = sys.coefficients[0].real();
       const Eigen::MatrixXd phi = reference::odeint_propagator(
           sys.A0, sys.B, [&](double t) { return series_at(c, speed, t) - F0; }, {}, revolution, 1e-12);
       const Eigen::VectorXcd per_revolution = Eigen::EigenSolver<Eigen::MatrixXd>(phi, false).eigenvalues();
       const double distance = multiplier_set_distance(per_pulse.multipliers.array().pow(p), per_revolution);
-      INFO("p = " << p << ", " << approximation << " (" << sys.load.size() - 1 << " harmonics of θ): max|ρ| per pulse "
+      INFO("p = " << p << ", " << approximation << " (" << sys.coefficients.size() - 1 << " harmonics of θ): max|ρ| per pulse "
                   << per_pulse.max_abs_multiplier << ", set distance " << distance);
       CHECK(distance < 1e-8 * std::max(1.0, std::pow(per_pulse.max_abs_multiplier, p)));
     }

@@ -10,6 +10,7 @@
 #include "bladestab/stability/boundaries.hpp"
 #include "bladestab/base/constants.hpp"
 #include "bladestab/ltp/floquet.hpp"
+#include "bladestab/stability/periodic_system.hpp"
 #include "bladestab/blade/reduction.hpp"
 #include "reference/mathieu.hpp"
 #include "support/scenes.hpp"
@@ -88,7 +89,7 @@ double bisect(const std::function<double(double)>& g, double a, double b) {
 TEST_CASE("Mathieu: boundaries of the first two tongues are the characteristic values a1, b1, a2, b2", "[stability][mathieu]") {
   for (double fbar : {0.2, 0.6, 1.2}) {
     const Setup s = setup(mathieu_scene(fbar));
-    const double w0 = s.system.modal_frequencies(0);
+    const double w0 = s.system.modal->frequencies()(0);
     const std::vector<Boundary> found = boundary_frequencies(s.system, s.peak, 12);
     // τ = θt/2: y'' + (a − 2q cos 2τ) y = 0 with x = 4ω0²/θ², a = x(1 − F̄/2), q = −x F̄/4;
     // the sets {a1, b1} and {a2, b2} do not depend on the sign of q.
@@ -107,7 +108,7 @@ TEST_CASE("Mathieu: boundaries of the first two tongues are the characteristic v
 TEST_CASE("Mathieu: approximation 1 is Bolotin's first approximation 2ω0 sqrt(1 ± μ)", "[stability][mathieu]") {
   for (double fbar : {0.2, 0.6, 1.2}) {
     const Setup s = setup(mathieu_scene(fbar));
-    const double w = s.system.modal_frequencies(0) * std::sqrt(1 - fbar / 2);  // loaded mean frequency
+    const double w = s.system.modal->frequencies()(0) * std::sqrt(1 - fbar / 2);  // loaded mean frequency
     const double mu = fbar / (4 * (1 - fbar / 2));
     std::vector<double> principal;
     for (const Boundary& b : boundary_frequencies(s.system, s.peak, 1)) {

@@ -14,6 +14,7 @@
 #include "bladestab/transient/crosscheck.hpp"
 #include "bladestab/blade/damping.hpp"
 #include "bladestab/ltp/floquet.hpp"
+#include "bladestab/stability/periodic_system.hpp"
 #include "bladestab/modal/modes.hpp"
 #include "bladestab/ltp/pulse_monodromy.hpp"
 #include "bladestab/transient/response_analysis.hpp"
@@ -276,7 +277,7 @@ TEST_CASE("crosscheck: the cosine approximation's instability is real for its lo
   const BladeModel model = assemble_model(s);
   const PeriodicSystem series_system = periodic_system(model, pulse, load_series(pulse, 0, p.pulse_harmonics));
   const FloquetResult series = floquet_multipliers(series_system, {FloquetMethod::monodromy, 0, 1e-8});
-  const PulseMonodromy exact = exact_pulse_monodromy(series_system, train, 1e-10);
+  const PulseMonodromy exact = exact_pulse_monodromy(series_system, periodic_pulse(train), 1e-10);
   const double set_distance = multiplier_set_distance(series.multipliers, exact.multipliers);
   CHECK(std::abs(p.floquet_pulse - exact.multipliers.cwiseAbs().maxCoeff()) < 1e-6);
   CHECK(set_distance < 1e-6);

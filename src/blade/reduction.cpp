@@ -77,6 +77,7 @@ ReducedSystem reduce(const BladeModel& model, double speed, const Eigen::MatrixX
   r.G = V.transpose() * model.G * V;
   r.basis = std::move(V);
   r.full_size = dofs;
+  r.undamped = damping.isZero(0);
   return r;
 }
 

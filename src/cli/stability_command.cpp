@@ -198,7 +198,7 @@ void export_matrices(const std::string& path, const Scene& scene, const Stabilit
       .value("states", sys.state_size())
       .value("theta_rad_s", sys.angular_frequency)
       .value("period_s", sys.period())
-      .value("load_harmonics", static_cast<int>(sys.load.size()) - 1)
+      .value("load_harmonics", static_cast<int>(sys.coefficients.size()) - 1)
       .value("scene", scene.source)
       .value("speed_rad_s", scene.operation.speed_rad_s)
       .value("fmax_over_fcr", scene.load.fmax_over_fcr)

@@ -25,7 +25,7 @@ ExportedArrays write_matrix_market(const PeriodicSystem& sys, const ExportedArra
   const Eigen::SparseMatrix<double> A0 = sys.A0.sparseView(), B = sys.B.sparseView();
   check(Eigen::saveMarket(A0, files.A0), files.A0);
   check(Eigen::saveMarket(B, files.B), files.B);
-  const Eigen::VectorXcd load = Eigen::Map<const Eigen::VectorXcd>(sys.load.data(), static_cast<Eigen::Index>(sys.load.size()));
+  const Eigen::VectorXcd load = Eigen::Map<const Eigen::VectorXcd>(sys.coefficients.data(), static_cast<Eigen::Index>(sys.coefficients.size()));
   check(Eigen::saveMarketVector(load, files.load), files.load);
   return files;
 }
@@ -41,7 +41,7 @@ PeriodicSystem read_matrix_market(const std::string& stem) {
   PeriodicSystem sys;
   sys.A0 = Eigen::MatrixXd(A0);
   sys.B = Eigen::MatrixXd(B);
-  sys.load.assign(load.data(), load.data() + load.size());
+  sys.coefficients.assign(load.data(), load.data() + load.size());
   return sys;
 }
 

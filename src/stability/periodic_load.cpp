@@ -194,12 +194,10 @@ LoadSeries fourier_series(const PulseTrain& train, double relative_tail, int max
   return series;
 }
 
-double fourier_sum(const std::vector<std::complex<double>>& coefficients, double angular_frequency, double t) {
-  double f = coefficients.at(0).real();
-  for (std::size_t m = 1; m < coefficients.size(); ++m) {
-    f += 2 * std::real(coefficients[m] * std::exp(std::complex<double>(0, m * angular_frequency * t)));
-  }
-  return f;
+PeriodicPulse periodic_pulse(const PulseTrain& train) {
+  PeriodicPulse pulse{train.period_s, train.contact_time_s, [train](double t) { return train.force(t); }, {}};
+  if (train.profile == PulseProfile::impulse) pulse.impulse = -train.peak_n * train.contact_time_s;
+  return pulse;
 }
 
 double LoadSeries::value(double t) const { return fourier_sum(coefficients, angular_frequency, t); }

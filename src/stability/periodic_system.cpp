@@ -28,50 +28,20 @@ void fix_mode_signs(Eigen::MatrixXd& Phi, const Eigen::MatrixXd& basis) {
 
 }  // namespace
 
-double PeriodicSystem::period() const { return two_pi / angular_frequency; }
-
-double PeriodicSystem::load_variation(double t) const {
-  return fourier_sum(load, angular_frequency, t) - load.at(0).real();
-}
-
-Eigen::MatrixXcd PeriodicSystem::harmonic(int m) const {
-  if (m == 0) return A0.cast<std::complex<double>>();
-  const std::size_t a = static_cast<std::size_t>(std::abs(m));
-  if (a >= load.size()) return Eigen::MatrixXcd::Zero(A0.rows(), A0.cols());
-  const std::complex<double> F = m > 0 ? load[a] : std::conj(load[a]);
-  return F * B.cast<std::complex<double>>();
-}
-
 PeriodicSystem periodic_system(const ReducedSystem& reduced, const LoadSeries& load) {
   Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> modes(reduced.K);  // M = I in the reduced coordinates
   if (modes.info() != Eigen::Success) {
     throw NumericalError("the modes of the reduced model did not converge: its stiffness is not finite (check "
                          "operation.speed_rad_s and load.fmax_over_fcr)");
   }
-  const Eigen::VectorXd omega2 = modes.eigenvalues();
-  const int n = reduced.size();
   Eigen::MatrixXd Phi = modes.eigenvectors();
   fix_mode_signs(Phi, reduced.basis);
-  const Eigen::VectorXd w = omega2.cwiseSqrt();
-  const Eigen::MatrixXd G = Phi.transpose() * reduced.G * Phi;
-  const Eigen::MatrixXd C = Phi.transpose() * reduced.C * Phi;
-  const double F0 = load.coefficients.at(0).real();
-
+  ModalForm form{modes.eigenvalues(), Phi.transpose() * reduced.G * Phi,
+                 Phi.transpose() * reduced.C * Phi};
   PeriodicSystem sys;
-  sys.A0 = Eigen::MatrixXd::Zero(2 * n, 2 * n);
-  sys.A0.topRightCorner(n, n) = w.asDiagonal();
-  Eigen::MatrixXd stiffness = F0 * G;
-  stiffness.diagonal() += omega2;
-  sys.A0.bottomLeftCorner(n, n) = -stiffness * w.cwiseInverse().asDiagonal();
-  sys.A0.bottomRightCorner(n, n) = -C;
-  sys.B = Eigen::MatrixXd::Zero(2 * n, 2 * n);
-  sys.B.bottomLeftCorner(n, n) = -G * w.cwiseInverse().asDiagonal();
-  sys.load = load.coefficients;
-  sys.angular_frequency = load.angular_frequency;
-  sys.modal_frequencies = w;
-  sys.modal_G = G;
-  sys.modal_C = C;
-  sys.kept_modes = n;
+  static_cast<LinearPeriodicSystem&>(sys) =
+      modal_periodic_system(std::move(form), load.coefficients, load.angular_frequency, reduced.undamped);
+  sys.kept_modes = reduced.size();
   sys.all_modes = reduced.full_size;
   return sys;
 }
@@ -92,7 +62,7 @@ int tongue_vectors(const BladeModel& model, const Scene& scene, double theta_max
   unloaded.load.fmax_over_fcr = 0;
   unloaded.load.pulse_frequency_hz = theta_max / two_pi;
   const Eigen::VectorXd omega =
-      periodic_system(model, unloaded, load_series(unloaded), {ReductionKind::none, 0, 0}).modal_frequencies;
+      periodic_system(model, unloaded, load_series(unloaded), {ReductionKind::none, 0, 0}).modal->frequencies();
   return std::max(2, static_cast<int>((omega.array() < max_order * theta_max).count()));
 }
 

@@ -14,6 +14,7 @@
 #include "bladestab/modal/mode_convergence.hpp"
 #include "bladestab/stability/periodic_system.hpp"
 #include "bladestab/blade/reduction.hpp"
+#include "bladestab/ltp/step_doubling.hpp"
 #include "support/worker_threads.hpp"
 
 namespace bladestab {
@@ -41,7 +42,7 @@ FloquetResult floquet_of(const Scene& scene, const Fidelity& f, const PeriodicSy
                                                "integrated through each pulse (use monodromy or auto)",
                                                to_string(o.method)));
   }
-  return pulse_train_multipliers(sys, pulse_train(scene), o);
+  return pulse_train_multipliers(sys, periodic_pulse(pulse_train(scene)), o);
 }
 
 // max|ρ| of a variant and the error of that value.
@@ -50,27 +51,23 @@ struct VariantRho {
 };
 
 // max|ρ| of a variant of the scene's system and its error: Magnus levels from 1/16 of the count
-// where h‖A‖ ≤ 2 (minimum_magnus_steps), doubled until two levels agree within `tol` while the
-// differences contract at least 4× per level (or the level reaches that count): the difference is
-// then a bound on the finer level's error, and two levels that agree by chance after a larger
-// jump do not pass. A variant independent of the answer runs beside it; the budget's `method`
-// part counts the answer's own discretization once. Where the ladder does not settle within four
-// levels, and for the exact train, the variant takes the monodromy's own refinement to `tol`.
+// where h‖A‖ ≤ 2 (minimum_magnus_steps), doubled until StepDoubling accepts max|ρ| within `tol`.
+// A variant independent of the answer runs beside it; the budget's `method` part counts the
+// answer's own discretization once. Where the ladder does not settle within four levels, and for
+// the exact train, the variant takes the monodromy's own refinement to `tol`.
 VariantRho variant_max_rho(const Scene& scene, const Fidelity& f, double tol) {
   const PeriodicSystem sys = system_at(scene, f);
   if (!f.load.exact_pulse) {
     const int safe = minimum_magnus_steps(sys), first = std::max(8, safe / 16);
+    StepDoubling ladder(first, 8 * first, safe);
     std::optional<double> previous;
-    double previous_difference = std::numeric_limits<double>::infinity();
-    for (int steps = first; steps <= 8 * first; steps *= 2) {
+    for (int steps = first; steps <= ladder.last(); steps *= 2) {
       const Eigen::MatrixXd phi = magnus_monodromy(sys, steps);
       if (!phi.allFinite()) break;
       const double rho = phi.eigenvalues().cwiseAbs().maxCoeff();
       if (previous) {
-        const double difference = std::abs(rho - *previous);
-        const bool contracting = 4 * difference <= previous_difference || steps >= safe;
-        if (difference <= tol * std::max(1.0, rho) && contracting) return {rho, difference};
-        previous_difference = difference;
+        const std::optional<double> error = ladder.judge(steps, std::abs(rho - *previous), tol * std::max(1.0, rho));
+        if (error) return {rho, *error};
       }
       previous = rho;
     }

@@ -47,7 +47,7 @@ FloquetResult point_multipliers(const BladeModel& model, const Scene& scene, int
                                               : ReductionSpec{ReductionKind::none, 0, 0};
   const PeriodicSystem sys = periodic_system(model, scene, load, reduction);
   if (load.exact_pulse) {
-    return pulse_train_multipliers(sys, pulse_train(scene), {FloquetMethod::automatic, 0, tolerance, false});
+    return pulse_train_multipliers(sys, periodic_pulse(pulse_train(scene)), {FloquetMethod::automatic, 0, tolerance, false});
   }
   return floquet_multipliers(sys, {FloquetMethod::automatic, 0, tolerance, false});
 }

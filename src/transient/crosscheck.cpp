@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "bladestab/ltp/floquet.hpp"
+#include "bladestab/stability/periodic_system.hpp"
 #include "bladestab/transient/response_analysis.hpp"
 #include "bladestab/transient/transient.hpp"
 #include "bladestab/blade/undamped_modes.hpp"

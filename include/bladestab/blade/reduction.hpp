@@ -27,6 +27,7 @@ struct ReducedSystem {
   Eigen::MatrixXd C;      // Vᵀ (C_D + Ω C_G1) V
   Eigen::MatrixXd G;      // Vᵀ G V, per newton of tip tension
   int full_size = 0;      // dofs of the Ritz model
+  bool undamped = false;  // C_D = 0: C is gyroscopic only, the blade's motion Hamiltonian
   int size() const { return static_cast<int>(basis.cols()); }
 };
 

@@ -1,5 +1,5 @@
 #pragma once
-// Floquet multipliers of the LTP blade (SPEC §4) by three methods:
+// Floquet multipliers of an LTP system (linear_periodic_system.hpp, docs/theory.md §4):
 //  - hill:         Bolotin/Hill harmonic balance, eigenvalues of the Hill matrix in real sin/cos form,
 //                  keeping the 2n exponents with the smallest |Im λ| (the classical "sorting");
 //  - koopman-hill: Φ(T) ≈ C e^{HT} W (Bayer & Leine 2023), sorting-free;
@@ -17,8 +17,10 @@
 
 #include <Eigen/Dense>
 
-#include "bladestab/stability/periodic_load.hpp"
-#include "bladestab/stability/periodic_system.hpp"
+#include "bladestab/ltp/hill.hpp"
+#include "bladestab/ltp/linear_periodic_system.hpp"
+#include "bladestab/ltp/monodromy.hpp"
+#include "bladestab/ltp/pulse_monodromy.hpp"
 
 namespace bladestab {
 
@@ -42,15 +44,15 @@ struct FloquetOptions {
 struct FloquetChecks {
   // |det Φ(T) / exp(∫₀ᵀ tr A dt) − 1| (Liouville); NaN where Φ is too ill-conditioned to tell.
   double determinant_error = 0;
-  // Undamped (Hamiltonian) systems: multipliers come in pairs ρ, 1/ρ; the largest |ρ ρ_j − 1| over
-  // the |ρ| ≥ 1 and their nearest partners. NaN with damping.
+  // Systems stated Hamiltonian: multipliers come in pairs ρ, 1/ρ; the largest |ρ ρ_j − 1| over
+  // the |ρ| ≥ 1 and their nearest partners. NaN otherwise.
   double reciprocal_error = 0;
   // The dominant eigenpair (ρ, v) of Φ(T) checked by integrating v over one period with RKF45:
   // the residual ‖x(T) − ρ v‖ / (|ρ| ‖v‖), and the multiplier that x(T) gives, ρ' = wᴴx(T) / wᴴv
   // with w the left eigenvector, as |ρ' − ρ| / |ρ| (the one checked: the residual also carries
-  // errors of Φ that move no multiplier). The true pulse train: RKF45 through the contact, the
-  // free flight by the unloaded blade's eigenvectors. NaN for methods that give no Φ(T) (classical
-  // Hill) and for stiff unreduced systems (more than 8192 Magnus steps over what RKF45
+  // errors of Φ that move no multiplier). A pulsed coefficient: RKF45 through the pulse, the
+  // flight after it by the eigenvectors of its constant matrix. NaN for methods that give no Φ(T)
+  // (classical Hill) and for stiff systems (more than 8192 Magnus steps over what RKF45
   // integrates), where it would cost minutes.
   double residual = 0;
   double multiplier_error = 0;
@@ -71,31 +73,11 @@ struct FloquetResult {
   FloquetChecks checks;
 };
 
-// The true pulse train (load.approximation = "exact"): Φ(T) by pulse_monodromy.hpp, with the same
-// checks (the RKF45 residual integrates the true pulse, landing on its edges).
-FloquetResult pulse_train_multipliers(const PeriodicSystem& system, const PulseTrain& train,
+// A coefficient that acts in pulses (pulse_monodromy.hpp): Φ(T) through the pulse by Magnus steps
+// and the flight after it exactly, with the same checks (the RKF45 check lands on the pulse's edges).
+FloquetResult pulse_train_multipliers(const LinearPeriodicSystem& system, const PeriodicPulse& pulse,
                                       const FloquetOptions& options);
 
-// Hill matrix H (SPEC §4): blocks H_jk = A_{j−k} − i k θ δ_jk I, j, k = −q..q.
-Eigen::MatrixXcd hill_matrix(const PeriodicSystem& system, int q);
-
-FloquetResult floquet_multipliers(const PeriodicSystem& system, const FloquetOptions& options);
-
-// One method at a fixed truncation, no error estimate (building blocks of the above).
-Eigen::VectorXcd hill_multipliers(const PeriodicSystem& system, int q);
-Eigen::VectorXcd koopman_hill_multipliers(const PeriodicSystem& system, int q);
-Eigen::VectorXcd monodromy_multipliers(const PeriodicSystem& system, int steps);
-// Magnus steps per period below which the step's h‖A‖ exceeds 2 (the series would diverge).
-int minimum_magnus_steps(const PeriodicSystem& system);
-// Largest distance |ρ_a − ρ_b| between two multiplier sets of equal size, each ρ matched to its
-// nearest unused partner. Tolerances compare it with tol·max(1, max|ρ|): the small multipliers of
-// a strongly unstable Φ carry rounding of order ε‖Φ‖.
-double multiplier_set_distance(const Eigen::VectorXcd& a, const Eigen::VectorXcd& b);
-// Liouville: |det Φ(T) / exp(∫₀ᵀ tr A dt) − 1|, computed in logarithms.
-double liouville_error(const Eigen::MatrixXd& monodromy, const PeriodicSystem& system);
-// Φ(T) integrated by RKF45 at relative tolerance `rtol` (all 2n fundamental solutions at once).
-Eigen::MatrixXd rkf45_monodromy(const PeriodicSystem& system, double rtol);
-// Φ(T) by the Magnus propagator.
-Eigen::MatrixXd magnus_monodromy(const PeriodicSystem& system, int steps);
+FloquetResult floquet_multipliers(const LinearPeriodicSystem& system, const FloquetOptions& options);
 
 }  // namespace bladestab

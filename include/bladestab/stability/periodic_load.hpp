@@ -7,6 +7,8 @@
 #include <vector>
 
 #include "bladestab/blade/blade_properties.hpp"
+#include "bladestab/ltp/linear_periodic_system.hpp"
+#include "bladestab/ltp/pulse_monodromy.hpp"
 #include "bladestab/scene/scene.hpp"
 
 namespace bladestab {
@@ -40,8 +42,10 @@ struct PulseTrain {
 // pulses_per_rev · Ω/2π, t_c = contact_time_rev · 2π/Ω (a fraction of a revolution).
 PulseTrain pulse_train(const Scene& scene);
 
-// Σ_{|m| ≤ M} F_m e^{i m θ t} for coefficients stored for m = 0..M (F_{−m} = conj F_m).
-double fourier_sum(const std::vector<std::complex<double>>& coefficients, double angular_frequency, double t);
+// The train as the pulsed coefficient of the LTP kernels (pulse_monodromy.hpp): F(t) on the
+// contact [0, t_c) of each pulse period; the impulse (A.5) as the jump J = −F_max t_c.
+PeriodicPulse periodic_pulse(const PulseTrain& train);
+
 
 // F(t) ≈ Σ_{|m| ≤ M} F_m e^{i m θ t}, stored for m = 0..M (F_{−m} = conj F_m).
 struct LoadSeries {

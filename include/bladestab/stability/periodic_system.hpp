@@ -10,32 +10,19 @@
 // monodromy matrix is well conditioned. The system is built on a reduced model (reduction.hpp):
 // by default the span of the loaded modes, which keeps the 46 kHz rotation modes and the Ritz
 // basis's spurious top modes out of the time integration (SPEC §6).
-#include <complex>
-#include <vector>
-
 #include <Eigen/Dense>
 
 #include "bladestab/blade/model.hpp"
+#include "bladestab/ltp/linear_periodic_system.hpp"
 #include "bladestab/stability/periodic_load.hpp"
 #include "bladestab/blade/reduction.hpp"
 
 namespace bladestab {
 
-struct PeriodicSystem {
-  Eigen::MatrixXd A0;  // mean state matrix (includes the mean load F₀)
-  Eigen::MatrixXd B;   // state matrix per newton of tip force
-  std::vector<std::complex<double>> load;  // F_m, m = 0..M (F_{−m} = conj F_m)
-  double angular_frequency = 0;            // θ
-  Eigen::VectorXd modal_frequencies;       // ω_k of the kept modes [rad/s]
-  Eigen::MatrixXd modal_G, modal_C;        // Ĝ = Φᵀ G Φ, Ĉ = Φᵀ C Φ (second-order modal form)
-  int kept_modes = 0, all_modes = 0;      // size of the reduced model, dofs of the Ritz model
-
-  double period() const;
-  int state_size() const { return static_cast<int>(A0.rows()); }
-  // F(t) − F₀ from the series.
-  double load_variation(double t) const;
-  // A_m of A(t) = Σ A_m e^{imθt}: A₀ for m = 0, F_m B otherwise.
-  Eigen::MatrixXcd harmonic(int m) const;
+// The blade's LTP system, stated in modal form (`modal`: ω_k, Ĝ, Ĉ) and Hamiltonian when the blade
+// is undamped, on `kept_modes` modes of a Ritz model of `all_modes` dofs.
+struct PeriodicSystem : LinearPeriodicSystem {
+  int kept_modes = 0, all_modes = 0;
 };
 
 PeriodicSystem periodic_system(const ReducedSystem& reduced, const LoadSeries& load);

@@ -21,6 +21,7 @@
 
 #include "bladestab/base/error_budget.hpp"
 #include "bladestab/ltp/floquet.hpp"
+#include "bladestab/stability/periodic_load.hpp"
 #include "bladestab/scene/scene.hpp"
 
 namespace bladestab {

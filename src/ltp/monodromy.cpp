@@ -1,0 +1,93 @@
+#include "bladestab/ltp/monodromy.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <tuple>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "bladestab/base/numerical_error.hpp"
+#include "bladestab/ltp/magnus.hpp"
+#include "ltp/rkf45_propagation.hpp"
+
+namespace bladestab {
+
+using cplx = std::complex<double>;
+
+Eigen::MatrixXd magnus_monodromy(const LinearPeriodicSystem& sys, int steps) {
+  return magnus_propagator(sys.A0, sys.B, [&sys](double t) { return sys.variation(t); }, 0, sys.period(), steps);
+}
+
+Eigen::VectorXcd sorted_eigenvalues(const Eigen::MatrixXd& phi) {
+  Eigen::EigenSolver<Eigen::MatrixXd> eig(phi, false);
+  if (eig.info() != Eigen::Success) throw NumericalError("the eigenvalues of the monodromy matrix did not converge");
+  Eigen::VectorXcd rho = eig.eigenvalues();
+  std::sort(rho.data(), rho.data() + rho.size(), [](cplx a, cplx b) { return std::abs(a) > std::abs(b); });
+  return rho;
+}
+
+Eigen::VectorXcd monodromy_multipliers(const LinearPeriodicSystem& sys, int steps) {
+  const Eigen::MatrixXd phi = magnus_monodromy(sys, steps);
+  if (!phi.allFinite()) throw NumericalError(fmt::format("the monodromy overflowed with {} Magnus steps", steps));
+  return sorted_eigenvalues(phi);
+}
+
+Eigen::MatrixXd rkf45_monodromy(const LinearPeriodicSystem& sys, double rtol) {
+  // The scaled coordinates make every entry of Φ order one: atol = rtol.
+  const int n = sys.state_size();
+  return rkf45_propagate(sys, series_variation(sys), Eigen::MatrixXd::Identity(n, n), rtol, rtol);
+}
+
+int minimum_magnus_steps(const LinearPeriodicSystem& sys) {
+  // max_t ‖A(t)‖₂ ≤ ‖A₀‖₂ + ‖B‖₂ Σ_{m≥1} 2|f_m|
+  double amplitude = 0;
+  for (std::size_t m = 1; m < sys.coefficients.size(); ++m) amplitude += 2 * std::abs(sys.coefficients[m]);
+  // ‖a‖₂ = √λ_max(aᵀa), to the rounding of λ_max (ε‖a‖²): a symmetric eigenvalue solve, several
+  // times cheaper than the SVD.
+  const auto norm2 = [](const Eigen::MatrixXd& a) {
+    const Eigen::MatrixXd gram = a.transpose() * a;
+    return std::sqrt(std::max(0.0, Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(gram, Eigen::EigenvaluesOnly)
+                                       .eigenvalues()
+                                       .maxCoeff()));
+  };
+  const double bound = norm2(sys.A0) + amplitude * norm2(sys.B);
+  const double steps = std::max({32.0, 8.0 * sys.coefficients.size(), bound * sys.period() / 2});
+  return steps > (1 << 30) ? (1 << 30) + 1 : 1 << static_cast<int>(std::ceil(std::log2(steps)));
+}
+
+double multiplier_set_distance(const Eigen::VectorXcd& a, const Eigen::VectorXcd& b) {
+  if (a.size() != b.size()) return std::numeric_limits<double>::infinity();
+  // Pairs matched closest first over all pairs (a double root meets each partner once).
+  std::vector<std::tuple<double, Eigen::Index, Eigen::Index>> pairs;
+  for (Eigen::Index i = 0; i < a.size(); ++i) {
+    for (Eigen::Index j = 0; j < b.size(); ++j) pairs.emplace_back(std::abs(a(i) - b(j)), i, j);
+  }
+  if (std::any_of(pairs.begin(), pairs.end(), [](const auto& p) { return std::isnan(std::get<0>(p)); })) {
+    return std::numeric_limits<double>::quiet_NaN();
+  }
+  std::sort(pairs.begin(), pairs.end());
+  std::vector<bool> used_a(a.size(), false), used_b(b.size(), false);
+  double largest = 0;
+  for (const auto& [d, i, j] : pairs) {
+    if (used_a[i] || used_b[j]) continue;
+    used_a[i] = used_b[j] = true;
+    largest = std::max(largest, d);
+  }
+  return largest;
+}
+
+double liouville_error(const Eigen::MatrixXd& phi, const LinearPeriodicSystem& sys) {
+  // det Φ(T) = exp(∫₀ᵀ tr A dt) = exp(T tr A₀): f − f₀ has mean zero over a period.
+  // In logarithms from the LU factors: damped stiff modes put det Φ far below the smallest double.
+  const Eigen::PartialPivLU<Eigen::MatrixXd> lu(phi);
+  double log_det = 0, sign = lu.permutationP().determinant();
+  for (Eigen::Index i = 0; i < lu.matrixLU().rows(); ++i) {
+    log_det += std::log(std::abs(lu.matrixLU()(i, i)));
+    sign *= lu.matrixLU()(i, i) < 0 ? -1 : 1;
+  }
+  return std::abs(sign * std::exp(log_det - sys.A0.trace() * sys.period()) - 1);
+}
+
+}  // namespace bladestab
