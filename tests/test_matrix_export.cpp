@@ -4,7 +4,6 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <regex>
 #include <sstream>
 #include <string>
 
@@ -16,6 +15,7 @@
 #include "bladestab/blade/model.hpp"
 #include "bladestab/stability/periodic_load.hpp"
 #include "bladestab/stability/periodic_system.hpp"
+#include "support/json.hpp"
 #include "support/scenes.hpp"
 
 namespace {
@@ -28,16 +28,6 @@ std::string read_text(const fs::path& path) {
   std::ostringstream text;
   text << in.rdbuf();
   return text.str();
-}
-
-// The value of a top-level key of the manifest, as text (numbers and strings; enough for these keys).
-std::string manifest_value(const std::string& json, const std::string& key) {
-  std::smatch m;
-  const std::regex pattern("\"" + key + "\"\\s*:\\s*(\"[^\"]*\"|[-+0-9.eE]+)");
-  if (!std::regex_search(json, m, pattern)) return "";
-  std::string v = m[1];
-  if (!v.empty() && v.front() == '"') v = v.substr(1, v.size() - 2);
-  return v;
 }
 
 double relative_difference(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
@@ -58,20 +48,20 @@ void check_export(const std::vector<std::string>& overrides, const std::string& 
   INFO(command);
   REQUIRE(std::system(command.c_str()) == 0);
 
-  const std::string json = read_text(manifest);
-  INFO(json);
+  INFO(read_text(manifest));
+  const testing_support::Json json = testing_support::parse_json(read_text(manifest));
   const Scene scene = testing_support::paper_scene(overrides);
   ModelSpec spec = scene.model;
-  spec.terms = std::stoi(manifest_value(json, "terms"));
+  spec.terms = static_cast<int>(json["terms"].number);
   ReductionSpec reduction = scene.model.reduction;
-  reduction.vectors = std::stoi(manifest_value(json, "reduction_vectors"));
-  CHECK(manifest_value(json, "reduction") == to_string(reduction.kind));
+  reduction.vectors = static_cast<int>(json["reduction_vectors"].number);
+  CHECK(json["reduction"].text == to_string(reduction.kind));
   const PeriodicSystem expected = periodic_system(assemble_model(scene, spec), scene, load_series(scene), reduction);
   if (expected_states > 0) CHECK(expected.state_size() == expected_states);
-  CHECK(std::stoi(manifest_value(json, "states")) == expected.state_size());
-  CHECK(std::stod(manifest_value(json, "theta_rad_s")) == Approx(expected.angular_frequency).epsilon(1e-15));
-  CHECK(std::stod(manifest_value(json, "period_s")) == Approx(expected.period()).epsilon(1e-15));
-  CHECK(manifest_value(json, "A0") == "system.A0.mtx");
+  CHECK(json["states"].number == expected.state_size());
+  CHECK(json["theta_rad_s"].number == Approx(expected.angular_frequency).epsilon(1e-15));
+  CHECK(json["period_s"].number == Approx(expected.period()).epsilon(1e-15));
+  CHECK(json["A0"].text == "system.A0.mtx");
 
   // The same arrays up to rounding: the program and this test may differ in vectorization and BLAS
   // threads. They do under the sanitizers: A0 1.7e-14, and B 5e-12 for the whole 48-state model,
@@ -86,8 +76,8 @@ void check_export(const std::vector<std::string>& overrides, const std::string& 
   }
   // The program's own answer and its estimate are in the manifest (the issue's value is 2.1992296566;
   // the 8-term model is 2e-6 below it, which its basis part reports).
-  CHECK(std::stod(manifest_value(json, "max_abs_multiplier")) == Approx(2.19923).epsilon(1e-5));
-  CHECK(std::stod(manifest_value(json, "error_estimate")) > 0);
+  CHECK(json["max_abs_multiplier"].number == Approx(2.19923).epsilon(1e-5));
+  CHECK(json["error_estimate"].number > 0);
   fs::remove_all(dir);
 }
 

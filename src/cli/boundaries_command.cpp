@@ -18,7 +18,7 @@
 #include "commands.hpp"
 #include "error_output.hpp"
 #include "finite_results.hpp"
-#include "json_writer.hpp"
+#include "json_output.hpp"
 #include "number_options.hpp"
 #include "options.hpp"
 #include "progress.hpp"
@@ -49,59 +49,51 @@ void print(const SceneOptions& options, const Scene& scene, const BladeModel& mo
   const double unit = in_load ? fcr : 1.0;  // the window in θ [rad/s] or F̄_max
   switch (options.output_format()) {
     case OutputFormat::json: {
-      JsonWriter json;
-      json.begin_object()
-          .value("scene", scene.source)
-          .value("speed_rad_s", scene.operation.speed_rad_s)
-          .value("fmax_over_fcr", scene.load.fmax_over_fcr)
-          .value("approximation", result.approximation)
-          .value("tolerance", request.tolerance)
-          .value("cutoff_hz", request.cutoff_hz)
-          .value("model", describe_model(model))
-          .value("max_order", request.max_order)
-          .value("window_low", result.window.first / unit)
-          .value("window_high", result.window.second / unit)
-          .value("estimate_measure", in_load ? "relative on fmax_over_fcr" : "relative on theta_rad_s");
+      Json json;
+      json["scene"] = scene.source;
+      json["speed_rad_s"] = scene.operation.speed_rad_s;
+      json["fmax_over_fcr"] = scene.load.fmax_over_fcr;
+      json["approximation"] = result.approximation;
+      json["tolerance"] = request.tolerance;
+      json["cutoff_hz"] = request.cutoff_hz;
+      json["model"] = describe_model(model);
+      json["max_order"] = request.max_order;
+      json["window_low"] = result.window.first / unit;
+      json["window_high"] = result.window.second / unit;
+      json["estimate_measure"] = in_load ? "relative on fmax_over_fcr" : "relative on theta_rad_s";
       write_error_budget(json, result.total());
-      json.begin_array("checks");
+      json["checks"] = Json::array();
       for (const BoundaryCheck& c : result.checks) {
-        json.begin_object()
-            .value("theta_rad_s", c.boundary.theta_rad_s)
-            .value("fmax_over_fcr", c.boundary.peak_force_n / fcr)
-            .value("multiplier", c.boundary.multiplier)
-            .value("cutoff_hz", c.cutoff_hz)
-            .value("multiplier_gap", c.gap)
-            .value("allowed", c.allowed)
-            .end_object();
+        json["checks"].push_back({{"theta_rad_s", c.boundary.theta_rad_s},
+                                  {"fmax_over_fcr", c.boundary.peak_force_n / fcr},
+                                  {"multiplier", c.boundary.multiplier},
+                                  {"cutoff_hz", c.cutoff_hz},
+                                  {"multiplier_gap", c.gap},
+                                  {"allowed", c.allowed}});
       }
-      json.end_array().begin_array("boundaries");
+      json["boundaries"] = Json::array();
       for (const EstimatedBoundary& e : result.boundaries) {
         const Boundary& b = e.boundary;
-        json.begin_object()
-            .value("theta_rad_s", b.theta_rad_s)
-            .value("fmax_over_fcr", b.peak_force_n / fcr)
-            .value("multiplier", b.multiplier)
-            .value("mode", b.mode)
-            .value("order", b.order)
-            .value("approximation", e.approximation);
-        write_error_budget(json, e.budget);
-        json.end_object();
+        Json& boundary = json["boundaries"].emplace_back(Json{{"theta_rad_s", b.theta_rad_s},
+                                                              {"fmax_over_fcr", b.peak_force_n / fcr},
+                                                              {"multiplier", b.multiplier},
+                                                              {"mode", b.mode},
+                                                              {"order", b.order},
+                                                              {"approximation", e.approximation}});
+        write_error_budget(boundary, e.budget);
       }
-      json.end_array().begin_array("regions");
+      json["regions"] = Json::array();
       for (const InstabilityRegion& r : regions) {
-        json.begin_object()
-            .value("lower", r.lower / unit)
-            .value("upper", r.upper / unit)
-            .value("lower_at_window", r.lower_open)
-            .value("upper_at_window", r.upper_open)
-            .value("multiplier", r.multiplier)
-            .value("mode", r.mode)
-            .value("order", r.order)
-            .value("middle_max_abs_multiplier", r.middle_max_abs_multiplier)
-            .end_object();
+        json["regions"].push_back({{"lower", r.lower / unit},
+                                   {"upper", r.upper / unit},
+                                   {"lower_at_window", r.lower_open},
+                                   {"upper_at_window", r.upper_open},
+                                   {"multiplier", r.multiplier},
+                                   {"mode", r.mode},
+                                   {"order", r.order},
+                                   {"middle_max_abs_multiplier", r.middle_max_abs_multiplier}});
       }
-      json.end_array().end_object();
-      fmt::print("{}", json.str());
+      fmt::print("{}", json_text(json));
       break;
     }
     case OutputFormat::csv:

@@ -11,7 +11,7 @@
 #include "chart.hpp"
 #include "commands.hpp"
 #include "error_output.hpp"
-#include "json_writer.hpp"
+#include "json_output.hpp"
 #include "number_options.hpp"
 #include "options.hpp"
 #include "output_files.hpp"
@@ -25,60 +25,51 @@ constexpr double rpm_per_rad_s = 60 / two_pi;
 
 std::string campbell_json(const Scene& scene, const CampbellWithErrors& r) {
   const CampbellDiagram& d = r.diagram;
-  JsonWriter json;
-  json.begin_object()
-      .value("title", fmt::format("{} — Campbell diagram", scene_title(scene)))
-      .value("scene", scene.source)
-      .value("model", describe_model(r.model))
-      .value("terms", r.model.spec.terms)
-      .numbers("reference_terms", r.reference_terms)
-      .value("damping", to_string(scene.damping.model))
-      .value("solver", to_string(d.solver))
-      .begin_object("reduction")
-      .value("method", d.reduced ? "reduced basis, every frequency bounded against the whole Ritz model"
-                                 : "none: every speed solved whole")
-      .value("vectors", d.basis_vectors)
-      .numbers("sample_speeds_rad_s", d.sample_speeds_rad_s)
-      .end_object()
-      .value("tolerance", r.tolerance)
-      .numbers("speeds_rad_s", d.speeds_rad_s)
-      .numbers("engine_orders", d.engine_orders);
+  Json json;
+  json["title"] = fmt::format("{} — Campbell diagram", scene_title(scene));
+  json["scene"] = scene.source;
+  json["model"] = describe_model(r.model);
+  json["terms"] = r.model.spec.terms;
+  json["reference_terms"] = r.reference_terms;
+  json["damping"] = to_string(scene.damping.model);
+  json["solver"] = to_string(d.solver);
+  json["reduction"] = {{"method", d.reduced ? "reduced basis, every frequency bounded against the whole Ritz model"
+                                            : "none: every speed solved whole"},
+                       {"vectors", d.basis_vectors},
+                       {"sample_speeds_rad_s", d.sample_speeds_rad_s}};
+  json["tolerance"] = r.tolerance;
+  json["speeds_rad_s"] = d.speeds_rad_s;
+  json["engine_orders"] = d.engine_orders;
   write_error_budget(json, r.worst());
-  json.begin_array("error_by_speed");
+  json["error_by_speed"] = Json::array();
   for (std::size_t s = 0; s < d.speeds_rad_s.size(); ++s) {
-    json.begin_object().value("speed_rad_s", d.speeds_rad_s[s]);
-    write_error_budget(json, r.worst_at(s));
-    json.end_object();
+    Json& at = json["error_by_speed"].emplace_back(Json{{"speed_rad_s", d.speeds_rad_s[s]}});
+    write_error_budget(at, r.worst_at(s));
   }
-  json.end_array().begin_array("curves");
+  json["curves"] = Json::array();
   for (std::size_t i = 0; i < d.curves.size(); ++i) {
     const CampbellCurve& c = d.curves[i];
     std::vector<double> estimate;
     for (const ErrorBudget& b : r.budget[i]) estimate.push_back(b.total());
-    json.begin_object()
-        .value("mode", c.mode)
-        .value("family", to_string(c.family))
-        .numbers("frequency_hz", c.frequency_hz)
-        .numbers("damping_ratio", c.damping_ratio)
-        .numbers("correlation", c.correlation)
-        .numbers("error_estimate", estimate)
-        .end_object();
+    json["curves"].push_back({{"mode", c.mode},
+                              {"family", to_string(c.family)},
+                              {"frequency_hz", c.frequency_hz},
+                              {"damping_ratio", c.damping_ratio},
+                              {"correlation", c.correlation},
+                              {"error_estimate", estimate}});
   }
-  json.end_array().begin_array("crossings");
+  json["crossings"] = Json::array();
   for (std::size_t k = 0; k < d.crossings.size(); ++k) {
     const EngineOrderCrossing& x = d.crossings[k];
-    json.begin_object()
-        .value("engine_order", x.engine_order)
-        .value("mode", x.mode)
-        .value("speed_rad_s", x.speed_rad_s)
-        .value("speed_rpm", x.speed_rad_s * rpm_per_rad_s)
-        .value("frequency_hz", x.frequency_hz)
-        .value("amplification", x.amplification);
-    write_error_budget(json, r.crossing_budget[k]);
-    json.end_object();
+    Json& crossing = json["crossings"].emplace_back(Json{{"engine_order", x.engine_order},
+                                                         {"mode", x.mode},
+                                                         {"speed_rad_s", x.speed_rad_s},
+                                                         {"speed_rpm", x.speed_rad_s * rpm_per_rad_s},
+                                                         {"frequency_hz", x.frequency_hz},
+                                                         {"amplification", x.amplification}});
+    write_error_budget(crossing, r.crossing_budget[k]);
   }
-  json.end_array().end_object();
-  return json.str();
+  return json_text(json);
 }
 
 std::string curves_csv(const CampbellDiagram& d) {

@@ -12,7 +12,7 @@
 #include "bladestab/modal/mode_convergence.hpp"
 #include "bladestab/stability/requirements_check.hpp"
 #include "commands.hpp"
-#include "json_writer.hpp"
+#include "json_output.hpp"
 #include "number_options.hpp"
 #include "options.hpp"
 #include "progress.hpp"
@@ -28,7 +28,7 @@ struct CheckOutcome {
   std::string summary;  // the worst point in one line, for the table
   std::string detail;   // what was found and how, in sentences
   double seconds = 0;
-  std::function<void(JsonWriter&)> write_worst;  // the "worst" object's fields and the check's extras
+  std::function<void(Json&)> write_worst;  // the "worst" object and the check's extras
 };
 
 std::string orders_text(const std::vector<int>& orders) { return fmt::format("{}", fmt::join(orders, ", ")); }
@@ -56,19 +56,17 @@ CheckOutcome margin_outcome(const Scene& scene, const FrequencyMarginResult& m) 
                            w.mode, w.engine_order, w.speed_rad_s, w.frequency_hz, w.distance, m.error_estimate,
                            m.passed ? "at least" : "below", m.required, scope);
   }
-  o.write_worst = [m](JsonWriter& json) {
-    json.begin_object("worst")
-        .value("mode", m.worst.mode)
-        .value("engine_order", m.worst.engine_order)
-        .value("speed_rad_s", m.worst.speed_rad_s)
-        .value("frequency_hz", m.worst.frequency_hz)
-        .value("margin", m.worst.distance)
-        .end_object()
-        .value("required", m.required)
-        .value("error_estimate", m.error_estimate)
-        .value("modes_checked", m.modes_checked)
-        .value("threshold_hz", m.threshold_hz)
-        .value("terms", m.terms);
+  o.write_worst = [m](Json& json) {
+    json["worst"] = {{"mode", m.worst.mode},
+                     {"engine_order", m.worst.engine_order},
+                     {"speed_rad_s", m.worst.speed_rad_s},
+                     {"frequency_hz", m.worst.frequency_hz},
+                     {"margin", m.worst.distance}};
+    json["required"] = m.required;
+    json["error_estimate"] = m.error_estimate;
+    json["modes_checked"] = m.modes_checked;
+    json["threshold_hz"] = m.threshold_hz;
+    json["terms"] = m.terms;
   };
   return o;
 }
@@ -122,26 +120,21 @@ CheckOutcome rub_outcome(const Scene& scene, const RubStabilityResult& r) {
                                                  : "",
                            r.required, floquet, scope);
   }
-  o.write_worst = [r](JsonWriter& json) {
-    json.begin_object("worst").value("speed_rad_s", r.speed_rad_s);
-    if (r.onset_fmax_over_fcr) {
-      json.value("onset_fmax_over_fcr", *r.onset_fmax_over_fcr);
-    } else {
-      json.null_value("onset_fmax_over_fcr");
-    }
-    json.value("mode", r.mode)
-        .value("order", r.order)
-        .value("multiplier", r.multiplier)
-        .value("tip", r.tip)
-        .value("check_speed_rad_s", r.check_speed_rad_s)
-        .value("check_fmax_over_fcr", r.check_fmax_over_fcr)
-        .value("max_abs_multiplier", r.max_abs_multiplier)
-        .end_object()
-        .value("required", r.required)
-        .value("error_estimate", r.onset_error_estimate)
-        .value("window_fmax_over_fcr", r.window_fmax_over_fcr)
-        .value("approximation", r.approximation)
-        .value("speeds_scanned", r.speeds_scanned);
+  o.write_worst = [r](Json& json) {
+    json["worst"] = {{"speed_rad_s", r.speed_rad_s},
+                     {"onset_fmax_over_fcr", r.onset_fmax_over_fcr ? Json(*r.onset_fmax_over_fcr) : Json(nullptr)},
+                     {"mode", r.mode},
+                     {"order", r.order},
+                     {"multiplier", r.multiplier},
+                     {"tip", r.tip},
+                     {"check_speed_rad_s", r.check_speed_rad_s},
+                     {"check_fmax_over_fcr", r.check_fmax_over_fcr},
+                     {"max_abs_multiplier", r.max_abs_multiplier}};
+    json["required"] = r.required;
+    json["error_estimate"] = r.onset_error_estimate;
+    json["window_fmax_over_fcr"] = r.window_fmax_over_fcr;
+    json["approximation"] = r.approximation;
+    json["speeds_scanned"] = r.speeds_scanned;
   };
   return o;
 }
@@ -151,16 +144,14 @@ bool all_passed(const std::vector<CheckOutcome>& checks) {
 }
 
 std::string check_json(const Scene& scene, double tolerance, const std::vector<CheckOutcome>& checks) {
-  JsonWriter json;
-  json.begin_object().value("passed", all_passed(checks)).value("scene", scene.source).value("tolerance", tolerance);
-  json.begin_array("checks");
+  Json json = {{"passed", all_passed(checks)}, {"scene", scene.source}, {"tolerance", tolerance}, {"checks", Json::array()}};
   for (const CheckOutcome& c : checks) {
-    json.begin_object().value("name", c.name).value("passed", c.passed);
-    c.write_worst(json);
-    json.value("detail", c.detail).value("seconds", c.seconds).end_object();
+    Json& check = json["checks"].emplace_back(Json{{"name", c.name}, {"passed", c.passed}});
+    c.write_worst(check);
+    check["detail"] = c.detail;
+    check["seconds"] = c.seconds;
   }
-  json.end_array().end_object();
-  return json.str() + "\n";
+  return json_text(json);
 }
 
 // Text for XML attributes and content: the five special characters escaped, and the control

@@ -8,7 +8,7 @@
 #include "bladestab/transient/transient.hpp"
 #include "commands.hpp"
 #include "finite_results.hpp"
-#include "json_writer.hpp"
+#include "json_output.hpp"
 #include "number_options.hpp"
 #include "options.hpp"
 #include "progress.hpp"
@@ -63,33 +63,25 @@ Command register_crosscheck(CLI::App& app) {
     }
     switch (options->output_format()) {
       case OutputFormat::json: {
-        JsonWriter json;
-        json.begin_object()
-            .value("scene", scene.source)
-            .value("speed_rad_s", scene.operation.speed_rad_s)
-            .value("revolutions", *revolutions)
-            .begin_array("points");
+        Json json = {{"scene", scene.source}, {"speed_rad_s", scene.operation.speed_rad_s},
+                     {"revolutions", *revolutions}, {"points", Json::array()}};
         for (const CrosscheckPoint& p : result) {
-          json.begin_object()
-              .value("fmax_over_fcr", p.fmax_over_fcr)
-              .begin_object("cosine_approximation")
-              .value("floquet_max_abs_multiplier", p.floquet_cosine)
-              .value("floquet_error_estimate", p.floquet_cosine_error)
-              .value("transient_growth_per_revolution", p.transient_cosine_growth)
-              .value("rkf45_monodromy_max_abs_multiplier", p.rkf45_max_abs_multiplier)
-              .value("monodromy_matrix_relative_difference", p.monodromy_difference)
-              .end_object()
-              .begin_object("true_pulse")
-              .value("floquet_max_abs_multiplier", p.floquet_pulse)
-              .value("floquet_error_estimate", p.floquet_pulse_error)
-              .value("load_harmonics", p.pulse_harmonics)
-              .value("load_relative_tail", p.pulse_series_tail)
-              .value("transient_growth_per_revolution", p.transient_pulse_growth)
-              .end_object()
-              .end_object();
+          json["points"].push_back(
+              {{"fmax_over_fcr", p.fmax_over_fcr},
+               {"cosine_approximation",
+                {{"floquet_max_abs_multiplier", p.floquet_cosine},
+                 {"floquet_error_estimate", p.floquet_cosine_error},
+                 {"transient_growth_per_revolution", p.transient_cosine_growth},
+                 {"rkf45_monodromy_max_abs_multiplier", p.rkf45_max_abs_multiplier},
+                 {"monodromy_matrix_relative_difference", p.monodromy_difference}}},
+               {"true_pulse",
+                {{"floquet_max_abs_multiplier", p.floquet_pulse},
+                 {"floquet_error_estimate", p.floquet_pulse_error},
+                 {"load_harmonics", p.pulse_harmonics},
+                 {"load_relative_tail", p.pulse_series_tail},
+                 {"transient_growth_per_revolution", p.transient_pulse_growth}}}});
         }
-        json.end_array().end_object();
-        fmt::print("{}", json.str());
+        fmt::print("{}", json_text(json));
         break;
       }
       case OutputFormat::csv:

@@ -4,16 +4,14 @@
 
 namespace bladestab::cli {
 
-void write_error_budget(JsonWriter& json, const ErrorBudget& b) {
-  json.value("error_estimate", b.total())
-      .begin_object("error_budget")
-      .value("basis", b.basis)
-      .value("reduction", b.reduction)
-      .value("load", b.load)
-      .value("method", b.method)
-      .begin_array("unbounded");
-  for (const std::string& part : b.unbounded) json.value(nullptr, part);
-  json.end_array().end_object();
+void write_error_budget(Json& json, const ErrorBudget& b) {
+  json["error_estimate"] = b.total();
+  Json& parts = json["error_budget"];
+  parts["basis"] = b.basis;
+  parts["reduction"] = b.reduction;
+  parts["load"] = b.load;
+  parts["method"] = b.method;
+  parts["unbounded"] = b.unbounded;
 }
 
 std::string describe_error_budget(const ErrorBudget& b) {

@@ -1,8 +1,8 @@
 #pragma once
 // A result is printed only when every number of it is finite: a NaN or an infinity is a failure of
-// the computation (NumericalError, exit 1) naming the quantity, never output. modes printed
-// "Λ = nan, ζ = 1" with exit 0 for a Young's modulus of 1e-308. The commands whose outputs always
-// pass through JsonWriter (which refuses them too) need no more than that.
+// the computation (NumericalError, exit 1) naming the quantity, never output (a Young's modulus of
+// 1e-308 would otherwise print "Λ = nan"). The commands whose outputs always pass through
+// json_text() (which refuses them too, json_output.hpp) need no more than that.
 #include <string>
 
 namespace bladestab::cli {

@@ -17,7 +17,7 @@
 #include "chart.hpp"
 #include "error_output.hpp"
 #include "commands.hpp"
-#include "json_writer.hpp"
+#include "json_output.hpp"
 #include "number_options.hpp"
 #include "options.hpp"
 #include "output_files.hpp"
@@ -29,127 +29,100 @@ namespace {
 
 // The refined shading: the leaves of the refinement on the fine lattice ([i, j, width, height,
 // max|ρ| of the corners]; lattice point i lies in grid cell i >> k, linearly between its points).
-void write_refinement(JsonWriter& json, const StabilityMap& m) {
-  json.begin_object("refinement")
-      .value("cells_x", m.cells_x)
-      .value("cells_y", m.cells_y)
-      .value("x_lo", m.grid_x.front())
-      .value("x_hi", m.grid_x.back())
-      .value("y_lo", m.grid_fbar.front())
-      .value("y_hi", m.grid_fbar.back())
-      .begin_array("cells");
+Json refinement_json(const StabilityMap& m) {
+  Json cells = Json::array();
   for (const MapCell& c : m.cells) {
-    json.numbers_or_null(nullptr, {static_cast<double>(c.i), static_cast<double>(c.j), static_cast<double>(c.width),
-                                   static_cast<double>(c.height), c.max_abs_multiplier});
+    cells.push_back({c.i, c.j, c.width, c.height, number_or_null(c.max_abs_multiplier)});
   }
-  json.end_array().end_object();
+  return {{"cells_x", m.cells_x}, {"cells_y", m.cells_y}, {"x_lo", m.grid_x.front()}, {"x_hi", m.grid_x.back()},
+          {"y_lo", m.grid_fbar.front()}, {"y_hi", m.grid_fbar.back()}, {"cells", cells}};
+}
+
+Json curve_fidelity_json(const StabilityMap& m) {
+  const CurveFidelity& f = m.curve_fidelity;
+  Json json = {{"reduction", to_string(f.reduction.kind)},
+               {"reduction_vectors", f.reduction.vectors},
+               {"approximation", f.approximation},
+               {"checked_at", f.checked_at},
+               {"tolerance_met", f.tolerance_met},
+               {"drawn", f.drawn},
+               {"error_measure", m.plane == MapPlane::theta_fmax ? "distance in θ over the window's θ span"
+                                                                  : "distance in F̄ over the window's F̄ span"}};
+  write_error_budget(json, f.budget);
+  return json;
+}
+
+// Where the scene itself sits: a labelled marker for the chart and the point's numbers.
+void write_scene_point(Json& json, const MapPoint& p) {
+  std::string label = fmt::format("scene: max|ρ| = {:.4g}", p.max_abs_multiplier);
+  if (p.nearest_boundary) {
+    label += fmt::format("\nnearest boundary ({:+d}) at F̄ = {:.4g}, ΔF̄ = {:+.3g}", p.nearest_boundary->multiplier,
+                         p.nearest_boundary->fbar, p.nearest_boundary->fbar - p.fbar);
+  }
+  json["markers"] = Json::array({{{"x", p.x}, {"y", p.fbar}, {"label", label}}});
+  Json point = {{"x", p.x}, {"y", p.fbar}, {"max_abs_multiplier", p.max_abs_multiplier}};
+  if (p.nearest_boundary) {
+    point["nearest_boundary_fbar"] = p.nearest_boundary->fbar;
+    point["nearest_boundary_multiplier"] = p.nearest_boundary->multiplier;
+    point["nearest_boundary_mode"] = p.nearest_boundary->mode;
+    point["nearest_boundary_order"] = p.nearest_boundary->order;
+  } else {
+    point["nearest_boundary_fbar"] = nullptr;
+  }
+  json["scene_point"] = point;
 }
 
 std::string map_json(const Scene& scene, const BladeModel& model, const MapOptions& o, const StabilityMap& m) {
   const bool theta = m.plane == MapPlane::theta_fmax;
   const std::string stem = scene_title(scene);
-  JsonWriter json;
-  json.begin_object()
-      .value("title", theta ? fmt::format("{} — stability map at Ω = {:g} rad/s", stem, scene.operation.speed_rad_s)
-                            : fmt::format("{} — stability map, θ = {}·Ω", stem, o.engine_order))
-      .value("plane", theta ? "theta-fmax" : "speed-fmax")
-      .value("scene", scene.source)
-      .value("model", describe_model(model))
-      .value("x_label", theta ? "pulse frequency θ [rad/s]" : "rotor speed Ω [rad/s]")
-      .value("y_label", "F̄_max = F_max / F_cr")
-      .value("approximation", m.curve_fidelity.approximation)
-      .value("max_order", o.max_order)
-      .value("shading_method", "Floquet multipliers, method auto")
-      .value("shading_max_relative_error", m.max_error_estimate)
-      .value("shading_reduction_vectors", m.shading_fidelity.reduction_vectors)
-      .value("shading_reduction_error", m.shading_fidelity.reduction_error)
-      // Within the shading's accuracy, max|ρ| this close to 1 cannot be told from stable.
-      .value("stable_below", 1 + std::max(o.tolerance, m.max_error_estimate))
-      .begin_object("grid")
-      .numbers("x", m.grid_x)
-      .numbers("y", m.grid_fbar)
-      .begin_array("max_abs_multiplier");
+  Json json;
+  json["title"] = theta ? fmt::format("{} — stability map at Ω = {:g} rad/s", stem, scene.operation.speed_rad_s)
+                        : fmt::format("{} — stability map, θ = {}·Ω", stem, o.engine_order);
+  json["plane"] = theta ? "theta-fmax" : "speed-fmax";
+  json["scene"] = scene.source;
+  json["model"] = describe_model(model);
+  json["x_label"] = theta ? "pulse frequency θ [rad/s]" : "rotor speed Ω [rad/s]";
+  json["y_label"] = "F̄_max = F_max / F_cr";
+  json["approximation"] = m.curve_fidelity.approximation;
+  json["max_order"] = o.max_order;
+  json["shading_method"] = "Floquet multipliers, method auto";
+  json["shading_max_relative_error"] = m.max_error_estimate;
+  json["shading_reduction_vectors"] = m.shading_fidelity.reduction_vectors;
+  json["shading_reduction_error"] = m.shading_fidelity.reduction_error;
+  // Within the shading's accuracy, max|ρ| this close to 1 cannot be told from stable.
+  json["stable_below"] = 1 + std::max(o.tolerance, m.max_error_estimate);
+  Json rows = Json::array();
   for (Eigen::Index j = 0; j < m.max_abs_multiplier.rows(); ++j) {
     const Eigen::RowVectorXd row = m.max_abs_multiplier.row(j);
-    json.numbers_or_null(nullptr, std::vector<double>(row.data(), row.data() + row.size()));
+    rows.push_back(numbers_or_null(std::vector<double>(row.data(), row.data() + row.size())));
   }
-  json.end_array().end_object();
-  if (!m.cells.empty()) write_refinement(json, m);
-  json.begin_array("samples");
+  json["grid"] = {{"x", m.grid_x}, {"y", m.grid_fbar}, {"max_abs_multiplier", rows}};
+  if (!m.cells.empty()) json["refinement"] = refinement_json(m);
+  json["samples"] = Json::array();
   for (const MapSample& p : m.samples) {
-    json.begin_object().value("x", p.x).value("y", p.fbar);
-    if (std::isnan(p.max_abs_multiplier)) {
-      json.null_value("max_abs_multiplier");
-    } else {
-      json.value("max_abs_multiplier", p.max_abs_multiplier);
-    }
-    json.end_object();
+    json["samples"].push_back({{"x", p.x}, {"y", p.fbar}, {"max_abs_multiplier", number_or_null(p.max_abs_multiplier)}});
   }
-  json.end_array();
-  const CurveFidelity& f = m.curve_fidelity;
-  json.begin_object("curve_fidelity")
-      .value("reduction", to_string(f.reduction.kind))
-      .value("reduction_vectors", f.reduction.vectors)
-      .value("approximation", f.approximation)
-      .numbers("checked_at", f.checked_at)
-      .value("tolerance_met", f.tolerance_met)
-      .value("drawn", f.drawn)
-      .value("error_measure", m.plane == MapPlane::theta_fmax ? "distance in θ over the window's θ span"
-                                                               : "distance in F̄ over the window's F̄ span");
-  write_error_budget(json, f.budget);
-  json.end_object().begin_array("curves");
+  json["curve_fidelity"] = curve_fidelity_json(m);
+  json["curves"] = Json::array();
   for (const BoundaryCurve& c : m.curves) {
-    json.begin_object()
-        .value("multiplier", c.multiplier)
-        .value("mode", c.mode)
-        .value("order", c.order)
-        .numbers("x", c.x)
-        .numbers("y", c.fbar)
-        .end_object();
+    json["curves"].push_back(
+        {{"multiplier", c.multiplier}, {"mode", c.mode}, {"order", c.order}, {"x", c.x}, {"y", c.fbar}});
   }
-  json.end_array().begin_array("combination_regions");
+  json["combination_regions"] = Json::array();
   for (const CombinationRegion& r : m.combinations) {
     const Combination& c = r.combination;
-    json.begin_object()
-        .value("mode_i", c.mode_i)
-        .value("mode_j", c.mode_j)
-        .value("kind", c.sum ? "sum" : "difference")
-        .value("order", c.order)
-        .value("detuning", c.detuning)
-        .value("x", r.x)
-        .value("y", r.fbar)
-        .value("max_abs_multiplier", r.max_abs_multiplier)
-        .value("samples", r.samples)
-        .end_object();
+    json["combination_regions"].push_back({{"mode_i", c.mode_i},
+                                           {"mode_j", c.mode_j},
+                                           {"kind", c.sum ? "sum" : "difference"},
+                                           {"order", c.order},
+                                           {"detuning", c.detuning},
+                                           {"x", r.x},
+                                           {"y", r.fbar},
+                                           {"max_abs_multiplier", r.max_abs_multiplier},
+                                           {"samples", r.samples}});
   }
-  json.end_array();
-  if (m.scene_point) {  // where the scene itself sits
-    const MapPoint& p = *m.scene_point;
-    std::string label = fmt::format("scene: max|ρ| = {:.4g}", p.max_abs_multiplier);
-    if (p.nearest_boundary) {
-      label += fmt::format("\nnearest boundary ({:+d}) at F̄ = {:.4g}, ΔF̄ = {:+.3g}", p.nearest_boundary->multiplier,
-                           p.nearest_boundary->fbar, p.nearest_boundary->fbar - p.fbar);
-    }
-    json.begin_array("markers")
-        .begin_object()
-        .value("x", p.x)
-        .value("y", p.fbar)
-        .value("label", label)
-        .end_object()
-        .end_array();
-    json.begin_object("scene_point").value("x", p.x).value("y", p.fbar).value("max_abs_multiplier", p.max_abs_multiplier);
-    if (p.nearest_boundary) {
-      json.value("nearest_boundary_fbar", p.nearest_boundary->fbar)
-          .value("nearest_boundary_multiplier", p.nearest_boundary->multiplier)
-          .value("nearest_boundary_mode", p.nearest_boundary->mode)
-          .value("nearest_boundary_order", p.nearest_boundary->order);
-    } else {
-      json.null_value("nearest_boundary_fbar");
-    }
-    json.end_object();
-  }
-  json.end_object();
-  return json.str();
+  if (m.scene_point) write_scene_point(json, *m.scene_point);
+  return json_text(json);
 }
 
 std::string curves_csv(const StabilityMap& m) {

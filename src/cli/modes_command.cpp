@@ -11,7 +11,7 @@
 #include "commands.hpp"
 #include "error_output.hpp"
 #include "finite_results.hpp"
-#include "json_writer.hpp"
+#include "json_output.hpp"
 #include "number_options.hpp"
 #include "options.hpp"
 #include "work_limits.hpp"
@@ -40,51 +40,40 @@ void print_modes(const SceneOptions& options, const Scene& scene, const Converge
   const double speed = scene.operation.speed_rad_s;
   switch (options.output_format()) {
     case OutputFormat::json: {
-      JsonWriter json;
-      json.begin_object()
-          .value("scene", scene.source)
-          .value("speed_rad_s", speed)
-          .value("speed_rpm", speed * rpm_per_rad_s)
-          .value("nondimensional_speed", result.model.blade.nondimensional_speed(speed))
-          .value("tip_compression_over_fcr", scene.operation.tip_compression_over_fcr)
-          .begin_object("model")
-          .value("theory", to_string(result.model.spec.theory))
-          .value("basis", to_string(result.model.spec.basis))
-          .value("terms", result.model.spec.terms)
-          .value("dofs", result.model.layout.size())
-          .value("axial", result.model.spec.axial)
-          .value("coriolis", result.model.spec.coriolis)
-          .end_object()
-          .value("damping", to_string(scene.damping.model))
-          .value("solver", to_string(sol.solver))
-          .begin_object("accuracy")
-          .value("method", result.model.spec.basis == BasisKind::sine
-                               ? "tail of algebraic convergence from models with N, 2N and 4N terms"
-                               : "relative change against a richer model")
-          .value("reference_terms", result.reference_terms)
-          .value("max_relative_error", result.max_relative_error())
-          .end_object();
+      Json json;
+      json["scene"] = scene.source;
+      json["speed_rad_s"] = speed;
+      json["speed_rpm"] = speed * rpm_per_rad_s;
+      json["nondimensional_speed"] = result.model.blade.nondimensional_speed(speed);
+      json["tip_compression_over_fcr"] = scene.operation.tip_compression_over_fcr;
+      json["model"] = {{"theory", to_string(result.model.spec.theory)},
+                       {"basis", to_string(result.model.spec.basis)},
+                       {"terms", result.model.spec.terms},
+                       {"dofs", result.model.layout.size()},
+                       {"axial", result.model.spec.axial},
+                       {"coriolis", result.model.spec.coriolis}};
+      json["damping"] = to_string(scene.damping.model);
+      json["solver"] = to_string(sol.solver);
+      json["accuracy"] = {{"method", result.model.spec.basis == BasisKind::sine
+                                         ? "tail of algebraic convergence from models with N, 2N and 4N terms"
+                                         : "relative change against a richer model"},
+                          {"reference_terms", result.reference_terms},
+                          {"max_relative_error", result.max_relative_error()}};
       write_error_budget(json, result.worst_budget());
-      json.begin_array("modes");
+      json["modes"] = Json::array();
       for (std::size_t k = 0; k < sol.modes.size(); ++k) {
         const Mode& m = sol.modes[k];
-        json.begin_object()
-            .value("index", m.index)
-            .value("family", to_string(m.family))
-            .value("frequency_hz", m.frequency_hz)
-            .value("lambda", m.lambda)
-            .value("damping_ratio", m.damping_ratio)
-            .value("relative_error", result.relative_error[k]);
-        write_error_budget(json, result.budget(k));
-        json.begin_object("energy_share")
-            .value("rotation", m.energy_share(0))
-            .value("lateral", m.energy_share(1))
-            .value("axial", m.energy_share(2))
-            .end_object()
-            .end_object();
+        Json& mode = json["modes"].emplace_back(Json{{"index", m.index},
+                                                     {"family", to_string(m.family)},
+                                                     {"frequency_hz", m.frequency_hz},
+                                                     {"lambda", m.lambda},
+                                                     {"damping_ratio", m.damping_ratio},
+                                                     {"relative_error", result.relative_error[k]}});
+        write_error_budget(mode, result.budget(k));
+        mode["energy_share"] = {
+            {"rotation", m.energy_share(0)}, {"lateral", m.energy_share(1)}, {"axial", m.energy_share(2)}};
       }
-      json.end_array().end_object();
-      fmt::print("{}", json.str());
+      fmt::print("{}", json_text(json));
       break;
     }
     case OutputFormat::csv:

@@ -14,7 +14,7 @@
 #include "commands.hpp"
 #include "error_output.hpp"
 #include "finite_results.hpp"
-#include "json_writer.hpp"
+#include "json_output.hpp"
 #include "number_options.hpp"
 #include "options.hpp"
 #include "progress.hpp"
@@ -55,14 +55,12 @@ std::string describe_reduction(const StabilityAnswer& a) {
 // "2.1e-13", or "not informative" for NaN.
 std::string check_value(double v) { return std::isnan(v) ? "n/a" : fmt::format("{:.1e}", v); }
 
-void write_checks(JsonWriter& json, const FloquetChecks& c) {
-  json.begin_object("checks");
-  const auto item = [&json](const char* key, double v) { std::isnan(v) ? json.null_value(key) : json.value(key, v); };
-  item("determinant_error", c.determinant_error);
-  item("reciprocal_error", c.reciprocal_error);
-  item("rkf45_residual", c.residual);
-  item("rkf45_multiplier_error", c.multiplier_error);
-  json.value("monodromy_max_abs_multiplier", c.monodromy_max_abs_multiplier).end_object();
+Json checks_json(const FloquetChecks& c) {
+  return {{"determinant_error", number_or_null(c.determinant_error)},
+          {"reciprocal_error", number_or_null(c.reciprocal_error)},
+          {"rkf45_residual", number_or_null(c.residual)},
+          {"rkf45_multiplier_error", number_or_null(c.multiplier_error)},
+          {"monodromy_max_abs_multiplier", c.monodromy_max_abs_multiplier}};
 }
 
 void require_finite(const StabilityAnswer& a) {
@@ -84,39 +82,37 @@ void print(const SceneOptions& options, const Scene& scene, const StabilityAnswe
   const LoadSeries& load = a.load;
   switch (options.output_format()) {
     case OutputFormat::json: {
-      JsonWriter json;
-      json.begin_object()
-          .value("scene", scene.source)
-          .value("speed_rad_s", scene.operation.speed_rad_s)
-          .value("fmax_over_fcr", fbar)
-          .value("tip_compression_over_fcr", scene.operation.tip_compression_over_fcr)
-          .value("theta_rad_s", a.theta_rad_s)
-          .value("load_approximation", to_string(scene.load.approximation))
-          .value("load_harmonics", load.harmonics())
-          .value("load_relative_tail", load.relative_tail)
-          .value("terms", a.model.terms)
-          .value("reference_terms", a.reference_terms)
-          .value("reduction", to_string(a.reduction.kind))
-          .value("reduction_vectors", a.reduction.vectors)
-          .value("reduced_dofs", a.reduced_size)
-          .value("full_dofs", a.full_size)
-          .value("method", to_string(r.method))
-          .value("harmonics", r.harmonics)
-          .value("steps", r.steps)
-          .value("max_abs_multiplier", r.max_abs_multiplier)
-          .value("max_real_exponent", r.max_real_exponent)
-          .value("stable", a.stable)
-          .value("tolerance_met", a.tolerance_met);
+      Json json;
+      json["scene"] = scene.source;
+      json["speed_rad_s"] = scene.operation.speed_rad_s;
+      json["fmax_over_fcr"] = fbar;
+      json["tip_compression_over_fcr"] = scene.operation.tip_compression_over_fcr;
+      json["theta_rad_s"] = a.theta_rad_s;
+      json["load_approximation"] = to_string(scene.load.approximation);
+      json["load_harmonics"] = load.harmonics();
+      json["load_relative_tail"] = load.relative_tail;
+      json["terms"] = a.model.terms;
+      json["reference_terms"] = a.reference_terms;
+      json["reduction"] = to_string(a.reduction.kind);
+      json["reduction_vectors"] = a.reduction.vectors;
+      json["reduced_dofs"] = a.reduced_size;
+      json["full_dofs"] = a.full_size;
+      json["method"] = to_string(r.method);
+      json["harmonics"] = r.harmonics;
+      json["steps"] = r.steps;
+      json["max_abs_multiplier"] = r.max_abs_multiplier;
+      json["max_real_exponent"] = r.max_real_exponent;
+      json["stable"] = a.stable;
+      json["tolerance_met"] = a.tolerance_met;
       write_error_budget(json, a.budget);
-      write_checks(json, r.checks);
-      json.begin_array("multipliers");
+      json["checks"] = checks_json(r.checks);
+      json["multipliers"] = Json::array();
       for (Eigen::Index k = 0; k < r.multipliers.size(); ++k) {
-        json.begin_object().value("re", r.multipliers(k).real()).value("im", r.multipliers(k).imag()).end_object();
+        json["multipliers"].push_back({{"re", r.multipliers(k).real()}, {"im", r.multipliers(k).imag()}});
       }
-      json.end_array().begin_array("log_decrements");
-      for (const auto& d : r.log_decrements) d ? json.element(*d) : json.null_value(nullptr);
-      json.end_array().end_object();
-      fmt::print("{}", json.str());
+      json["log_decrements"] = Json::array();
+      for (const auto& d : r.log_decrements) json["log_decrements"].push_back(d ? Json(*d) : Json(nullptr));
+      fmt::print("{}", json_text(json));
       break;
     }
     case OutputFormat::csv:
@@ -187,35 +183,33 @@ void export_matrices(const std::string& path, const Scene& scene, const Stabilit
   OutputFiles output;
   write_matrix_market(sys, {output.reserve(files.A0), output.reserve(files.B), output.reserve(files.load)});
   const auto name = [](const std::string& file) { return std::filesystem::path(file).filename().string(); };
-  JsonWriter json;
-  json.begin_object()
-      .value("format", "bladestab periodic system, Matrix Market")
-      .value("equation", "dy/dt = (A0 + (F(t) - F0) B) y,  F(t) = sum over |m| <= M of F_m exp(i m theta t), "
-                         "F_-m = conj(F_m), F0 = F_0")
-      .value("A0", name(files.A0))
-      .value("B", name(files.B))
-      .value("load", name(files.load))
-      .value("states", sys.state_size())
-      .value("theta_rad_s", sys.angular_frequency)
-      .value("period_s", sys.period())
-      .value("load_harmonics", static_cast<int>(sys.coefficients.size()) - 1)
-      .value("scene", scene.source)
-      .value("speed_rad_s", scene.operation.speed_rad_s)
-      .value("fmax_over_fcr", scene.load.fmax_over_fcr)
-      .value("load_approximation", to_string(scene.load.approximation))
-      .value("basis", to_string(a.model.basis))
-      .value("terms", a.model.terms)
-      .value("reduction", to_string(a.reduction.kind))
-      .value("reduction_vectors", a.reduction.vectors)
-      .value("reduced_dofs", sys.kept_modes)
-      .value("full_dofs", sys.all_modes)
-      .value("method", to_string(a.floquet.method))
-      .value("tolerance", tolerance)
-      .value("max_abs_multiplier", a.floquet.max_abs_multiplier)
-      .value("stable", a.stable);
+  Json json;
+  json["format"] = "bladestab periodic system, Matrix Market";
+  json["equation"] = "dy/dt = (A0 + (F(t) - F0) B) y,  F(t) = sum over |m| <= M of F_m exp(i m theta t), "
+                     "F_-m = conj(F_m), F0 = F_0";
+  json["A0"] = name(files.A0);
+  json["B"] = name(files.B);
+  json["load"] = name(files.load);
+  json["states"] = sys.state_size();
+  json["theta_rad_s"] = sys.angular_frequency;
+  json["period_s"] = sys.period();
+  json["load_harmonics"] = static_cast<int>(sys.coefficients.size()) - 1;
+  json["scene"] = scene.source;
+  json["speed_rad_s"] = scene.operation.speed_rad_s;
+  json["fmax_over_fcr"] = scene.load.fmax_over_fcr;
+  json["load_approximation"] = to_string(scene.load.approximation);
+  json["basis"] = to_string(a.model.basis);
+  json["terms"] = a.model.terms;
+  json["reduction"] = to_string(a.reduction.kind);
+  json["reduction_vectors"] = a.reduction.vectors;
+  json["reduced_dofs"] = sys.kept_modes;
+  json["full_dofs"] = sys.all_modes;
+  json["method"] = to_string(a.floquet.method);
+  json["tolerance"] = tolerance;
+  json["max_abs_multiplier"] = a.floquet.max_abs_multiplier;
+  json["stable"] = a.stable;
   write_error_budget(json, a.budget);
-  json.end_object();
-  output.write(path, json.str() + "\n");
+  output.write(path, json_text(json));
   output.commit();
 }
 

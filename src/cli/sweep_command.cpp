@@ -10,7 +10,7 @@
 #include "bladestab/modal/parameter_sweep.hpp"
 #include "chart.hpp"
 #include "commands.hpp"
-#include "json_writer.hpp"
+#include "json_output.hpp"
 #include "number_options.hpp"
 #include "options.hpp"
 #include "output_files.hpp"
@@ -31,35 +31,35 @@ std::string sweep_title(const Scene& scene, const ParameterSweep& s) {
 }
 
 std::string sweep_json(const Scene& scene, const ParameterSweep& s) {
-  JsonWriter json;
-  json.begin_object()
-      .value("title", sweep_title(scene, s))
-      .value("scene", scene.source)
-      .value("key", s.key)
-      .numbers("values", s.values)
-      .numbers("speeds_rad_s", s.speeds_rad_s)
-      .value("model", describe_model(s.model))
-      .numbers("dofs", s.dofs)
-      .numbers("reference_terms", s.reference_terms)
-      .value("damping", to_string(scene.damping.model))
-      .value("solver", to_string(s.solver))
-      .begin_array("matched_by");
-  for (ModeMatch m : s.matched_by) json.value(nullptr, to_string(m));
-  json.end_array().value("min_correlation", s.min_correlation()).value("error_estimate", s.max_error_estimate());
-  json.begin_array("modes");
+  Json json;
+  json["title"] = sweep_title(scene, s);
+  json["scene"] = scene.source;
+  json["key"] = s.key;
+  json["values"] = s.values;
+  json["speeds_rad_s"] = s.speeds_rad_s;
+  json["model"] = describe_model(s.model);
+  json["dofs"] = s.dofs;
+  json["reference_terms"] = s.reference_terms;
+  json["damping"] = to_string(scene.damping.model);
+  json["solver"] = to_string(s.solver);
+  json["matched_by"] = Json::array();
+  for (ModeMatch m : s.matched_by) json["matched_by"].push_back(to_string(m));
+  json["min_correlation"] = s.min_correlation();
+  json["error_estimate"] = s.max_error_estimate();
+  json["modes"] = Json::array();
   for (const SweptMode& m : s.modes) {
-    json.begin_object().value("index", m.index).value("family", to_string(m.family)).begin_array("families");
-    for (ModeFamily f : m.families) json.value(nullptr, to_string(f));
-    json.end_array()
-        .numbers("frequency_hz", m.frequency_hz)
-        .numbers("lambda", m.lambda)
-        .numbers("damping_ratio", m.damping_ratio)
-        .numbers_or_null("correlation", m.correlation)
-        .numbers("error_estimate", m.error_estimate)
-        .end_object();
+    Json families = Json::array();
+    for (ModeFamily f : m.families) families.push_back(to_string(f));
+    json["modes"].push_back({{"index", m.index},
+                             {"family", to_string(m.family)},
+                             {"families", families},
+                             {"frequency_hz", m.frequency_hz},
+                             {"lambda", m.lambda},
+                             {"damping_ratio", m.damping_ratio},
+                             {"correlation", numbers_or_null(m.correlation)},
+                             {"error_estimate", m.error_estimate}});
   }
-  json.end_array().end_object();
-  return json.str();
+  return json_text(json);
 }
 
 std::string sweep_csv(const ParameterSweep& s) {

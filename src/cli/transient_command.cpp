@@ -10,7 +10,7 @@
 #include "bladestab/transient/transient_checks.hpp"
 #include "chart.hpp"
 #include "commands.hpp"
-#include "json_writer.hpp"
+#include "json_output.hpp"
 #include "number_options.hpp"
 #include "options.hpp"
 #include "output_files.hpp"
@@ -67,45 +67,38 @@ std::string history_csv(const TransientResult& r) {
   return csv;
 }
 
-void summary_fields(JsonWriter& json, const TransientResult& r, const Summary& s, bool adaptive) {
-  json.begin_object("dominant_frequency_hz")
-      .value("tip_lateral", s.lateral_hz)
-      .value("tip_axial", s.axial_hz)
-      .end_object()
-      .value("peak_tip_lateral_m", s.peak_lateral_m)
-      .value("peak_tip_axial_m", s.peak_axial_m)
-      .value("mean_tip_axial_m", s.mean_axial_m)
-      .value("static_tip_axial_m", r.static_tip_axial_m);
+void summary_fields(Json& json, const TransientResult& r, const Summary& s, bool adaptive) {
+  json["dominant_frequency_hz"] = {{"tip_lateral", s.lateral_hz}, {"tip_axial", s.axial_hz}};
+  json["peak_tip_lateral_m"] = s.peak_lateral_m;
+  json["peak_tip_axial_m"] = s.peak_axial_m;
+  json["mean_tip_axial_m"] = s.mean_axial_m;
+  json["static_tip_axial_m"] = r.static_tip_axial_m;
   if (r.growth.omitted.empty()) {
-    json.value("growth_per_revolution", r.growth.growth).value("growth_per_revolution_ln_standard_error", r.growth.standard_error);
+    json["growth_per_revolution"] = r.growth.growth;
+    json["growth_per_revolution_ln_standard_error"] = r.growth.standard_error;
   } else {
-    json.null_value("growth_per_revolution").value("growth_per_revolution_omitted", r.growth.omitted);
+    json["growth_per_revolution"] = nullptr;
+    json["growth_per_revolution_omitted"] = r.growth.omitted;
   }
-  json.begin_object("energy_balance")
-      .value("max_error_j", s.checks.energy_error_j)
-      .value("vibration_energy_j", s.checks.vibration_energy_j)
-      .value("allowed_fraction", TransientChecks::max_energy_error)
-      .end_object()
-      .begin_object("steps")
-      .value("mode", adaptive ? "adaptive" : "fixed")
-      .value("accepted", static_cast<double>(r.steps.accepted))
-      .value("rejected", static_cast<double>(r.steps.rejected))
-      .value("rhs_evaluations", static_cast<double>(r.steps.evaluations))
-      .value("smallest_s", r.steps.smallest_step)
-      .value("largest_s", r.steps.largest_step)
-      .value("event_landings", static_cast<double>(r.steps.event_landings));
-  json.value(adaptive ? "step_cap_s" : "fixed_step_s", r.fixed.step_s)
-      .value("steps_per_stiffest_period", r.fixed.steps_per_period)
-      .value("parasitic_growth_of_stiffest_mode", r.fixed.parasitic_growth)
-      .end_object();
+  json["energy_balance"] = {{"max_error_j", s.checks.energy_error_j},
+                            {"vibration_energy_j", s.checks.vibration_energy_j},
+                            {"allowed_fraction", TransientChecks::max_energy_error}};
+  json["steps"] = {{"mode", adaptive ? "adaptive" : "fixed"},
+                   {"accepted", r.steps.accepted},
+                   {"rejected", r.steps.rejected},
+                   {"rhs_evaluations", r.steps.evaluations},
+                   {"smallest_s", r.steps.smallest_step},
+                   {"largest_s", r.steps.largest_step},
+                   {"event_landings", r.steps.event_landings},
+                   {adaptive ? "step_cap_s" : "fixed_step_s", r.fixed.step_s},
+                   {"steps_per_stiffest_period", r.fixed.steps_per_period},
+                   {"parasitic_growth_of_stiffest_mode", r.fixed.parasitic_growth}};
   if (r.contact) {
-    json.begin_object("casing_contact")
-        .value("penalty_stiffness_n_m", r.contact->stiffness_n_m)
-        .value("closures", r.contact->closures)
-        .value("contact_time_s", r.contact->contact_time_s)
-        .value("peak_force_n", r.contact->peak_force_n)
-        .value("max_overlap_m", r.contact->max_overlap_m)
-        .end_object();
+    json["casing_contact"] = {{"penalty_stiffness_n_m", r.contact->stiffness_n_m},
+                              {"closures", r.contact->closures},
+                              {"contact_time_s", r.contact->contact_time_s},
+                              {"peak_force_n", r.contact->peak_force_n},
+                              {"max_overlap_m", r.contact->max_overlap_m}};
   }
 }
 
@@ -123,32 +116,24 @@ std::string load_description(const Scene& scene) {
 
 std::string summary_json(const Scene& scene, const BladeModel& model, const TransientResult& r, const Summary& s,
                          bool adaptive, bool with_series) {
-  JsonWriter json;
-  json.begin_object()
-      .value("title", fmt::format("{} — {}", scene_title(scene), load_description(scene)))
-      .value("scene", scene.source)
-      .value("model", describe_model(model))
-      .value("speed_rad_s", scene.operation.speed_rad_s)
-      .value("revolutions_run", r.samples.back().revolutions);
+  Json json;
+  json["title"] = fmt::format("{} — {}", scene_title(scene), load_description(scene));
+  json["scene"] = scene.source;
+  json["model"] = describe_model(model);
+  json["speed_rad_s"] = scene.operation.speed_rad_s;
+  json["revolutions_run"] = r.samples.back().revolutions;
   summary_fields(json, r, s, adaptive);
   if (with_series) {  // what the chart draws
-    json.numbers("revolutions", column(r, &TransientSample::revolutions))
-        .numbers("tip_lateral_m", column(r, &TransientSample::tip_lateral_m))
-        .numbers("tip_axial_m", column(r, &TransientSample::tip_axial_m))
-        .numbers("tip_axial_velocity_m_s", column(r, &TransientSample::tip_axial_velocity_m_s))
-        .numbers("axial_force_n", column(r, &TransientSample::axial_force_n))
-        .begin_object("spectrum")
-        .numbers("frequency_hz", s.lateral.frequency_hz)
-        .numbers("lateral", s.lateral.amplitude)
-        .numbers("axial", s.axial.amplitude)
-        .end_object()
-        .begin_object("dominant")
-        .value("lateral_hz", s.lateral_hz)
-        .value("axial_hz", s.axial_hz)
-        .end_object();
+    json["revolutions"] = column(r, &TransientSample::revolutions);
+    json["tip_lateral_m"] = column(r, &TransientSample::tip_lateral_m);
+    json["tip_axial_m"] = column(r, &TransientSample::tip_axial_m);
+    json["tip_axial_velocity_m_s"] = column(r, &TransientSample::tip_axial_velocity_m_s);
+    json["axial_force_n"] = column(r, &TransientSample::axial_force_n);
+    json["spectrum"] = {
+        {"frequency_hz", s.lateral.frequency_hz}, {"lateral", s.lateral.amplitude}, {"axial", s.axial.amplitude}};
+    json["dominant"] = {{"lateral_hz", s.lateral_hz}, {"axial_hz", s.axial_hz}};
   }
-  json.end_object();
-  return json.str();
+  return json_text(json);
 }
 
 // The run's work before it starts: RKF45 never steps beyond the cap of the stiffest mode

@@ -1,13 +1,12 @@
 #pragma once
-// A small JSON reader for tests that parse the program's --format json output (RFC 8259 values;
-// \u escapes are kept as text, which the program never writes). Throws std::runtime_error on
-// malformed input.
-#include <cctype>
-#include <cstdlib>
+// The program's --format json output as the tests read it: parsed by nlohmann::json (which throws
+// nlohmann::json::parse_error on malformed input) into a plain tree of values.
 #include <map>
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 namespace testing_support {
 
@@ -35,103 +34,27 @@ struct Json {
   }
 };
 
-namespace json_detail {
+inline Json from_parsed(const nlohmann::json& value) {
+  Json v;
+  if (value.is_object()) {
+    v.type = Json::Type::object;
+    for (const auto& [key, member] : value.items()) v.members[key] = from_parsed(member);
+  } else if (value.is_array()) {
+    v.type = Json::Type::array;
+    for (const nlohmann::json& item : value) v.items.push_back(from_parsed(item));
+  } else if (value.is_string()) {
+    v.type = Json::Type::string;
+    v.text = value.get<std::string>();
+  } else if (value.is_boolean()) {
+    v.type = Json::Type::boolean;
+    v.boolean = value.get<bool>();
+  } else if (value.is_number()) {
+    v.type = Json::Type::number;
+    v.number = value.get<double>();
+  }
+  return v;
+}
 
-class Reader {
-public:
-  explicit Reader(const std::string& text) : s_(text) {}
-
-  Json document() {
-    Json value = parse();
-    skip();
-    if (at_ != s_.size()) fail("trailing text");
-    return value;
-  }
-
-private:
-  [[noreturn]] void fail(const std::string& what) const {
-    throw std::runtime_error("JSON: " + what + " at offset " + std::to_string(at_));
-  }
-  void skip() {
-    while (at_ < s_.size() && std::isspace(static_cast<unsigned char>(s_[at_]))) ++at_;
-  }
-  bool take(char c) {
-    skip();
-    if (at_ < s_.size() && s_[at_] == c) return ++at_, true;
-    return false;
-  }
-  void expect(char c) {
-    if (!take(c)) fail(std::string("expected '") + c + "'");
-  }
-  bool word(const char* w) {
-    const std::string t(w);
-    if (s_.compare(at_, t.size(), t) != 0) return false;
-    at_ += t.size();
-    return true;
-  }
-  std::string string() {
-    expect('"');
-    std::string out;
-    while (at_ < s_.size() && s_[at_] != '"') {
-      if (s_[at_] == '\\' && at_ + 1 < s_.size()) {
-        const char e = s_[++at_];
-        out += e == 'n' ? '\n' : e == 't' ? '\t' : e == 'u' ? 'u' : e;
-      } else {
-        out += s_[at_];
-      }
-      ++at_;
-    }
-    if (at_ == s_.size()) fail("unterminated string");
-    ++at_;
-    return out;
-  }
-  Json parse() {
-    skip();
-    if (at_ == s_.size()) fail("unexpected end");
-    Json v;
-    const char c = s_[at_];
-    if (c == '{') {
-      ++at_;
-      v.type = Json::Type::object;
-      if (take('}')) return v;
-      do {
-        skip();
-        const std::string key = string();
-        expect(':');
-        v.members[key] = parse();
-      } while (take(','));
-      expect('}');
-    } else if (c == '[') {
-      ++at_;
-      v.type = Json::Type::array;
-      if (take(']')) return v;
-      do v.items.push_back(parse());
-      while (take(','));
-      expect(']');
-    } else if (c == '"') {
-      v.type = Json::Type::string;
-      v.text = string();
-    } else if (word("true") || word("false")) {
-      v.type = Json::Type::boolean;
-      v.boolean = s_[at_ - 1] == 'e' && s_[at_ - 2] == 'u';
-    } else if (word("null")) {
-      v.type = Json::Type::null;
-    } else {
-      char* end = nullptr;
-      v.type = Json::Type::number;
-      v.number = std::strtod(s_.c_str() + at_, &end);
-      if (end == s_.c_str() + at_) fail("not a value");
-      at_ = static_cast<std::size_t>(end - s_.c_str());
-    }
-    return v;
-  }
-
-  const std::string& s_;
-  std::size_t at_ = 0;
-};
-
-}  // namespace json_detail
-
-inline Json parse_json(const std::string& text) { return json_detail::Reader(text).document(); }
+inline Json parse_json(const std::string& text) { return from_parsed(nlohmann::json::parse(text)); }
 
 }  // namespace testing_support
