@@ -1,5 +1,5 @@
 #pragma once
-// Runge–Kutta–Fehlberg 4(5) (SPEC §5; Fehlberg's six-stage pair, nodes 0, 1/4, 3/8, 12/13, 1, 1/2)
+// Runge–Kutta–Fehlberg 4(5) (docs/theory.md §5; Fehlberg's six-stage pair, nodes 0, 1/4, 3/8, 12/13, 1, 1/2)
 // for ẋ = f(t, x). Knows nothing of blades: the system is a function, as in Boost.Odeint, so a
 // higher-order pair or an implicit method can stand beside it.
 //  - adaptive: the step is chosen so the embedded error estimate stays below rtol·|x| + atol

@@ -60,7 +60,7 @@ struct BoundaryAnalysis {
 // Raises k from request.first_approximation in steps of 2 until every boundary found at k in the
 // window, of order ≤ max_order, moves by at most request.tolerance (relative) at k + 2 — boundaries are matched by family, mode, order
 // and nearest value; one that first appears at k + 2 is reported from k + 2 with its change at
-// k + 4. The error budget of each boundary (SPEC §2–§4):
+// k + 4. The error budget of each boundary (docs/theory.md §2–§4):
 //   basis      change against the richer Ritz basis reference_terms(basis, N) (for the sine basis
 //              times basis_tail_factor)
 //   reduction  change against all modes kept (with a cut-off)

@@ -1,6 +1,6 @@
 #pragma once
 // The blade under a periodic tip load as a linear time-periodic (LTP) system ẏ = A(t) y
-// (SPEC §4), written in scaled modal coordinates of the unloaded (reduced) blade at speed Ω:
+// (docs/theory.md §4), written in scaled modal coordinates of the unloaded (reduced) blade at speed Ω:
 //
 //   q = Φ η,  Φᵀ M Φ = I,  Φᵀ K(Ω) Φ = Λ = diag(ω_k²),  y = [D η; η̇],  D = diag(ω_k)
 //
@@ -9,7 +9,7 @@
 // with Ĝ = Φᵀ G Φ and Ĉ = Φᵀ C Φ. Displacements and velocities then carry the same units, so the
 // monodromy matrix is well conditioned. The system is built on a reduced model (reduction.hpp):
 // by default the span of the loaded modes, which keeps the 46 kHz rotation modes and the Ritz
-// basis's spurious top modes out of the time integration (SPEC §6).
+// basis's spurious top modes out of the time integration (docs/theory.md §6).
 #include <Eigen/Dense>
 
 #include "bladestab/blade/model.hpp"
