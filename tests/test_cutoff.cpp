@@ -1,6 +1,6 @@
 // --cutoff-hz (model.reduction = "modal"): the program keeps exactly the unloaded modes below the
 // cut-off, counted here by an eigen-solve of the test's own, and its answer's error against the
-// whole Ritz model stays within the error estimate it prints. References: SPEC §6's table (the
+// whole Ritz model stays within the error estimate it prints. References: docs/theory.md §6's table (the
 // paper blade, N = 8, F̄ = 5, Ω = 300 rad/s, cosine load: dofs and max|ρ| for each cut-off and for
 // the whole model) and boundaries of systems built here from the test's own modes.
 #include <catch2/catch.hpp>
@@ -46,7 +46,7 @@ int modes_below(const BladeModel& m, double speed, double cutoff_hz) {
 
 TEST_CASE("stability --cutoff-hz keeps the modes below the cut-off, SPEC section 6's table, error within the estimate",
           "[stability][cutoff]") {
-  // SPEC §6: kept dofs and max|ρ| for each cut-off; the whole model (24 dofs) gives 2.199227.
+  // docs/theory.md §6: kept dofs and max|ρ| for each cut-off; the whole model (24 dofs) gives 2.199227.
   struct Row {
     double cutoff_hz;
     int dofs;
@@ -59,7 +59,7 @@ TEST_CASE("stability --cutoff-hz keeps the modes below the cut-off, SPEC section
       floquet_multipliers(periodic_system(m, full, load_series(full), full.model.reduction),
                           {FloquetMethod::monodromy, 0, 1e-10, false})
           .max_abs_multiplier;
-  CHECK(std::abs(whole - 2.199227) <= 5e-7);  // SPEC §6, printed to 7 digits
+  CHECK(std::abs(whole - 2.199227) <= 5e-7);  // docs/theory.md §6, printed to 7 digits
   int compared = 0;
   for (const Row row : {Row{1000, 3, 2.102178}, Row{5000, 8, 2.193118}, Row{20000, 14, 2.199167}}) {
     for (const char* tolerance : {"1e-3", "1e-6"}) {

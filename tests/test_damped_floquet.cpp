@@ -8,7 +8,7 @@
 //  - the unloaded blade with modal damping ζ and no Coriolis coupling: each mode decays by
 //    e^{−ζωT} per period, log decrement (46) 2πζ/√(1 − ζ²);
 //  - `modes`: −Re λ/|λ| of the quadratic eigenproblem with C_D built here from each damping
-//    model's definition (damping.hpp, SPEC §2), solved as a first-order eigenproblem of its own.
+//    model's definition (damping.hpp, docs/theory.md §2), solved as a first-order eigenproblem of its own.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -205,7 +205,7 @@ TEST_CASE("modes: the damping ratio of every damping model is -Re(lambda)/|lambd
   const BladeModel m = assemble_model(paper_scene({"model.terms=6"}));
   const double speed = 300, zeta = 0.02;
   const Eigen::MatrixXd K = m.stiffness(speed);
-  // C_D by each definition (damping.hpp, SPEC §2 and (37)).
+  // C_D by each definition (damping.hpp, docs/theory.md §2 and (37)).
   Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> undamped(K, m.M);
   const Eigen::MatrixXd Phi = undamped.eigenvectors();
   const Eigen::VectorXd two_zeta_omega = 2 * zeta * undamped.eigenvalues().cwiseSqrt();

@@ -133,7 +133,7 @@ TEST_CASE("a damped region's traced boundary is closed through its tip, and the 
 namespace {
 
 // max|ρ| of the true half-sine train on the whole Ritz model: Φ(T) = e^{A_free (T − t_c)} Φ_contact
-// (SPEC §3–§4), Φ_contact by Boost.Odeint's Dormand–Prince (rtol 1e-10) through the contact, the
+// (docs/theory.md §3–§4), Φ_contact by Boost.Odeint's Dormand–Prince (rtol 1e-10) through the contact, the
 // free flight's exponential from the eigenvectors of A_free, V e^{Λ(T − t_c)} V⁻¹. Shares no code
 // with the map's piecewise monodromy (Magnus through the contact, Padé scaling and squaring for the
 // free flight). Dormand–Prince through the free flight too gave the same max|ρ| to 2e-10 on the

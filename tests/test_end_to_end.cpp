@@ -291,7 +291,7 @@ TEST_CASE("end to end: transient, json, csv and PNG, the static stretch and the 
     c.column(column);
   }
   CHECK(read_csv(dir / "transient.csv").rows.size() == 101);
-  // The static stretch against the test's own solve of K(Ω) f = Ω² P_cf1 (SPEC §1's ≈ 2 mm).
+  // The static stretch against the test's own solve of K(Ω) f = Ω² P_cf1 (docs/theory.md §1's ≈ 2 mm).
   const BladeModel m = assemble_model(small_scene(4));
   const double stretch = m.tip_axial.dot(m.stiffness(300).ldlt().solve(Eigen::VectorXd(300.0 * 300.0 * m.P_cf1)));
   CHECK(j["static_tip_axial_m"].number == Approx(stretch).epsilon(1e-12));
@@ -321,7 +321,7 @@ TEST_CASE("end to end: crosscheck, json and csv, the cosine approximation's Floq
   INFO("Floquet " << cosine["floquet_max_abs_multiplier"].number << ", reference " << reference);
   CHECK(cosine["floquet_max_abs_multiplier"].number == Approx(reference).epsilon(1e-6));
   CHECK(cosine["rkf45_monodromy_max_abs_multiplier"].number == Approx(reference).epsilon(1e-6));
-  // The transient's growth per revolution is the Floquet max|ρ| (SPEC §5), over 6 revolutions to 1 %.
+  // The transient's growth per revolution is the Floquet max|ρ| (docs/theory.md §5), over 6 revolutions to 1 %.
   CHECK(cosine["transient_growth_per_revolution"].number == Approx(reference).epsilon(0.01));
 }
 

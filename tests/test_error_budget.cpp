@@ -5,7 +5,7 @@
 //
 // The reference for a scene is its continuum model, approached independently of the answer's
 // fidelity choices: the Legendre basis at max(24, N + 8) terms (converged to ~1e-12 at 12 terms
-// for this blade, SPEC §2), the true pulse train where the scene asks for a Fourier series, and
+// for this blade, docs/theory.md §2), the true pulse train where the scene asks for a Fourier series, and
 // the Magnus monodromy at a tolerance of 1e-10 (1e-9 on the true train's contact; at 1e-11 no reference of the survey moved by more
 // than 7e-12 of max(1, max|ρ|), at half again the cost); the true train on the whole Ritz model
 // (it is integrated only through the contacts). The series' reduction: three modes per load level plus
@@ -96,7 +96,7 @@ namespace {
 
 // The survey: 29 scenes across the space a user tries, by region.
 std::vector<Case> survey() {
-  const double w1 = two_pi * 68.0354;  // first bending mode at 300 rad/s (SPEC §7)
+  const double w1 = two_pi * 68.0354;  // first bending mode at 300 rad/s (docs/theory.md §7)
   const auto theta = [w1](double ratio) { return "load.pulse_frequency_hz=" + std::to_string(ratio * w1 / two_pi); };
   const StabilityRequest plain{}, loose{FloquetMethod::automatic, 0, 1e-5};
   using R = Region;

@@ -1,4 +1,4 @@
-// Coulomb friction at the tip (load.friction = μ > 0, SPEC §1 and §5) in the transient, against an
+// Coulomb friction at the tip (load.friction = μ > 0, docs/theory.md §1 and §5) in the transient, against an
 // independent integration of the friction law written out in tests/reference/blade_transient.hpp
 // (Boost.Odeint, Dormand–Prince 5(4), exact sign), and the law's sign and size sample by sample.
 #include <catch2/catch.hpp>
@@ -79,7 +79,7 @@ TEST_CASE("friction: the force is mu|F| cos(beta), against the sliding, only in 
   const reference::PulseTrainReference pulses = reference::scene_pulses(run.scene);
   int in_contact = 0;
   for (const TransientSample& p : run.result.samples) {
-    const double F = pulses.force(p.time_s);  // SPEC §3, written out in the reference
+    const double F = pulses.force(p.time_s);  // docs/theory.md §3, written out in the reference
     INFO("t = " << p.time_s << " s: F = " << p.axial_force_n << " N (reference " << F << "), friction "
                 << p.friction_force_n << " N");
     CHECK(p.axial_force_n == Approx(F).margin(1e-9 * pulses.peak));
@@ -88,7 +88,7 @@ TEST_CASE("friction: the force is mu|F| cos(beta), against the sliding, only in 
       continue;
     }
     ++in_contact;
-    // SPEC §1: size μ|F| cos β along ê_n, and against the tip's sliding past the casing
+    // docs/theory.md §1: size μ|F| cos β along ê_n, and against the tip's sliding past the casing
     // (ΩR + cos β · v̇(L) > 0: the casing slides backwards past the tip).
     const double sliding = rim_speed + cos_beta * p.tip_lateral_velocity_m_s;
     CHECK(std::abs(p.friction_force_n) == Approx(mu * std::abs(p.axial_force_n) * cos_beta).epsilon(1e-12));

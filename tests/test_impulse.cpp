@@ -1,4 +1,4 @@
-// load.profile = "impulse" in the transient (SPEC §3, (A.5): total impulse J = F_max t_c, duration
+// load.profile = "impulse" in the transient (docs/theory.md §3, (A.5): total impulse J = F_max t_c, duration
 // → 0). The transient applies it as a rectangle of height F_max and width t_c; as t_c → 0 its
 // response must become the free vibration after the velocity jump Δḟ = −J M⁻¹(p_u − G f), computed
 // here from the test's own modal solution of the first-order free system. The impulse as the limit

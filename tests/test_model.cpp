@@ -22,7 +22,7 @@ using testing_support::paper_scene;
 
 namespace {
 
-// The paper blade's data (SPEC §7, Table 2), written out rather than taken from the model.
+// The paper blade's data (docs/theory.md §7, Table 2), written out rather than taken from the model.
 constexpr double length = 1.0, hub = 0.5, area = 22.39e-4, youngs = 117e9, rho = 4466.0, kappa = 0.833;
 constexpr double inertia = 0.01 * 0.01 * area * length * length;  // I = d̄² A L²
 constexpr double shear_modulus = youngs / (2 * (1 + 0.3));
@@ -35,7 +35,7 @@ struct Fields {
 };
 using Integrand = std::function<double(const Fields&, const Fields&, double)>;
 
-// Shape function k (1-based) of a field, value and derivatives, from SPEC §2's definitions:
+// Shape function k (1-based) of a field, value and derivatives, from docs/theory.md §2's definitions:
 // paper basis (18a–c) U = sin λs, V = (1 − cos λs)/λ, W = sin λs/λ with λ = (2k − 1)π/(2L);
 // integrated Legendre φ_k(s) = ∫₀ˢ P_{k−1}(2ξ/L − 1) dξ (std::legendre under Boost's 30-point
 // Gauss rule, exact to degree 59), and for the Euler–Bernoulli lateral field
@@ -137,7 +137,7 @@ std::vector<EnergyForm> energy_forms(const BladeModel& m) {
          return bending + EA * a.u_s * b.u_s;
        }},
       // Per Ω²: ½∫ T_cf v'² with T_cf/Ω² = ρA[r(L − s) + (L² − s²)/2], and the spin softening
-      // −½ρA cos²β ∫v², −½ρI ∫θ², −½ρA ∫u² (SPEC §1).
+      // −½ρA cos²β ∫v², −½ρI ∫θ², −½ρA ∫u² (docs/theory.md §1).
       {"K_C1", m.K_C1,
        [](const Fields& a, const Fields& b, double s) {
          const double tension = rho * area * (hub * (length - s) + (length * length - s * s) / 2);
@@ -169,7 +169,7 @@ TEST_CASE("Gauss-Legendre rule integrates polynomials of degree 2n-1 exactly", "
 TEST_CASE("model matrices are the SPEC's energy forms evaluated independently and the mass is positive definite",
           "[model]") {
   // For random coefficient vectors a, b (both orders, so an error in one triangle shows even though
-  // the assembly symmetrizes), aᵀXb against the energy integral of SPEC §1–2 that X stands for,
+  // the assembly symmetrizes), aᵀXb against the energy integral of docs/theory.md §1–2 that X stands for,
   // evaluated here from the shape functions' definitions (18a–c) / the integrated Legendre
   // polynomials with Boost's adaptive Gauss–Kronrod rule. Measured agreement ≤ 2e-15 of the
   // integrand's magnitude (asserted 1e-12); a wrong sign of K_θv, a missing cos β or a block put in
@@ -246,13 +246,13 @@ TEST_CASE("static centrifugal stretch matches the closed-form spinning bar", "[m
   const Eigen::VectorXd f = m.stiffness(W).ldlt().solve(W * W * m.P_cf1);
   const double tip = m.tip_axial * f;
   CHECK(tip == Approx(exact).epsilon(1e-12));
-  CHECK(tip == Approx(2.0e-3).epsilon(0.02));  // SPEC §7: ≈ 2.0 mm
+  CHECK(tip == Approx(2.0e-3).epsilon(0.02));  // docs/theory.md §7: ≈ 2.0 mm
   CHECK(std::abs(m.tip_lateral * f) < 1e-15);
 }
 
 TEST_CASE("derived blade quantities follow SPEC section 3 and 7", "[model]") {
   const BladeProperties b(paper_scene().blade);
-  CHECK(b.critical_load() == Approx(64637.0).epsilon(1e-4));  // SPEC §8: 0.064637 MN
+  CHECK(b.critical_load() == Approx(64637.0).epsilon(1e-4));  // docs/theory.md §8: 0.064637 MN
   CHECK(b.slenderness() == Approx(0.01).epsilon(1e-14));
   CHECK(b.I == Approx(2.239e-7).epsilon(1e-14));
   CHECK(b.shear_modulus == Approx(117e9 / 2.6).epsilon(1e-15));

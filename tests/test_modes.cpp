@@ -76,7 +76,7 @@ TEST_CASE("axial modes are (2n-1)(pi/2)/d", "[modes]") {
       CHECK(ours[n - 1] == Approx((2 * n - 1) * (pi / 2) / 0.01).epsilon(1e-6));
     }
   }
-  // Hz, SPEC §7: 1279.6 and 3838.8.
+  // Hz, docs/theory.md §7: 1279.6 and 3838.8.
   const ModalSolution sol = modes_of(paper_scene({"operation.speed_rad_s=0"}), 12);
   std::vector<double> hz;
   for (const Mode& m : sol.modes) if (m.family == ModeFamily::axial) hz.push_back(m.frequency_hz);
@@ -112,7 +112,7 @@ TEST_CASE("rotating paper blade at 300 rad/s matches the SPEC's converged values
       INFO("coriolis " << coriolis << ", mode " << k + 1);
       CHECK(ours[k] == Approx(expected[k]).epsilon(1e-4));
     }
-    if (coriolis) CHECK(sol.modes[0].frequency_hz == Approx(68.035).epsilon(1e-5));  // SPEC §7
+    if (coriolis) CHECK(sol.modes[0].frequency_hz == Approx(68.035).epsilon(1e-5));  // docs/theory.md §7
     for (const Mode& m : sol.modes) CHECK(m.damping_ratio == 0);       // undamped: exactly imaginary
   }
 }

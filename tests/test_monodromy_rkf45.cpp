@@ -99,7 +99,7 @@ TEST_CASE("stability --method monodromy-rkf45 through the program: the Magnus an
   CHECK(std::abs(rho - reference) <= rkf["error_estimate"].number + magnus["error_estimate"].number);
   CHECK(rkf["error_estimate"].number <= 1e-4 * rho);  // the tolerance, relative above max|ρ| = 1
   CHECK(rkf["error_budget"]["method"].number <= 1e-4 * rho / 4);  // the quarter of it the analysis gives the method
-  // SPEC §6: the paper point, F̄ = 5 at 300 rad/s, is unstable under the cosine load (max|ρ| 2.1992).
+  // docs/theory.md §6: the paper point, F̄ = 5 at 300 rad/s, is unstable under the cosine load (max|ρ| 2.1992).
   CHECK(std::abs(rho - 2.1992) < 1e-3);
   CHECK_FALSE(rkf["stable"].boolean);
 }

@@ -42,7 +42,7 @@ const std::vector<Column> table5 = {  // Ω = 300 rad/s
     {0.1, {3.3121, 14.6773, 31.9717, 48.5743, 62.8019, 68.5391, 81.1678, 89.7942, 102.7375, 110.6600}},
 };
 
-// Paper values that are wrong (SPEC §8 and misprints found here); excluded from both checks.
+// Paper values that are wrong (docs/theory.md §8 and misprints found here); excluded from both checks.
 struct Misprint {
   int table;
   double slenderness;
@@ -50,9 +50,9 @@ struct Misprint {
   const char* why;
 };
 const std::vector<Misprint> misprints = {
-    {4, 0.01, 1, "3.4809 is below the exact 3.51265, impossible for a Ritz upper bound (SPEC §8)"},
+    {4, 0.01, 1, "3.4809 is below the exact 3.51265, impossible for a Ritz upper bound (docs/theory.md §8)"},
     {5, 0.005, 5, "225.0000: every other entry has four decimals of a computed value; N = 10 and 20 give 231.27, 230.58"},
-    {5, 0.01, 4, "127.7992 is above even the N = 10 value 126.47; converged 126.004 (SPEC §7)"},
+    {5, 0.01, 4, "127.7992 is above even the N = 10 value 126.47; converged 126.004 (docs/theory.md §7)"},
 };
 
 // N = 10 entries more than 1 % from the paper (measured deviation in the comments): the printed
@@ -127,7 +127,7 @@ double cosine_moment(int k, double c, double L) {
 double sine_integral(double c, double L) { return c == 0 ? 0 : (1 - std::cos(c * L)) / c; }
 
 // The paper's own Ritz model, N terms of the basis (18a–c) per field, assembled in closed form
-// from SPEC §2 (independent of the library's basis, quadrature and eigensolver), and its first ten
+// from docs/theory.md §2 (independent of the library's basis, quadrature and eigensolver), and its first ten
 // non-axial Λ. With λ_n = (2n − 1)π/(2L): sin λ_nL = (−1)^{n+1}, cos λ_nL = 0, and
 //   ∫U_iU_j = ∫V_i'V_j' = ∫W_i'W_j' = ∫U_iV_j' = (L/2)δ_ij,  ∫U_i'U_j' = λ_i²(L/2)δ_ij,
 //   ∫W_iW_j = (L/2)δ_ij/λ_i²,  ∫V_iV_j = [L − sin λ_iL/λ_i − sin λ_jL/λ_j + (L/2)δ_ij]/(λ_iλ_j),
@@ -145,7 +145,7 @@ std::vector<double> closed_form_lambdas(double slenderness, double speed, int N)
     for (int j = 0; j < N; ++j) {
       const double li = lambda(i), lj = lambda(j), diagonal = i == j ? L / 2 : 0;
       VV(i, j) = (L - sin_end(i) / li - sin_end(j) / lj + diagonal) / (li * lj);
-      // T_cf/Ω² = ρA[(rL + L²/2) − r s − s²/2]  (SPEC §1)
+      // T_cf/Ω² = ρA[(rL + L²/2) − r s − s²/2]  (docs/theory.md §1)
       const auto moment = [&](int k) { return 0.5 * (cosine_moment(k, li - lj, L) - cosine_moment(k, li + lj, L)); };
       tension(i, j) = rho * A * ((r * L + L * L / 2) * moment(0) - r * moment(1) - moment(2) / 2);
       VW(i, j) = (1 / lj - 0.5 * (sine_integral(lj + li, L) + sine_integral(lj - li, L))) / (li * lj);
@@ -235,8 +235,8 @@ TEST_CASE("paper Tables 4 and 5 with the paper's basis, N = 10: within 1 % but f
   CHECK(within == 80 - 3 - 32);
   CHECK(named == 35);
   WARN("library N = 10 against the closed-form model: largest relative difference " << worst);
-  // The misprints: the SPEC §8 one really is below the exact value; 127.7992 is above the N = 10
-  // value that the converged 126.004 (SPEC §7) lies under; 225.0000 is more than 2 % from N = 10
+  // The misprints: the docs/theory.md §8 one really is below the exact value; 127.7992 is above the N = 10
+  // value that the converged 126.004 (docs/theory.md §7) lies under; 225.0000 is more than 2 % from N = 10
   // and N = 20 alike.
   CHECK(3.4809 < reference::timoshenko_cantilever_lambdas(0.01, 2 * 1.3 / 0.833, 1)[0]);
   CHECK(127.7992 > closed_form_lambdas(0.01, 300, 10)[3]);

@@ -69,7 +69,7 @@ TEST_CASE("the cosine approximation (42) keeps the pulse train's peak-to-peak an
   const PulseTrain stretched = pulse_train(
       testing_support::paper_scene({"load.profile=cosine", "load.contact_time_rev=1"}));
   const LoadSeries cosine = cosine_approximation(train);
-  const double T = train.period_s, peak = 5 * 64637.0;  // F_cr = π²EI/(4L²) (SPEC §8)
+  const double T = train.period_s, peak = 5 * 64637.0;  // F_cr = π²EI/(4L²) (docs/theory.md §8)
   REQUIRE(train.peak_n == Approx(peak).epsilon(1e-4));
   const int samples = 2000;  // per period; sample 1000 is T/2
   double train_low = 0, train_high = -1e300, low = 1e300, high = -1e300, mean = 0, worst = 0, aperiodic = 0;

@@ -46,7 +46,7 @@ Scene exact_scene(std::vector<std::string> more) {
   return testing_support::paper_scene(more);
 }
 
-// Φ over [0, t1] for ẏ = A(t) y, A(t) = A₀ + (F(t) − F₀) B (SPEC §4) with the true F(t) of the SPEC's
+// Φ over [0, t1] for ẏ = A(t) y, A(t) = A₀ + (F(t) − F₀) B (docs/theory.md §4) with the true F(t) of the SPEC's
 // table, by Boost.Odeint's controlled Fehlberg 7(8) stepper on each smooth piece
 // (tests/reference/odeint_monodromy.hpp): each pulse's two halves (the triangle's kink at t_c/2; F
 // and F' jump at the edges) and the free flight after it.

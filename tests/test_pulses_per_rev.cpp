@@ -1,4 +1,4 @@
-// load.pulses_per_rev = p > 1 (SPEC §3: pulse period T_p = T/p, θ = pΩ) in the frequency domain's
+// load.pulses_per_rev = p > 1 (docs/theory.md §3: pulse period T_p = T/p, θ = pΩ) in the frequency domain's
 // series (the cosine approximation and the true pulse's Fourier series) and in the transient,
 // against references computed here: the revolution's Fourier coefficients of the SPEC's pulse train
 // by Gauss–Kronrod quadrature, the monodromy over a whole revolution by Runge–Kutta–Fehlberg 7(8),

@@ -42,7 +42,7 @@ Setup setup(const Scene& s) {
   return {std::move(m), std::move(sys), peak};
 }
 
-// Classical Hill (SPEC §4) of a reduced second-order system q̈ + Cq̇ + (K + F(t)G)q = 0 under a load
+// Classical Hill (docs/theory.md §4) of a reduced second-order system q̈ + Cq̇ + (K + F(t)G)q = 0 under a load
 // F = Σ F_m e^{imθt} with harmonics m ≤ 1: the exponents of the first-order Hill matrix of size
 // 2n(2q + 1), sorted by |Im λ|; the 2n smallest (the classical choice) unless `all`.
 std::vector<std::complex<double>> sorted_hill_exponents(const ReducedSystem& r, const LoadSeries& load, int q,
@@ -140,9 +140,9 @@ TEST_CASE("paper blade with Legendre N = 8 at 300 rad/s under the cosine load: m
 
 TEST_CASE("classical Hill at the paper's q = 2 keeps a shifted copy of the unstable exponent and is 1.7 % off", "[stability][paper]") {
   // The paper blade, Legendre N = 8, F̄ = 5 at 300 rad/s under the cosine load: converged
-  // max|ρ| = 2.199227 (SPEC §6, monodromy at rtol 1e-10). Classical Hill is rebuilt here from the
+  // max|ρ| = 2.199227 (docs/theory.md §6, monodromy at rtol 1e-10). Classical Hill is rebuilt here from the
   // reduced second-order system the library's periodic system is made of (q̈ + Cq̇ + (K + F(t)G)q = 0,
-  // F = F₀ + 2F₁ cos θt): the quadratic Hill problem of SPEC §4 linearized with d_k = (λ + ikθ)c_k,
+  // F = F₀ + 2F₁ cos θt): the quadratic Hill problem of docs/theory.md §4 linearized with d_k = (λ + ikθ)c_k,
   //   λ c_k = d_k − ikθ c_k,   λ d_k = −(K + F₀G) c_k − F₁G (c_{k−1} + c_{k+1}) − C d_k − ikθ d_k,
   // and the classical sorting: keep the 2n exponents of smallest |Im λ|, ρ = e^{λT}.
   const Scene scene = paper_scene({"model.terms=8"});

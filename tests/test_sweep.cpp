@@ -146,7 +146,7 @@ TEST_CASE("sweep: the slenderness against the paper's Table 5 (300 rad/s)", "[sw
   const ParameterSweep s = sweep_paper("blade.slenderness", {0.005, 0.01, 0.05, 0.1}, {});
   // Table 5, mode 1 (Λ; the paper's Ω̄ = 0.0877898 is its rounding of 300 rad/s). The converged
   // model is within 0.25 % of three entries; at d̄ = 0.01 the paper is 0.41 % below it, where no
-  // Ritz solution of this model can be (SPEC §7: 68.035 Hz, the paper prints 67.8565 Hz).
+  // Ritz solution of this model can be (docs/theory.md §7: 68.035 Hz, the paper prints 67.8565 Hz).
   struct Entry {
     double paper, ours, allowed;
   };
@@ -160,7 +160,7 @@ TEST_CASE("sweep: the slenderness against the paper's Table 5 (300 rad/s)", "[sw
     CHECK(first.lambda[k] == Approx(table5[k].ours).epsilon(2e-6));  // the converged values (30 terms)
     CHECK(std::abs(first.lambda[k] / table5[k].paper - 1) <= table5[k].allowed);
   }
-  CHECK(first.lambda[1] == Approx(8.3518).epsilon(1e-4));  // SPEC §7
+  CHECK(first.lambda[1] == Approx(8.3518).epsilon(1e-4));  // docs/theory.md §7
 }
 
 TEST_CASE("sweep: end to end, JSON and every command honouring the static compression", "[sweep]") {

@@ -82,18 +82,18 @@ TEST_CASE("the paper's Fig. 10/11 single pulse: 0.1 mm lateral at mode 1, 0.8 mm
   // quotes from its figures, and how it is asserted:
   //  Fig. 10  lateral tip deflection "±0.1 mm" for 60 revolutions, neither growing nor decaying: every
   //           revolution's peak within ±20 % of 0.1 mm (a value read off a plot's axis), over 20;
-  //           at "67.0 Hz", the first flexural mode (SPEC §7: 68.035 Hz): within 2 % of the figure's,
+  //           at "67.0 Hz", the first flexural mode (docs/theory.md §7: 68.035 Hz): within 2 % of the figure's,
   //           0.3 % of the SPEC's (the spectrum's resolution after refinement);
   //           the lateral motion is "the result of the coupling of axial motion with the lateral
   //           motion caused by the Coriolis effect": none without it.
-  //  Fig. 11a the tip oscillates about the 2 mm steady stretch (SPEC §7: 2.0 mm; 2 %), "initial
+  //  Fig. 11a the tip oscillates about the 2 mm steady stretch (docs/theory.md §7: 2.0 mm; 2 %), "initial
   //           peak-amplitude in the range 1.2 mm ≤ u ≤ 2.8 mm", i.e. 0.8 mm: the first revolution's
   //           half range within 10 % (ours is 7 % above: the paper's RKF45 damps, and by its own
   //           account its later "settling down to 1.8–2.2 mm" is numerical damping, not asserted).
   //           Independently of the figure, the first axial mode's share of the response is the
   //           closed-form single-pulse response of that mode (1.0 mm; within 0.3 %, below).
-  //  Fig. 11b "the beam responds at 1286 Hz": the first axial mode (SPEC §8), of the spinning bar
-  //           ω² = (π/2L)² E/ρ − Ω² (SPEC §1): within 0.3 % of it, 1 % of the figure's.
+  //  Fig. 11b "the beam responds at 1286 Hz": the first axial mode (docs/theory.md §8), of the spinning bar
+  //           ω² = (π/2L)² E/ρ − Ω² (docs/theory.md §1): within 0.3 % of it, 1 % of the figure's.
   //  Fig. 11c no spurious build-up of strain energy: every revolution's peak strain energy within
   //           1 % of the first's, and the total energy after the pulse constant.
   const Scene s = paper_scene({"model.terms=8", "load.pulse_count=1"});  // half-sine, F̄ = 5, t̄c = 0.01, μ = 0
@@ -287,7 +287,7 @@ TEST_CASE("crosscheck: the cosine approximation's instability is real for its lo
 TEST_CASE("the follower correction applies F cos(psi) along the span and -F sin(psi) laterally", "[transient]") {
   // Coriolis off and no friction; the tip bent 0.2 m in mode 1 (ψ ≈ 0.3 rad, far beyond the
   // blade's real slopes, so that 1 − cos ψ ≈ 4 % shows: the model is linear, only the load law is
-  // tested). Reference: the equations of motion with the follower loads of SPEC §5, written here
+  // tested). Reference: the equations of motion with the follower loads of docs/theory.md §5, written here
   // from the model's matrices, M f̈ + K(Ω) f = Ω² P_cf + F_ax (p_u − G f) + F_lat p_v with
   // F_ax = F cos ψ, F_lat = −F sin ψ, ψ = v'(L) = Σ Y_k (the integrated Legendre φ_k' = P_{k−1} is 1
   // at the tip), F the half-sine (38), integrated by Boost.Odeint's Dormand–Prince at rtol 1e-11.

@@ -1,5 +1,5 @@
 #pragma once
-// Ritz shape functions of one field, sampled where the assembly needs them (SPEC §2).
+// Ritz shape functions of one field, sampled where the assembly needs them (docs/theory.md §2).
 #include <Eigen/Dense>
 
 #include "bladestab/scene/scene.hpp"

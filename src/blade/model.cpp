@@ -1,4 +1,4 @@
-// Assembly of the Ritz matrices of SPEC §2. Every entry is one weighted Gram product
+// Assembly of the Ritz matrices of docs/theory.md §2. Every entry is one weighted Gram product
 // ∫ c(s) a_i(s) b_j(s) ds of sampled shape functions, evaluated by Gauss–Legendre quadrature
 // that is exact for the Legendre basis and accurate to rounding for the sine basis.
 #include "bladestab/blade/model.hpp"
@@ -62,7 +62,7 @@ BladeModel assemble_blade(const BladeSpec& blade_spec, const ModelSpec& spec) {
   const Eigen::VectorXd& s = rule.points;
   const Eigen::VectorXd w = rule.weights;
   const Eigen::VectorXd one = Eigen::VectorXd::Ones(s.size());
-  // T_cf(s)/Ω² = ρA [r(L − s) + (L² − s²)/2]   (SPEC §1)
+  // T_cf(s)/Ω² = ρA [r(L − s) + (L² − s²)/2]   (docs/theory.md §1)
   const Eigen::VectorXd tension1 =
       b.rho * b.A * (b.r * (b.L - s.array()) + 0.5 * (b.L * b.L - s.array().square())).matrix();
 
@@ -116,7 +116,7 @@ BladeModel assemble_blade(const BladeSpec& blade_spec, const ModelSpec& spec) {
     model.P_cf1.segment(ax, N) = W.value.transpose() * (w * (b.rho * b.A)).cwiseProduct((b.r + s.array()).matrix());
     model.tip_axial.segment(ax, N) = W_tip.value.row(0);
     if (spec.coriolis) {
-      // Coriolis force −2ρAΩ cos β u̇ on v and +2ρAΩ cos β v̇ on u (SPEC §1), moved to the left
+      // Coriolis force −2ρAΩ cos β u̇ on v and +2ρAΩ cos β v̇ on u (docs/theory.md §1), moved to the left
       // side of (23): C_vu = 2ρA cos β ∫V_i W_j per Ω, C_uv = −C_vuᵀ.
       const Eigen::MatrixXd C_vu = gram(w * (2 * b.rho * b.A * cos_beta), V.value, W.value);
       model.C_G1.block(lv, ax, N, N) = C_vu;
@@ -140,7 +140,7 @@ BladeModel assemble_model(const Scene& scene) { return assemble_model(scene, sce
 BladeModel assemble_model(const Scene& scene, const ModelSpec& spec) {
   BladeModel model = assemble_blade(scene.blade, spec);
   // A static tip compression F_a = c F_cr is a constant tip tension −F_a: its geometric stiffness
-  // −F_a G joins the speed-free stiffness (SPEC (23), (40) with F(t) = −F_a), its axial push the
+  // −F_a G joins the speed-free stiffness (docs/theory.md (23), (40) with F(t) = −F_a), its axial push the
   // steady load (steady_load()).
   model.static_tip_force_n = -scene.operation.tip_compression_over_fcr * model.blade.critical_load();
   if (model.static_tip_force_n != 0) model.K_S += model.static_tip_force_n * model.G;

@@ -323,7 +323,7 @@ Scene read_scene(const toml::table& root, const std::string& source_name, const 
   }
   if (blade.has("slenderness")) {
     const double d = blade.number("slenderness", limits::slenderness, "d̄ = sqrt(I/(A L²))");
-    b.inertia = d * d * b.area * b.length * b.length;  // SPEC §3: d̄ = sqrt(I/(A L²))
+    b.inertia = d * d * b.area * b.length * b.length;  // docs/theory.md §3: d̄ = sqrt(I/(A L²))
   } else {
     // I is checked through the slenderness it gives: the same blades either way.
     b.inertia = blade.number("inertia", AllowedRange::above(0, 1e300), "second moment of area in m^4");

@@ -349,7 +349,7 @@ ErrorBudget BoundaryAnalysis::total() const {
 
 double multiplier_gap(const PeriodicSystem& system, double system_peak_force_n, const Boundary& b, double tolerance) {
   PeriodicSystem at = system;
-  // Load scaled to b's F_max: A(t) = A₀ + (F(t) − F₀)B (periodic_system.hpp, SPEC §4), so the mean
+  // Load scaled to b's F_max: A(t) = A₀ + (F(t) − F₀)B (periodic_system.hpp, docs/theory.md §4), so the mean
   // load moves A₀ by ΔF₀·B.
   const double scale = b.peak_force_n / system_peak_force_n;
   const double F0 = at.load[0].real();

@@ -61,7 +61,7 @@ double PulseTrain::force(double t) const {
   const std::optional<double> tau = time_in_pulse(t);
   if (!tau) return 0;
   const double c = contact_time_s, F = peak_n, x = *tau;
-  switch (profile) {  // Appendix A, SPEC §3 table
+  switch (profile) {  // Appendix A, docs/theory.md §3 table
     case PulseProfile::half_sine: return -F * std::sin(pi * x / c);                    // (38)
     case PulseProfile::cosine: return -F / 2 + F / 2 * std::cos(2 * pi * x / c);      // (A.2)
     case PulseProfile::triangular: return -F * 2 * std::min(x, c - x) / c;            // (A.3)

@@ -66,7 +66,7 @@ Onset scanned_onset(const Scene& scene, const BladeModel& model, int vectors, do
   return onset;
 }
 
-// A tip of an undamped region: 2ω_m(Ω)/n = kΩ (SPEC §4: principal regions at θ ≈ 2ω/n).
+// A tip of an undamped region: 2ω_m(Ω)/n = kΩ (docs/theory.md §4: principal regions at θ ≈ 2ω/n).
 struct Tip {
   double speed = 0;
   int mode = 0, order = 0;

@@ -147,7 +147,7 @@ struct CurveModel {
 
 // Where the boundary curves are traced: each trace value is a line of the plane (F̄ = const in the
 // θ plane, Ω = const in the speed plane) on which the boundary equations give every boundary at
-// once (SPEC §4, (B.15)–(B.23)).
+// once (docs/theory.md §4, (B.15)–(B.23)).
 struct CurveWindow {
   bool theta_plane = true;
   double speed = 0, fcr = 0;

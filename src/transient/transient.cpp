@@ -84,7 +84,7 @@ TransientResult run_transient(const BladeModel& model, const Scene& scene, const
     return -mu * std::abs(F) * cos_beta * std::tanh(v_rel / o.friction_velocity);
   };
   // The tip loads the equations apply for a tip load F: along the span (also the tension of the
-  // geometric stiffness) and laterally (the friction); with the follower correction (SPEC §5) F turns
+  // geometric stiffness) and laterally (the friction); with the follower correction (docs/theory.md §5) F turns
   // with the tip slope ψ = v'(L): F cos ψ along the span, −F sin ψ added laterally.
   struct TipLoads {
     double axial = 0, lateral = 0;
@@ -195,7 +195,7 @@ TransientResult run_transient(const BladeModel& model, const Scene& scene, const
   // The change of the state over each whole revolution, in the energy norm (K(Ω) is positive
   // definite below the blade's spin divergence): for a load periodic in a revolution the map over a
   // revolution is affine, x_{k+1} = Φ x_k + c, so x_{k+1} − x_k = Φ^k (x_1 − x_0) grows like max|ρ|^k
-  // whatever the forced periodic response (SPEC §5's cross-check with the Floquet multipliers).
+  // whatever the forced periodic response (docs/theory.md §5's cross-check with the Floquet multipliers).
   const auto energy_norm = [&](const Eigen::VectorXd& d) {
     return std::sqrt(0.5 * d.head(n).dot(K * d.head(n)) + 0.5 * d.segment(n, n).dot(model.M * d.segment(n, n)));
   };

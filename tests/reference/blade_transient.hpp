@@ -1,10 +1,10 @@
 #pragma once
 // An independent time integration of the blade under a tip load, for comparison with
 // run_transient: Boost.Odeint's Dormand–Prince 5(4) with dense output, at tight tolerances (1e-10), on the
-// equation of motion written out here from the model's matrices (SPEC §2, (23), (40); §5):
+// equation of motion written out here from the model's matrices (docs/theory.md §2, (23), (40); §5):
 //
 //   M f̈ + C ḟ + (K(Ω) + F(t) G) f = P_steady + F(t) p_u + R(t) p_v,
-//   R = −μ |F| cos β · sign(ΩR + cos β · v̇(L))      (SPEC §1: Coulomb friction μ|F|, its component
+//   R = −μ |F| cos β · sign(ΩR + cos β · v̇(L))      (docs/theory.md §1: Coulomb friction μ|F|, its component
 //                                                    along ê_n μ|F| cos β, against the tip's sliding
 //                                                    past the casing, active only while F ≠ 0)
 //

@@ -1,5 +1,5 @@
 #pragma once
-// The state-transition matrix Φ(t1) of ẏ = (A₀ + φ(t) B) y, Φ(0) = I (SPEC §4, the periodic system
+// The state-transition matrix Φ(t1) of ẏ = (A₀ + φ(t) B) y, Φ(0) = I (docs/theory.md §4, the periodic system
 // in the library's scaled modal form), by Boost.Odeint's controlled Runge–Kutta–Fehlberg 7(8)
 // stepper: all columns at once, piece by piece between `breakpoints` (where φ jumps or kinks), the
 // load read from inside the current piece. Independent of the library's Magnus and RKF45

@@ -1,8 +1,8 @@
 #pragma once
-// The tip load of SPEC §3 written out from its table, apart from the library's PulseTrain: the
+// The tip load of docs/theory.md §3 written out from its table, apart from the library's PulseTrain: the
 // pulse shapes F(τ) on 0 ≤ τ ≤ t_c (Appendix A) and a train of them, pulse k occupying
 // [k T_p, k T_p + t_c) (half-open: the force is off at a pulse's end). Header-only; the impulse is
-// taken as the short rectangle of height F_max and width t_c (impulse F_max t_c, SPEC §3, (A.5)).
+// taken as the short rectangle of height F_max and width t_c (impulse F_max t_c, docs/theory.md §3, (A.5)).
 #include <cmath>
 #include <vector>
 
@@ -10,7 +10,7 @@
 
 namespace reference {
 
-// F(τ) of one pulse of peak F_max = `peak` and contact time `contact` (SPEC §3 table).
+// F(τ) of one pulse of peak F_max = `peak` and contact time `contact` (docs/theory.md §3 table).
 inline double pulse_shape(bladestab::PulseProfile profile, double peak, double contact, double tau) {
   constexpr double pi = 3.14159265358979323846;
   using bladestab::PulseProfile;
@@ -50,7 +50,7 @@ struct PulseTrainReference {
   }
 };
 
-// The train a scene describes (SPEC §3): F_max = F̄_max π²EI/(4L²), T_p = 2π/(p Ω) for p pulses per
+// The train a scene describes (docs/theory.md §3): F_max = F̄_max π²EI/(4L²), T_p = 2π/(p Ω) for p pulses per
 // revolution (or 1/load.pulse_frequency_hz), t_c = t̄_c · 2π/Ω.
 inline PulseTrainReference scene_pulses(const bladestab::Scene& s) {
   constexpr double pi = 3.14159265358979323846;

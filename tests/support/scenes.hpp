@@ -1,5 +1,5 @@
 #pragma once
-// The paper's example blade (SPEC §7) as a scene, with overrides, for tests.
+// The paper's example blade (docs/theory.md §7) as a scene, with overrides, for tests.
 #include <string>
 #include <vector>
 

@@ -1,5 +1,5 @@
 #pragma once
-// Physical constants of a blade and the non-dimensional groups of SPEC §3.
+// Physical constants of a blade and the non-dimensional groups of docs/theory.md §3.
 #include "bladestab/scene/scene.hpp"
 
 namespace bladestab {

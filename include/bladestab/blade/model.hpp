@@ -1,5 +1,5 @@
 #pragma once
-// The Ritz model of a rotating blade (SPEC §2): mass, stiffness split into its speed-free and
+// The Ritz model of a rotating blade (docs/theory.md §2): mass, stiffness split into its speed-free and
 // centrifugal parts, gyroscopic and geometric matrices, load vectors. The Ω-dependence is kept
 // as coefficients so a speed sweep assembles once:
 //
@@ -49,7 +49,7 @@ struct BladeModel {
   // The strain stiffness alone (bending, shear, axial; (55), (56)), without the static tip force:
   // what stiffness-proportional damping and the strain energy are made of.
   Eigen::MatrixXd elastic_stiffness() const { return K_S - static_tip_force_n * G; }
-  // The load that does not vary in time: Ω² P_cf1 plus the static tip force on the axial tip (SPEC §2, P_u).
+  // The load that does not vary in time: Ω² P_cf1 plus the static tip force on the axial tip (docs/theory.md §2, P_u).
   Eigen::VectorXd steady_load(double speed_rad_s) const {
     return speed_rad_s * speed_rad_s * P_cf1 + static_tip_force_n * tip_axial.transpose();
   }

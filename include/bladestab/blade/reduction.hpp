@@ -1,12 +1,12 @@
 #pragma once
-// Reduced models of the blade under a periodic tip load (SPEC §6, "model only what a scene
+// Reduced models of the blade under a periodic tip load (docs/theory.md §6, "model only what a scene
 // needs"). The motion is sought in the span of a few vectors V with Vᵀ M V = I, so the reduced
 // system is  q̈ + Vᵀ C V q̇ + Vᵀ (K(Ω) + F(t) G) V q = 0.
 //
 //   automatic: the `vectors` lowest modes of K(Ω) + F G at both ends of the load's range, F = 0
 //              and F = F_min (the most compressive), plus the static gyroscopic corrections
 //              K(Ω)⁻¹ C φ of the unloaded ones. The loaded modes span what the load does to the
-//              stiffness (SPEC §6 table); the corrections carry the Coriolis coupling to the axial
+//              stiffness (docs/theory.md §6 table); the corrections carry the Coriolis coupling to the axial
 //              modes that otherwise leaves a 1e-5 plateau on this blade. A Ritz model with no
 //              more than 3·vectors dofs is kept whole.
 //   modal:     the unloaded modes below `cutoff_hz` (a modal truncation; all of them for 0).

@@ -1,5 +1,5 @@
 #pragma once
-// The undamped, non-gyroscopic modes of a Ritz model, (K(Ω) + F G) φ = ω² M φ (SPEC §2, eq. (23)
+// The undamped, non-gyroscopic modes of a Ritz model, (K(Ω) + F G) φ = ω² M φ (docs/theory.md §2, eq. (23)
 // without C): the one eigenproblem of this kind, shared by the reduction's bases, modal damping,
 // the transient's step cap and the crosscheck's seed.
 #include <Eigen/Dense>

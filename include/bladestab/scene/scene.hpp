@@ -13,7 +13,7 @@ struct BladeSpec {
   double length = 0;             // L [m]
   double hub_radius = 0;         // r [m]
   double area = 0;               // A [m^2]
-  double inertia = 0;            // I [m^4]; from `slenderness` d̄ when given (I = d̄² A L², SPEC §3)
+  double inertia = 0;            // I [m^4]; from `slenderness` d̄ when given (I = d̄² A L², docs/theory.md §3)
   double youngs_modulus = 0;     // E [Pa]
   double density = 0;            // ρ [kg/m^3]
   double poisson = 0;            // ν
@@ -24,7 +24,7 @@ struct BladeSpec {
 enum class BasisKind { sine, legendre };
 enum class BeamTheory { timoshenko, euler_bernoulli };
 
-// How the periodic system is reduced before time integration (reduction.hpp, SPEC §6).
+// How the periodic system is reduced before time integration (reduction.hpp, docs/theory.md §6).
 enum class ReductionKind { automatic, modal, none };
 
 struct ReductionSpec {

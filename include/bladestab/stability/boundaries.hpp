@@ -1,5 +1,5 @@
 #pragma once
-// Boundaries of the regions of dynamic instability (SPEC §4, (B.15)–(B.23)). On a boundary a
+// Boundaries of the regions of dynamic instability (docs/theory.md §4, (B.15)–(B.23)). On a boundary a
 // Floquet multiplier sits at −1 (a 2T-periodic solution, odd harmonics of θ/2) or +1 (T-periodic,
 // even harmonics). In modal coordinates η (q = Φη), with the ansatz η = Σ_{k∈S} c_k e^{ikθt/2},
 //
@@ -96,7 +96,7 @@ struct BoundaryAnalysis {
 // Raises k from request.first_approximation in steps of 2 until every boundary found at k in the
 // window, of order ≤ max_order, moves by at most request.tolerance (relative) at k + 2 — boundaries are matched by family, mode, order
 // and nearest value; one that first appears at k + 2 is reported from k + 2 with its change at
-// k + 4. The error budget of each boundary (SPEC §2–§4):
+// k + 4. The error budget of each boundary (docs/theory.md §2–§4):
 //   basis      change against the richer Ritz basis reference_terms(basis, N) (for the sine basis
 //              times basis_tail_factor)
 //   reduction  change against all modes kept (with a cut-off)

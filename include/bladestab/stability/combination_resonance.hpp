@@ -1,5 +1,5 @@
 #pragma once
-// Which modes a combination resonance couples (SPEC §4: multipliers leaving the unit circle as a
+// Which modes a combination resonance couples (docs/theory.md §4: multipliers leaving the unit circle as a
 // complex pair, away from ±1). A parametric load of frequency θ couples two modes i < j where
 //   sum type:         ω_i + ω_j ≈ nθ,
 //   difference type:  ω_j − ω_i ≈ nθ (gyroscopic systems),

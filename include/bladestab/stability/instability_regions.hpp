@@ -1,6 +1,6 @@
 #pragma once
 // The regions of dynamic instability along one line of the load plane — θ at the scene's F̄_max,
-// or F̄_max at a given θ — as intervals between boundaries (SPEC §4), for CI scripts that ask
+// or F̄_max at a given θ — as intervals between boundaries (docs/theory.md §4), for CI scripts that ask
 // "is this operating range clear?".
 //
 // Between two consecutive boundaries of one family (multiplier ±1) lies either a region of that

@@ -1,5 +1,5 @@
 #pragma once
-// The tip load as a periodic function of time (SPEC §3, Appendix A): a train of compressive
+// The tip load as a periodic function of time (docs/theory.md §3, Appendix A): a train of compressive
 // pulses F(t) ≤ 0, its exact complex Fourier coefficients, and the series the frequency domain
 // uses — the paper's cosine approximation (42) or the true pulse's series, truncated.
 #include <complex>

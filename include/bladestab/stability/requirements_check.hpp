@@ -11,7 +11,7 @@
 //  2. Stability under rub: stable for every F̄_max ∈ [0, max_fmax_over_fcr] at every Ω of the
 //     range, with θ = k·Ω (k = load.pulses_per_rev) and the scene's load and damping. The lowest
 //     F̄ at which a region of instability opens (the onset) is scanned along the range from the
-//     boundary eigenproblem in F̄_max (boundaries.hpp, SPEC §4, (B.15)–(B.23)), refined around its
+//     boundary eigenproblem in F̄_max (boundaries.hpp, docs/theory.md §4, (B.15)–(B.23)), refined around its
 //     least value, and converged there with its error (boundaries_with_error_estimate,
 //     instability_regions). Undamped, a region of order n touches F̄ = 0 at its tip θ = 2ω_m/n
 //     (Bolotin): a tip inside the range means an onset of 0. The verdict is confirmed by the

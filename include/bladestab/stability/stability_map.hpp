@@ -1,5 +1,5 @@
 #pragma once
-// Stability maps (SPEC §4 "Charts"): regions of dynamic instability in the (θ, F̄_max) plane at
+// Stability maps (docs/theory.md §4 "Charts"): regions of dynamic instability in the (θ, F̄_max) plane at
 // the scene's speed (Ince–Strutt) or in the (Ω, F̄_max) plane with θ = k Ω (an engine order).
 // The ±1 boundaries are traced as curves from the boundary eigenproblems — along F̄ in the θ
 // plane (all θ at once), along Ω in the speed plane (all F̄ at once), on a reduced model checked

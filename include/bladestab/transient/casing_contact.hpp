@@ -1,10 +1,10 @@
 #pragma once
-// The displacement-controlled rub (SPEC §5, Appendix C): the casing is a rigid wall at the running
+// The displacement-controlled rub (docs/theory.md §5, Appendix C): the casing is a rigid wall at the running
 // clearance δ above the tip's steady rotating position, distorted inward once per pulse period by
 // the intrusion depth d with the pulse profile's shape over the contact time. The tip is pushed
 // back by a penalty force while its radial deflection passes the wall:
 //
-//   g(t, f) = u(L) − ½∫v'² ds − u_eq(L) − (δ − d s(t)),     F = −k max(0, g)     (SPEC §5, (C.1)–(C.3))
+//   g(t, f) = u(L) − ½∫v'² ds − u_eq(L) − (δ − d s(t)),     F = −k max(0, g)     (docs/theory.md §5, (C.1)–(C.3))
 //
 // with s(t) ∈ [0, 1] the distortion's shape and u_eq(L) the steady stretch. Why a penalty and not
 // a constraint: an exact unilateral constraint on one point of a Ritz continuum turns every touch

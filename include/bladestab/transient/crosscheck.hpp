@@ -1,5 +1,5 @@
 #pragma once
-// Frequency domain against time domain (SPEC §5 "Cross-checks"), point by point in F̄_max at the
+// Frequency domain against time domain (docs/theory.md §5 "Cross-checks"), point by point in F̄_max at the
 // scene's speed:
 //  (a) max|ρ| from the Floquet multipliers against the growth per revolution of a long transient
 //      under the same periodic load — once with the paper's cosine approximation (42), once with

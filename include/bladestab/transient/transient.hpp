@@ -1,5 +1,5 @@
 #pragma once
-// Time-domain response of the rotating blade to its tip rub (SPEC §5, (47)–(52)):
+// Time-domain response of the rotating blade to its tip rub (docs/theory.md §5, (47)–(52)):
 //
 //   M f̈ + C ḟ + (K(Ω) + F(t) G) f = Ω² P_cf + F_s p_u + F(t) p_u + R(t) p_v
 //
@@ -11,7 +11,7 @@
 // tip, v_rel = ΩR + cos β · v̇(L) the tip's speed past the casing (regularized sign, ε = 1 mm/s:
 // the tip moves at ΩR ≈ 450 m/s, so the friction never sticks in practice). Integrated in first-
 // order form x = [f; ḟ] by RKF45, adaptive or with the paper's fixed step (54), landing on every
-// pulse edge. With the follower correction (SPEC §5) the load turns with the tip slope ψ = v'(L):
+// pulse edge. With the follower correction (docs/theory.md §5) the load turns with the tip slope ψ = v'(L):
 // F cos ψ along the axis (and in the geometric stiffness), −F sin ψ on the lateral tip.
 #include <functional>
 #include <optional>
