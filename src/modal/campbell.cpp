@@ -7,7 +7,7 @@
 #include <optional>
 
 #include "bladestab/base/constants.hpp"
-#include "bladestab/modal/mode_convergence.hpp"
+#include "bladestab/modal/basis_error.hpp"
 #include "bladestab/modal/mode_tracking.hpp"
 #include "support/scalar_search.hpp"
 #include "bladestab/modal/speed_sweep.hpp"

@@ -10,7 +10,7 @@
 #include <fmt/format.h>
 
 #include "bladestab/base/input_error.hpp"
-#include "bladestab/modal/mode_convergence.hpp"
+#include "bladestab/modal/basis_error.hpp"
 #include "bladestab/modal/mode_tracking.hpp"
 #include "bladestab/scene/scene.hpp"
 #include "support/worker_threads.hpp"

@@ -10,7 +10,7 @@
 
 #include "bladestab/base/constants.hpp"
 #include "bladestab/blade/damping.hpp"
-#include "bladestab/modal/mode_convergence.hpp"
+#include "bladestab/modal/basis_error.hpp"
 
 namespace bladestab {
 namespace {

@@ -13,7 +13,7 @@
 
 #include "bladestab/base/constants.hpp"
 #include "bladestab/ltp/floquet.hpp"
-#include "bladestab/modal/mode_convergence.hpp"
+#include "bladestab/modal/basis_error.hpp"
 #include "bladestab/base/numerical_error.hpp"
 #include "support/worker_threads.hpp"
 

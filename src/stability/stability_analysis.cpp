@@ -11,7 +11,7 @@
 
 #include "bladestab/blade/damping.hpp"
 #include "bladestab/base/input_error.hpp"
-#include "bladestab/modal/mode_convergence.hpp"
+#include "bladestab/modal/basis_error.hpp"
 #include "bladestab/stability/periodic_system.hpp"
 #include "bladestab/blade/reduction.hpp"
 #include "support/worker_threads.hpp"

@@ -18,7 +18,7 @@
 #include "bladestab/base/constants.hpp"
 #include "bladestab/base/input_error.hpp"
 #include "bladestab/base/numerical_error.hpp"
-#include "bladestab/modal/mode_convergence.hpp"
+#include "bladestab/modal/basis_error.hpp"
 #include "bladestab/blade/reduction.hpp"
 #include "bladestab/blade/undamped_modes.hpp"
 #include "support/worker_threads.hpp"

@@ -1,4 +1,4 @@
-#include "bladestab/modal/mode_convergence.hpp"
+#include "bladestab/modal/basis_error.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,7 +1,9 @@
 #pragma once
-// Error estimates for computed modes ("model only what a scene needs"): each mode is compared
-// with the same mode (same family, same rank within it) of a richer model, and the number of
-// terms can be raised until every requested mode meets a tolerance.
+// The Ritz basis's error and the policy that bounds it ("model only what a scene needs"): the
+// richer basis a result is compared with (reference_terms) and how far its difference understates
+// the error (basis_tail), the terms a tolerance needs (terms_for_tolerance), and for computed
+// modes, each compared with the same mode (same family, same rank within it) of a richer model
+// with the terms raised until every requested mode meets a tolerance.
 #include <optional>
 #include <vector>
 
