@@ -33,15 +33,16 @@ struct Boundary {
 };
 
 // `system` supplies the modal matrices and the load shape; its load is scaled to `peak_force_n`.
-// All boundary θ > 0 at that load, sorted by θ: of both families, or of the one whose multiplier is
-// `family` (−1 or +1; each family is its own eigenproblem, so one costs half).
+// All boundary θ > 0 at that load, sorted by θ: of both multiplier signs, or of the one whose
+// multiplier is `multiplier_sign` (−1 or +1; each sign is its own eigenproblem, so one costs half).
+// `approximation` is the k of the harmonic balance (k harmonics per sign).
 std::vector<Boundary> boundary_frequencies(const PeriodicSystem& system, double peak_force_n, int approximation,
-                                           int family = 0);
+                                           int multiplier_sign = 0);
 
 // All boundary F_max ≥ 0 at pulse frequency θ (the load shape per newton of F_max is the system's
-// load divided by `system_peak_force_n`), sorted by F_max; both families or `family` as above.
+// load divided by `system_peak_force_n`), sorted by F_max; both signs or `multiplier_sign` as above.
 std::vector<Boundary> boundary_loads(const PeriodicSystem& system, double system_peak_force_n, double theta_rad_s,
-                                     int approximation, int family = 0);
+                                     int approximation, int multiplier_sign = 0);
 
 // |ρ − b.multiplier| for the Floquet multiplier ρ of `system` closest to ±1 at the boundary point
 // (θ = b.theta_rad_s, F_max = b.peak_force_n; the system's load is at `system_peak_force_n`),
@@ -66,7 +67,7 @@ struct BoundaryRequest {
   double tolerance = 1e-6;            // on the harmonics' part, relative on θ or F_max
   int first_approximation = 2;        // k to start from
   int max_approximation = 40;
-  int threads = 1;                    // the two families' eigenproblems side by side (0: one per core)
+  int threads = 1;                    // the two multiplier signs' eigenproblems side by side (0: one per core)
   // progress(done, total) after each harmonic level of each model: `total` is what the answer needs
   // if the current k converges (an upper bound), so it grows when k is raised; (done, done) at the end.
   std::function<void(int, int)> progress = {};
@@ -94,7 +95,7 @@ struct BoundaryAnalysis {
 };
 
 // Raises k from request.first_approximation in steps of 2 until every boundary found at k in the
-// window, of order ≤ max_order, moves by at most request.tolerance (relative) at k + 2 — boundaries are matched by family, mode, order
+// window, of order ≤ max_order, moves by at most request.tolerance (relative) at k + 2 — boundaries are matched by multiplier, mode, order
 // and nearest value; one that first appears at k + 2 is reported from k + 2 with its change at
 // k + 4. The error budget of each boundary (docs/theory.md §2–§4):
 //   basis      change against the richer Ritz basis reference_terms(basis, N) (for the sine basis
