@@ -4,7 +4,7 @@ import math
 
 import matplotlib
 
-from chart_common import InputError, RAD_S_TO_RPM, _integer, _number, _numbers, _optional_list, _place_label, _require
+from chart_common import InputError, RAD_S_TO_RPM, _integer, _number, _numbers, _objects, _optional_list, _place_label, _require
 
 # family -> (label prefix, colormap, linestyle)
 CAMPBELL_FAMILIES = {
@@ -14,15 +14,19 @@ CAMPBELL_FAMILIES = {
 }
 
 
+def _campbell_family(item, what):
+    """item's "family", one of CAMPBELL_FAMILIES."""
+    family = item.get("family")
+    if family not in CAMPBELL_FAMILIES:
+        raise InputError(f"{what} has unknown family {family!r}")
+    return family
+
+
 def _campbell_curves(data, n_speeds):
     """Validate curves; return them sorted with family labels (B1, A1, ...)."""
     curves = []
-    for i, curve in enumerate(_require(data, "curves", list)):
-        if not isinstance(curve, dict):
-            raise InputError(f"curves[{i}] is not an object")
-        family = curve.get("family")
-        if family not in CAMPBELL_FAMILIES:
-            raise InputError(f"curves[{i}] has unknown family {family!r}")
+    for i, curve in _objects(_require(data, "curves", list), "curves"):
+        family = _campbell_family(curve, f"curves[{i}]")
         mode = _integer(curve.get("mode"), f"curves[{i}].mode")
         freqs = _numbers(curve.get("frequency_hz"),
                          f"curves[{i}].frequency_hz", allow_null=True)
@@ -52,9 +56,7 @@ def _label_by_family(items, order_key, darkest, spread):
 
 def _campbell_crossings(data):
     crossings = []
-    for i, cross in enumerate(_optional_list(data, "crossings")):
-        if not isinstance(cross, dict):
-            raise InputError(f"crossings[{i}] is not an object")
+    for i, cross in _objects(_optional_list(data, "crossings"), "crossings"):
         order = _integer(cross.get("engine_order"), f"crossings[{i}].engine_order")
         mode = _integer(cross.get("mode"), f"crossings[{i}].mode")
         speed = _number(cross.get("speed_rad_s"), f"crossings[{i}].speed_rad_s")

@@ -53,6 +53,27 @@ def _numbers(values, what, allow_null=False):
     return [_number(v, f"{what}[{i}]", allow_null) for i, v in enumerate(values)]
 
 
+def _objects(values, what):
+    """(index, item) of a list whose items must all be objects."""
+    for i, item in enumerate(values):
+        if not isinstance(item, dict):
+            raise InputError(f"{what}[{i}] is not an object")
+        yield i, item
+
+
+def _optional_object(data, key, keys):
+    """data[key], an object holding every one of `keys`, or None where it is absent."""
+    value = data.get(key)
+    if value is None:
+        return None
+    if not isinstance(value, dict):
+        raise InputError(f"'{key}' is not an object")
+    for k in keys:
+        if k not in value:
+            raise InputError(f"missing key '{key}.{k}'")
+    return value
+
+
 def _integer(value, what):
     if isinstance(value, bool) or not isinstance(value, int):
         raise InputError(f"{what} is not an integer")

@@ -8,7 +8,7 @@ from matplotlib.colors import ListedColormap, Normalize
 from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 
-from chart_common import InputError, _display_text, _integer, _number, _numbers, _optional_list, _place_label, _require
+from chart_common import InputError, _display_text, _integer, _number, _numbers, _objects, _optional_list, _optional_object, _place_label, _require  # noqa: E501 (one line: CMakeLists.txt drops it)
 
 STABLE_LIMIT = 1.0 + 1e-9     # default: max|rho| at or below this counts as stable ("stable_below" overrides)
 MAP_SHADE_MIN = 0.05          # smallest upper end of the log10 max|rho| scale
@@ -32,14 +32,9 @@ def _ascending(values, what):
 
 def _map_grid(data):
     """Validate the grid; return (x, y, values[ny][nx]) or None if absent."""
-    grid = data.get("grid")
+    grid = _optional_object(data, "grid", ("x", "y", "max_abs_multiplier"))
     if grid is None:
         return None
-    if not isinstance(grid, dict):
-        raise InputError("'grid' is not an object")
-    for key in ("x", "y", "max_abs_multiplier"):
-        if key not in grid:
-            raise InputError(f"missing key 'grid.{key}'")
     x = _numbers(grid["x"], "grid.x")
     if not x:
         return None
@@ -67,9 +62,7 @@ def _map_grid(data):
 
 def _map_curves(data):
     curves = []
-    for i, curve in enumerate(_optional_list(data, "curves")):
-        if not isinstance(curve, dict):
-            raise InputError(f"curves[{i}] is not an object")
+    for i, curve in _objects(_optional_list(data, "curves"), "curves"):
         if "multiplier" not in curve:
             raise InputError(f"curves[{i}] is missing key 'multiplier'")
         multiplier = _number(curve["multiplier"], f"curves[{i}].multiplier")
@@ -163,9 +156,7 @@ def _label_combinations(ax, data):
     """Each combination region named in the JSON, at its sample of largest
     max|rho|, in italic dark grey."""
     regions = _optional_list(data, "combination_regions")
-    for k, region in enumerate(regions):
-        if not isinstance(region, dict):
-            raise InputError(f"combination_regions[{k}] is not an object")
+    for k, region in _objects(regions, "combination_regions"):
         for key in ("mode_i", "mode_j", "order"):
             _integer(_require(region, key, int), f"combination_regions[{k}].{key}")
         if region.get("kind") not in ("sum", "difference"):
@@ -181,9 +172,7 @@ def _label_combinations(ax, data):
 
 def _map_markers(data):
     markers = []
-    for i, marker in enumerate(_optional_list(data, "markers")):
-        if not isinstance(marker, dict):
-            raise InputError(f"markers[{i}] is not an object")
+    for i, marker in _objects(_optional_list(data, "markers"), "markers"):
         x = _number(marker.get("x"), f"markers[{i}].x")
         y = _number(marker.get("y"), f"markers[{i}].y")
         label = marker.get("label")
@@ -195,11 +184,9 @@ def _map_markers(data):
 
 def _map_refined(data):
     """The refined shading as cell edges and a raster; None if absent."""
-    ref = data.get("refinement")
+    ref = _optional_object(data, "refinement", ())
     if ref is None:
         return None
-    if not isinstance(ref, dict):
-        raise InputError("'refinement' is not an object")
     nx = _integer(_require(ref, "cells_x", int), "refinement.cells_x")
     ny = _integer(_require(ref, "cells_y", int), "refinement.cells_y")
     if not (1 <= nx <= 20000 and 1 <= ny <= 20000):

@@ -4,8 +4,8 @@ import math
 
 from matplotlib.lines import Line2D
 
-from chart_campbell import CAMPBELL_FAMILIES, _label_by_family
-from chart_common import InputError, _display_text, _integer, _numbers, _require
+from chart_campbell import CAMPBELL_FAMILIES, _campbell_family, _label_by_family
+from chart_common import InputError, _display_text, _integer, _numbers, _objects, _require
 
 SWEEP_LOG_RATIO = 30.0   # a log frequency axis when the lines span more than this
 
@@ -14,12 +14,8 @@ def _sweep_modes(data, n_values):
     """Validate the tracked modes; return them with labels and colours
     (B1, B2, ..., A1, R1 by family, as in the Campbell diagram)."""
     modes = []
-    for i, mode in enumerate(_require(data, "modes", list)):
-        if not isinstance(mode, dict):
-            raise InputError(f"modes[{i}] is not an object")
-        family = mode.get("family")
-        if family not in CAMPBELL_FAMILIES:
-            raise InputError(f"modes[{i}] has unknown family {family!r}")
+    for i, mode in _objects(_require(data, "modes", list), "modes"):
+        family = _campbell_family(mode, f"modes[{i}]")
         index = _integer(mode.get("index"), f"modes[{i}].index")
         freqs = _numbers(mode.get("frequency_hz"), f"modes[{i}].frequency_hz")
         families = mode.get("families") or [family] * n_values

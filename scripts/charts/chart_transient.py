@@ -6,7 +6,7 @@ import numpy as np
 from matplotlib.collections import LineCollection, PolyCollection
 from matplotlib.patches import Patch
 
-from chart_common import InputError, _display_text, _number, _numbers, _place_label, _require
+from chart_common import InputError, _display_text, _number, _numbers, _optional_object, _place_label, _require
 
 TRANSIENT_SERIES = ("tip_lateral_m", "tip_axial_m", "tip_axial_velocity_m_s",
                     "axial_force_n")
@@ -58,14 +58,9 @@ def _transient_series(data):
 
 def _transient_spectrum(data):
     """Validate the spectrum; return (freq, lateral, axial) or None."""
-    spectrum = data.get("spectrum")
+    spectrum = _optional_object(data, "spectrum", ("frequency_hz", "lateral", "axial"))
     if spectrum is None:
         return None
-    if not isinstance(spectrum, dict):
-        raise InputError("'spectrum' is not an object")
-    for key in ("frequency_hz", "lateral", "axial"):
-        if key not in spectrum:
-            raise InputError(f"missing key 'spectrum.{key}'")
     freq = _array(spectrum["frequency_hz"], "spectrum.frequency_hz")
     if freq.size == 0:
         return None
