@@ -121,7 +121,7 @@ void find_crossings(SpeedSweep& sweep, const Tracked& t, CampbellDiagram& d, std
         if (curve.frequency_hz[s] <= 0 || curve.frequency_hz[s + 1] <= 0) continue;
         const Eigen::VectorXcd shape = t.modes[s].shapes.col(t.pick[i][s]);
         const auto g = [&](double speed) { return frequency_of(sweep, shape, speed) - line * speed; };
-        const double root = g1 == 0 ? speeds[s + 1] : illinois_root(g, speeds[s], g0, speeds[s + 1], g1);
+        const double root = g1 == 0 ? speeds[s + 1] : bracketed_root(g, speeds[s], g0, speeds[s + 1], g1);
         // Slope of g by a central difference on the sweep's modes.
         const double h = 1e-4 * (speeds[s + 1] - speeds[s]);
         const double lo = std::max(speeds[s], root - h), hi = std::min(speeds[s + 1], root + h);

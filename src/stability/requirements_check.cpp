@@ -100,7 +100,7 @@ std::vector<Tip> undamped_tips(const Scene& scene, const BladeModel& model, cons
         const double g0 = 2 * at[s][m] - n * k * speeds[s], g1 = 2 * at[s + 1][m] - n * k * speeds[s + 1];
         if (g0 == 0) tips.push_back({speeds[s], m + 1, n});
         if ((g0 < 0 && g1 > 0) || (g0 > 0 && g1 < 0)) {
-          tips.push_back({illinois_root(gap, speeds[s], g0, speeds[s + 1], g1), m + 1, n});
+          tips.push_back({bracketed_root(gap, speeds[s], g0, speeds[s + 1], g1), m + 1, n});
         }
         if (s + 2 == speeds.size() && g1 == 0) tips.push_back({speeds[s + 1], m + 1, n});
       }
