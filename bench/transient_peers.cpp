@@ -1,11 +1,8 @@
 // The transient benchmark's integrators side by side on one system (bench/run; built only with
-// -DBLADESTAB_BENCH=ON): the blade's response to its tip-load pulse train, x = [f; ḟ; W],
-//
-//   f̈ = M⁻¹(Ω² P_cf − K(Ω) f − C ḟ + F(t) (p_u − G f)),   Ẇ = F(t) ḟᵀ(p_u − G f) − ḟᵀ D ḟ,
-//
-// written out as src/transient.cpp writes it for load.mode = "force" without friction or follower
-// (the right-hand side is then smooth between the pulse edges, where F or F' jumps). Every
-// integrator stops exactly on each pulse edge and each whole revolution:
+// -DBLADESTAB_BENCH=ON): the blade's response to its tip-load pulse train, x = [f; ḟ; W], the
+// equations run_transient integrates (TransientSystem, transient_system.hpp), for load.mode = "force"
+// without friction or follower (the right-hand side is then smooth between the pulse edges, where
+// F or F' jumps). Every integrator stops exactly on each pulse edge and each whole revolution:
 //
 //   rkf45          bladestab's RKF45 (rkf45_integrate), adaptive, with run_transient's cap on the step
 //   rkf45-fixed    bladestab's RKF45 at run_transient's fixed step (one point, no tolerance)
@@ -37,12 +34,12 @@
 #include <sundials/sundials_context.h>
 
 #include "support/blas_threads.hpp"
-#include "bladestab/blade/damping.hpp"
 #include "bladestab/blade/model.hpp"
 #include "bladestab/stability/periodic_load.hpp"
 #include "bladestab/ltp/rkf45.hpp"
 #include "bladestab/scene/scene.hpp"
 #include "bladestab/transient/transient.hpp"
+#include "bladestab/transient/transient_system.hpp"
 
 namespace {
 
@@ -50,64 +47,44 @@ using namespace bladestab;
 constexpr double two_pi = 6.28318530717958647692;
 
 struct Problem {
+  Problem(const Scene& scene, const BladeModel& model, int revolutions);
+
   int n = 0;                 // dofs; the state has 2n + 1 entries
   double revolution_s = 0;   // one revolution
   int revolutions = 0;
-  PulseTrain pulses;
-  Eigen::MatrixXd MiK, MiC, MiG, D, G;
-  Eigen::VectorXd Mi_cf, Mi_axial, p_u;
+  TransientSystem system;
   Eigen::RowVectorXd tip_lateral, tip_axial;
   Eigen::VectorXd start;     // [equilibrium; 0; 0]
   double max_step_s = 0, fixed_step_s = 0;
   std::vector<double> stops; // pulse edges and whole revolutions, increasing, ending at the last revolution
 
+  const PulseTrain& pulses() const { return system.pulses(); }
   void rhs(double t, const double* x, double* dx) const {
-    const Eigen::Map<const Eigen::VectorXd> f(x, n), v(x + n, n);
-    Eigen::Map<Eigen::VectorXd> df(dx, n), dv(dx + n, n);
-    const double F = pulses.force(t);
-    df = v;
-    dv.noalias() = Mi_cf - MiK * f - MiC * v;
-    dx[2 * n] = D.size() ? -v.dot(D * v) : 0.0;
-    if (F == 0) return;
-    dv.noalias() += F * (Mi_axial - MiG * f);
-    dx[2 * n] += F * (p_u.dot(v) - f.dot(G * v));
+    Eigen::Map<Eigen::VectorXd> derivative(dx, 2 * n + 1);
+    system.derivative(t, Eigen::Map<const Eigen::VectorXd>(x, 2 * n + 1), derivative);
   }
 };
+
+Problem::Problem(const Scene& scene, const BladeModel& model, int revolutions)
+    : n(model.layout.size()), revolution_s(two_pi / scene.operation.speed_rad_s), revolutions(revolutions),
+      system(model, scene, TransientOptions{}), tip_lateral(model.tip_lateral), tip_axial(model.tip_axial) {
+  const double speed = scene.operation.speed_rad_s;
+  start = Eigen::VectorXd::Zero(2 * n + 1);
+  start.head(2 * n) = rotating_equilibrium(model, speed);
+  const double t_end = revolutions * revolution_s;
+  fixed_step_s = max_step_s = choose_fixed_step(model.stiffness(speed), model.M, t_end).step_s;  // as run_transient
+  stops = pulses().edges(0, t_end);
+  for (int r = 1; r <= revolutions; ++r) stops.push_back(r * revolution_s);
+  std::sort(stops.begin(), stops.end());
+  stops.erase(std::remove_if(stops.begin(), stops.end(), [&](double t) { return t <= 0 || t > t_end; }), stops.end());
+  stops.erase(std::unique(stops.begin(), stops.end()), stops.end());
+}
 
 Problem make_problem(const Scene& scene, int revolutions) {
   if (scene.load.mode != LoadMode::force || scene.load.friction != 0) {
     throw std::runtime_error("transient_peers: the benchmark's system is load.mode = \"force\" without friction");
   }
-  const BladeModel model = assemble_model(scene);
-  const double speed = scene.operation.speed_rad_s;
-  Problem p;
-  p.n = model.layout.size();
-  p.pulses = pulse_train(scene);
-  p.revolution_s = two_pi / speed;
-  p.revolutions = revolutions;
-  const Eigen::LLT<Eigen::MatrixXd> mass(model.M);
-  const Eigen::MatrixXd K = model.stiffness(speed);
-  const Eigen::MatrixXd D = damping_matrix(model, scene.damping, speed);
-  p.MiK = mass.solve(K);
-  p.MiC = mass.solve(Eigen::MatrixXd(D + model.gyroscopic(speed)));
-  p.MiG = mass.solve(model.G);
-  p.G = model.G;
-  if (!D.isZero(0)) p.D = D;
-  p.Mi_cf = mass.solve(model.steady_load(speed));
-  p.Mi_axial = mass.solve(Eigen::VectorXd(model.tip_axial.transpose()));
-  p.p_u = model.tip_axial.transpose();
-  p.tip_lateral = model.tip_lateral;
-  p.tip_axial = model.tip_axial;
-  p.start = Eigen::VectorXd::Zero(2 * p.n + 1);
-  p.start.head(2 * p.n) = rotating_equilibrium(model, speed);
-  const double t_end = revolutions * p.revolution_s;
-  p.fixed_step_s = p.max_step_s = choose_fixed_step(K, model.M, t_end).step_s;  // as run_transient
-  p.stops = p.pulses.edges(0, t_end);
-  for (int r = 1; r <= revolutions; ++r) p.stops.push_back(r * p.revolution_s);
-  std::sort(p.stops.begin(), p.stops.end());
-  p.stops.erase(std::remove_if(p.stops.begin(), p.stops.end(), [&](double t) { return t <= 0 || t > t_end; }), p.stops.end());
-  p.stops.erase(std::unique(p.stops.begin(), p.stops.end()), p.stops.end());
-  return p;
+  return Problem(scene, assemble_model(scene), revolutions);
 }
 
 struct Run {
@@ -135,7 +112,7 @@ Run run_rkf45(const Problem& p, double rtol, bool adaptive) {
   Eigen::VectorXd x = p.start;
   for (int r = 0; r < p.revolutions; ++r) {
     const double a = r * p.revolution_s, b = (r + 1) * p.revolution_s;
-    const StepStatistics s = rkf45_integrate(f, x, a, b, control, p.pulses.edges(a, b), {}, {});
+    const StepStatistics s = rkf45_integrate(f, x, a, b, control, p.pulses().edges(a, b), {}, {});
     run.steps += s.accepted + s.rejected;
     run.evaluations += s.evaluations;
     run.at_revolutions.push_back(x);

@@ -13,7 +13,7 @@
 #include "bladestab/modal/campbell.hpp"
 #include "bladestab/blade/damping.hpp"
 #include "bladestab/base/input_error.hpp"
-#include "bladestab/modal/mode_convergence.hpp"
+#include "bladestab/modal/basis_error.hpp"
 #include "support/scenes.hpp"
 
 using namespace bladestab;

@@ -2,7 +2,7 @@
 // beam, four terms per field): --format json and --format csv (check: json and junit) parsed, their
 // structure asserted, one number or more per command against a value computed here, and the charts
 // the commands draw (matplotlib, Debian's /usr/bin/python3) checked as files: PNG of
-// figsize × 150 dpi from scripts/charts.py (FIGSIZE 8 × 5.5 in; transient 10 × 7; sweep 11 × 5),
+// figsize × 150 dpi from scripts/charts/ (FIGSIZE 8 × 5.5 in; transient 10 × 7; sweep 11 × 5),
 // SVG non-empty.
 #include <catch2/catch.hpp>
 

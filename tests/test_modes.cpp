@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "bladestab/blade/damping.hpp"
-#include "bladestab/modal/mode_convergence.hpp"
+#include "bladestab/modal/basis_error.hpp"
 #include "bladestab/modal/modes.hpp"
 #include "reference/timoshenko_cantilever.hpp"
 #include "support/scenes.hpp"

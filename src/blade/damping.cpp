@@ -14,10 +14,7 @@ Eigen::MatrixXd damping_matrix(const BladeModel& model, const DampingSpec& spec,
     case DampingModel::none:
       return Eigen::MatrixXd::Zero(n, n);
     case DampingModel::paper:
-      if (speed <= 0) {
-        throw InputError(fmt::format("damping.model = \"paper\": C_D = (2ζ/Ω) K_S is undefined at Ω = {} rad/s; "
-                                     "use \"modal\" or \"rayleigh\" for speeds down to 0", speed));
-      }
+      check_damping_speed(spec, speed, "the speed Ω");
       return (2 * spec.ratio / speed) * model.elastic_stiffness();  // (37)
     case DampingModel::rayleigh: {
       // ζ(ω) = α/(2ω) + βω/2 equal to ζ at ω1 and ω2.

@@ -48,6 +48,57 @@ void check_model(const BladeModel& model, const BladeSpec& blade) {
       blade.inertia, blade.youngs_modulus, blade.density, to_string(model.spec.basis), model.spec.terms));
 }
 
+// Where the fields are sampled and summed: the blade, the basis size N, the quadrature points s
+// and weights w, and the first dof of each field.
+struct FieldQuadrature {
+  const BladeProperties& b;
+  BasisKind basis;
+  int N;
+  const Eigen::VectorXd &s, &w;
+  int th, lv, ax;
+};
+
+// The rotation field θ of the Timoshenko beam: rotary inertia, bending and shear stiffness (coupled
+// to v through the shear), centrifugal softening of θ.
+void add_rotation_field(BladeModel& model, const FieldQuadrature& q, const BasisSamples& V) {
+  const BladeProperties& b = q.b;
+  const int N = q.N, th = q.th, lv = q.lv;
+  const Eigen::VectorXd &s = q.s, &w = q.w;
+  const double kGA = b.kappa * b.shear_modulus * b.A;
+  const BasisSamples U = sample_basis(q.basis, FieldRole::rotation, N, b.L, s);
+  model.M.block(th, th, N, N) = gram(w * (b.rho * b.I), U.value, U.value);
+  model.K_S.block(th, th, N, N) = gram(w * (b.E * b.I), U.slope, U.slope) + gram(w * kGA, U.value, U.value);
+  model.K_S.block(th, lv, N, N) = -gram(w * kGA, U.value, V.slope);
+  model.K_S.block(lv, th, N, N) = model.K_S.block(th, lv, N, N).transpose();
+  model.K_S.block(lv, lv, N, N) = gram(w * kGA, V.slope, V.slope);
+  model.K_C1.block(th, th, N, N) = -gram(w * (b.rho * b.I), U.value, U.value);
+}
+
+// The axial field u: mass, stiffness, centrifugal softening and load, the tip's axial motion; with
+// the Coriolis coupling to v.
+void add_axial_field(BladeModel& model, const FieldQuadrature& q, const BasisSamples& V, const Eigen::VectorXd& tip,
+                     bool coriolis) {
+  const BladeProperties& b = q.b;
+  const int N = q.N, lv = q.lv, ax = q.ax;
+  const Eigen::VectorXd &s = q.s, &w = q.w;
+  const double cos_beta = std::cos(b.beta_rad);
+  const BasisSamples W = sample_basis(q.basis, FieldRole::axial, N, b.L, s);
+  const BasisSamples W_tip = sample_basis(q.basis, FieldRole::axial, N, b.L, tip);
+  model.M.block(ax, ax, N, N) = gram(w * (b.rho * b.A), W.value, W.value);
+  model.K_S.block(ax, ax, N, N) = gram(w * (b.E * b.A), W.slope, W.slope);
+  model.K_C1.block(ax, ax, N, N) = -gram(w * (b.rho * b.A), W.value, W.value);
+  // Steady centrifugal load ρAΩ²(r + s) per unit length on u.
+  model.P_cf1.segment(ax, N) = W.value.transpose() * (w * (b.rho * b.A)).cwiseProduct((b.r + s.array()).matrix());
+  model.tip_axial.segment(ax, N) = W_tip.value.row(0);
+  if (coriolis) {
+    // Coriolis force −2ρAΩ cos β u̇ on v and +2ρAΩ cos β v̇ on u (docs/theory.md §1), moved to the left
+    // side of (23): C_vu = 2ρA cos β ∫V_i W_j per Ω, C_uv = −C_vuᵀ.
+    const Eigen::MatrixXd C_vu = gram(w * (2 * b.rho * b.A * cos_beta), V.value, W.value);
+    model.C_G1.block(lv, ax, N, N) = C_vu;
+    model.C_G1.block(ax, lv, N, N) = -C_vu.transpose();
+  }
+}
+
 BladeModel assemble_blade(const BladeSpec& blade_spec, const ModelSpec& spec) {
   BladeModel model{BladeProperties(blade_spec), spec, {}, 0, {}, {}, {}, {}, {}, {}, {}, {}, {}};
   const BladeProperties& b = model.blade;
@@ -83,7 +134,6 @@ BladeModel assemble_blade(const BladeSpec& blade_spec, const ModelSpec& spec) {
   model.tip_slope = Eigen::RowVectorXd::Zero(n);
 
   const double cos_beta = std::cos(b.beta_rad);
-  const double kGA = b.kappa * b.shear_modulus * b.A;
 
   // Lateral field v.
   model.M.block(lv, lv, N, N) = gram(w * (b.rho * b.A), V.value, V.value);
@@ -93,36 +143,15 @@ BladeModel assemble_blade(const BladeSpec& blade_spec, const ModelSpec& spec) {
   model.tip_lateral.segment(lv, N) = V_tip.value.row(0);
   model.tip_slope.segment(lv, N) = V_tip.slope.row(0);
 
+  const FieldQuadrature q{b, spec.basis, N, s, w, th, lv, ax};
   if (timoshenko) {
-    const BasisSamples U = sample_basis(spec.basis, FieldRole::rotation, N, b.L, s);
-    model.M.block(th, th, N, N) = gram(w * (b.rho * b.I), U.value, U.value);
-    model.K_S.block(th, th, N, N) = gram(w * (b.E * b.I), U.slope, U.slope) + gram(w * kGA, U.value, U.value);
-    model.K_S.block(th, lv, N, N) = -gram(w * kGA, U.value, V.slope);
-    model.K_S.block(lv, th, N, N) = model.K_S.block(th, lv, N, N).transpose();
-    model.K_S.block(lv, lv, N, N) = gram(w * kGA, V.slope, V.slope);
-    model.K_C1.block(th, th, N, N) = -gram(w * (b.rho * b.I), U.value, U.value);
+    add_rotation_field(model, q, V);
   } else {
     // Euler–Bernoulli: θ = v', shear-rigid, no rotary inertia: U = ½∫EI v''².
     model.K_S.block(lv, lv, N, N) = gram(w * (b.E * b.I), V.curvature, V.curvature);
   }
 
-  if (spec.axial) {
-    const BasisSamples W = sample_basis(spec.basis, FieldRole::axial, N, b.L, s);
-    const BasisSamples W_tip = sample_basis(spec.basis, FieldRole::axial, N, b.L, tip);
-    model.M.block(ax, ax, N, N) = gram(w * (b.rho * b.A), W.value, W.value);
-    model.K_S.block(ax, ax, N, N) = gram(w * (b.E * b.A), W.slope, W.slope);
-    model.K_C1.block(ax, ax, N, N) = -gram(w * (b.rho * b.A), W.value, W.value);
-    // Steady centrifugal load ρAΩ²(r + s) per unit length on u.
-    model.P_cf1.segment(ax, N) = W.value.transpose() * (w * (b.rho * b.A)).cwiseProduct((b.r + s.array()).matrix());
-    model.tip_axial.segment(ax, N) = W_tip.value.row(0);
-    if (spec.coriolis) {
-      // Coriolis force −2ρAΩ cos β u̇ on v and +2ρAΩ cos β v̇ on u (docs/theory.md §1), moved to the left
-      // side of (23): C_vu = 2ρA cos β ∫V_i W_j per Ω, C_uv = −C_vuᵀ.
-      const Eigen::MatrixXd C_vu = gram(w * (2 * b.rho * b.A * cos_beta), V.value, W.value);
-      model.C_G1.block(lv, ax, N, N) = C_vu;
-      model.C_G1.block(ax, lv, N, N) = -C_vu.transpose();
-    }
-  }
+  if (spec.axial) add_axial_field(model, q, V, tip, spec.coriolis);
 
   // Quadrature sums are symmetric only to rounding; make M, K and G symmetric exactly.
   model.M = symmetrized(model.M);
@@ -140,7 +169,7 @@ BladeModel assemble_model(const Scene& scene) { return assemble_model(scene, sce
 BladeModel assemble_model(const Scene& scene, const ModelSpec& spec) {
   BladeModel model = assemble_blade(scene.blade, spec);
   // A static tip compression F_a = c F_cr is a constant tip tension −F_a: its geometric stiffness
-  // −F_a G joins the speed-free stiffness (SPEC (23), (40) with F(t) = −F_a), its axial push the
+  // −F_a G joins the speed-free stiffness (docs/theory.md (23), (40) with F(t) = −F_a), its axial push the
   // steady load (steady_load()).
   model.static_tip_force_n = -scene.operation.tip_compression_over_fcr * model.blade.critical_load();
   if (model.static_tip_force_n != 0) model.K_S += model.static_tip_force_n * model.G;

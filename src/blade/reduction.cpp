@@ -53,7 +53,7 @@ ReducedSystem reduce(const BladeModel& model, double speed, const Eigen::MatrixX
   // A model no larger than the reduced one would be is kept whole.
   if (spec.kind == ReductionKind::automatic && !reduction_keeps_whole(m, dofs)) {
     // A few modes of each load level (a subset solve: the whole decomposition at every map point
-    // was a tenth of a map's time).
+    // would take a tenth of a map's time).
     const UndampedModes unloaded = undamped_modes(model, speed, 0, m);
     if (unloaded.omega2(0) <= 0) throw statically_unstable();
     const Eigen::MatrixXd corrections = model.stiffness(speed).ldlt().solve(C * unloaded.shapes);

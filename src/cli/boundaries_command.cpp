@@ -11,7 +11,7 @@
 #include "bladestab/base/input_error.hpp"
 #include "bladestab/stability/instability_regions.hpp"
 #include "support/message_text.hpp"
-#include "bladestab/modal/mode_convergence.hpp"
+#include "bladestab/modal/basis_error.hpp"
 #include "bladestab/stability/periodic_load.hpp"
 #include "bladestab/stability/periodic_system.hpp"
 #include "bladestab/scene/scene_limits.hpp"

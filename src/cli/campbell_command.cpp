@@ -6,7 +6,7 @@
 #include "bladestab/modal/campbell.hpp"
 #include "bladestab/base/constants.hpp"
 #include "bladestab/base/input_error.hpp"
-#include "bladestab/modal/mode_convergence.hpp"
+#include "bladestab/modal/basis_error.hpp"
 #include "bladestab/scene/scene_limits.hpp"
 #include "chart.hpp"
 #include "commands.hpp"

@@ -1,5 +1,5 @@
 #pragma once
-// Charts are drawn by scripts/charts.py (compiled into the program) with Debian's matplotlib.
+// Charts are drawn by scripts/charts/ (compiled into the program) with Debian's matplotlib.
 #include <string>
 #include <utility>
 #include <vector>

@@ -9,7 +9,7 @@
 #include <fmt/format.h>
 
 #include "bladestab/base/input_error.hpp"
-#include "bladestab/modal/mode_convergence.hpp"
+#include "bladestab/modal/basis_error.hpp"
 #include "bladestab/stability/requirements_check.hpp"
 #include "commands.hpp"
 #include "json_output.hpp"

@@ -239,9 +239,6 @@ Command register_map(CLI::App& app) {
     o.engine_order = *order > 0 ? *order : scene.load.pulses_per_rev;
     const BladeModel model = assemble_model(scene);
     if (theta_plane) {
-      if (scene.operation.speed_rad_s <= 0 && scene.damping.model == DampingModel::paper) {
-        throw InputError("damping.model = \"paper\" needs operation.speed_rad_s > 0");
-      }
       if (command->count("--theta") == 0) {
         const double w1 = solve_modes(model, system_at(model, scene.operation.speed_rad_s, Eigen::MatrixXd::Zero(model.layout.size(), model.layout.size())),
                                       scene.operation.speed_rad_s, 1, EigenSolverKind::dense).modes.at(0).eigenvalue.imag();

@@ -7,7 +7,7 @@
 
 #include "bladestab/base/constants.hpp"
 #include "bladestab/base/input_error.hpp"
-#include "bladestab/modal/mode_convergence.hpp"
+#include "bladestab/modal/basis_error.hpp"
 #include "commands.hpp"
 #include "error_output.hpp"
 #include "finite_results.hpp"

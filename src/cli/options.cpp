@@ -8,7 +8,7 @@
 
 #include "bladestab/base/input_error.hpp"
 #include "support/message_text.hpp"
-#include "support/worker_threads.hpp"
+#include "support/work_pool.hpp"
 #include "number_options.hpp"
 #include "work_limits.hpp"
 
@@ -20,11 +20,12 @@ OutputFormat SceneOptions::output_format() const {
   return OutputFormat::table;
 }
 
-EigenSolverKind SceneOptions::eigen_solver() const {
-  if (solver == "dense") return EigenSolverKind::dense;
-  if (solver == "arpack") return EigenSolverKind::arpack;
-  return EigenSolverKind::automatic;
-}
+namespace {
+constexpr std::initializer_list<EigenSolverKind> solvers{EigenSolverKind::automatic, EigenSolverKind::dense,
+                                                         EigenSolverKind::arpack};
+}  // namespace
+
+EigenSolverKind SceneOptions::eigen_solver() const { return named(solver, solvers); }
 
 void add_scene_options(CLI::App& command, SceneOptions& options, const std::vector<std::string>& formats) {
   command.add_option("scene", options.path, "scene file (TOML)")->required();
@@ -38,7 +39,7 @@ void add_scene_options(CLI::App& command, SceneOptions& options, const std::vect
   command.add_option("--format", options.format, fmt::format("output: {} (default), {}", formats.front(), others))
       ->check(CLI::IsMember(formats));
   command.add_option("--solver", options.solver, "eigensolver: auto (default), dense (LAPACK) or arpack")
-      ->check(CLI::IsMember({"auto", "dense", "arpack"}));
+      ->check(CLI::IsMember(names_of(solvers)));
   add_work_limit_options(command);
 }
 

@@ -25,6 +25,23 @@ struct SceneOptions {
   EigenSolverKind eigen_solver() const;
 };
 
+// The value of an enumeration named `name` by the library's to_string, among `values`; the first
+// of them for a name that is none of theirs (the option's check has refused those). And the names,
+// for that check.
+template <class Enum>
+Enum named(const std::string& name, std::initializer_list<Enum> values) {
+  for (Enum v : values) {
+    if (name == to_string(v)) return v;
+  }
+  return *values.begin();
+}
+template <class Enum>
+std::vector<std::string> names_of(std::initializer_list<Enum> values) {
+  std::vector<std::string> names;
+  for (Enum v : values) names.emplace_back(to_string(v));
+  return names;
+}
+
 // Adds SCENE, --set, --format and --solver to a subcommand; --format takes one of `formats`, the
 // first the default (a command with outputs of its own, like `check`, lists them).
 void add_scene_options(CLI::App& command, SceneOptions& options,

@@ -23,13 +23,10 @@
 namespace bladestab::cli {
 namespace {
 
-FloquetMethod parse_method(const std::string& name) {
-  if (name == "hill") return FloquetMethod::hill;
-  if (name == "koopman-hill") return FloquetMethod::koopman_hill;
-  if (name == "monodromy") return FloquetMethod::monodromy;
-  if (name == "monodromy-rkf45") return FloquetMethod::monodromy_rkf45;
-  return FloquetMethod::automatic;
-}
+// In the order --help lists them.
+constexpr std::initializer_list<FloquetMethod> methods{FloquetMethod::hill, FloquetMethod::koopman_hill,
+                                                      FloquetMethod::monodromy, FloquetMethod::monodromy_rkf45,
+                                                      FloquetMethod::automatic};
 
 std::string truncation(const FloquetResult& r, bool exact_pulse) {
   if (r.method == FloquetMethod::monodromy_rkf45) return "RKF45 at 1/1000 of the tolerance and at 1/100 of that";
@@ -227,7 +224,7 @@ Command register_stability(CLI::App& app) {
   add_scene_options(*command, *options);
   add_threads_option(*command, *threads);
   command->add_option("--method", *method, "hill, koopman-hill, monodromy (Magnus), monodromy-rkf45 or auto (default)")
-      ->check(CLI::IsMember({"hill", "koopman-hill", "monodromy", "monodromy-rkf45", "auto"}));
+      ->check(CLI::IsMember(names_of(methods)));
   add_integer_option(*command, "--harmonics", *harmonics, 1, 60,
                      "Hill truncation q (default: raised until --tolerance is met)");
   add_number_option(*command, "--tolerance", *tolerance, AllowedRange::open(0, 1),
@@ -249,7 +246,7 @@ Command register_stability(CLI::App& app) {
                                    echoed(*export_path, 240)));
     }
     const StabilityAnswer answer = analyse_stability(
-        scene, {parse_method(*method), *harmonics, *tolerance, *threads,
+        scene, {named(*method, methods), *harmonics, *tolerance, *threads,
                 progress_reporter("stability: refinement levels", options->output_format() == OutputFormat::table)});
     if (exporting) export_matrices(*export_path, scene, answer, *tolerance);
     print(*options, scene, answer);

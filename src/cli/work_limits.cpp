@@ -4,7 +4,7 @@
 
 #include "bladestab/scene/allowed_range.hpp"
 #include "bladestab/base/input_error.hpp"
-#include "bladestab/modal/mode_convergence.hpp"
+#include "bladestab/modal/basis_error.hpp"
 #include "number_options.hpp"
 
 namespace bladestab::cli {

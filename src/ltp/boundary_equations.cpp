@@ -18,7 +18,7 @@ namespace {
 using cplx = std::complex<double>;
 constexpr double accept_imag = 1e-7;  // |Im| / |value| below which an eigenvalue counts as real
 
-// The harmonic set S: −1 family odd k, +1 family even k (K-th approximation).
+// The harmonic set S: multiplier −1 odd k, +1 even k (K-th approximation).
 std::vector<int> harmonic_set(int multiplier, int K) {
   std::vector<int> S;
   if (multiplier < 0) {
@@ -44,7 +44,7 @@ struct Pencil {
 };
 
 // T for the harmonic set S (sorted, symmetric about 0): the column of slot k > 0 holds a_k, that of
-// slot −k holds b_k, and slot 0 (the +1 family's constant term) is real already.
+// slot −k holds b_k, and slot 0 (the +1 sign's constant term) is real already.
 Eigen::MatrixXcd real_form(const std::vector<int>& harmonics) {
   const int H = static_cast<int>(harmonics.size());
   const double r = std::sqrt(0.5);
@@ -154,7 +154,7 @@ bool classify(const Pencil& p, const Eigen::VectorXcd& x, int approximation, Bou
   return approximation == 1 || b.order < p.harmonics.back();
 }
 
-void add_family(const LinearPeriodicSystem& sys, int multiplier, int approximation, double scale, std::vector<Boundary>& out) {
+void add_boundaries_of_sign(const LinearPeriodicSystem& sys, int multiplier, int approximation, double scale, std::vector<Boundary>& out) {
   const Pencil p = harmonic_balance(sys, multiplier, approximation);
   const Eigen::Index N = p.K0.rows();
   // (K + θC + θ²M)c = 0 with μ = 1/θ: (μ²K + μC + M)c = 0, linearized with K invertible; μ = 0
@@ -177,12 +177,12 @@ void add_family(const LinearPeriodicSystem& sys, int multiplier, int approximati
   }
 }
 
-// The multipliers asked for: both for `family` 0, else the one given.
-std::vector<int> families(int family) {
-  if (family != 0 && family != -1 && family != 1) {
-    throw std::invalid_argument(fmt::format("boundary family {}: the multiplier is -1 or +1 (0 for both)", family));
+// The multipliers asked for: both for `sign` 0, else the one given.
+std::vector<int> multiplier_signs(int sign) {
+  if (sign != 0 && sign != -1 && sign != 1) {
+    throw std::invalid_argument(fmt::format("boundary multiplier sign {}: -1 or +1 (0 for both)", sign));
   }
-  return family == 0 ? std::vector<int>{-1, 1} : std::vector<int>{family};
+  return sign == 0 ? std::vector<int>{-1, 1} : std::vector<int>{sign};
 }
 
 }  // namespace
@@ -216,19 +216,19 @@ double multiplier_gap(const LinearPeriodicSystem& system, double system_peak_for
 }
 
 std::vector<Boundary> boundary_frequencies(const LinearPeriodicSystem& sys, double peak_force_n, int approximation,
-                                           int family) {
+                                           int multiplier_sign) {
   // The system's load is already at peak_force_n; K1 carries it, so scale 1.
   std::vector<Boundary> out;
-  for (int multiplier : families(family)) add_family(sys, multiplier, approximation, 1.0, out);
+  for (int multiplier : multiplier_signs(multiplier_sign)) add_boundaries_of_sign(sys, multiplier, approximation, 1.0, out);
   for (Boundary& b : out) b.peak_force_n = peak_force_n;
   std::sort(out.begin(), out.end(), [](const Boundary& a, const Boundary& b) { return a.theta_rad_s < b.theta_rad_s; });
   return out;
 }
 
 std::vector<Boundary> boundary_loads(const LinearPeriodicSystem& sys, double system_peak_force_n, double theta,
-                                     int approximation, int family) {
+                                     int approximation, int multiplier_sign) {
   std::vector<Boundary> out;
-  for (int multiplier : families(family)) {
+  for (int multiplier : multiplier_signs(multiplier_sign)) {
     const Pencil p = harmonic_balance(sys, multiplier, approximation);
     // (A + s K₁) c = 0 with A = K₀ + θC₁ + θ²M₁ and s = F_max / system_peak_force_n: A⁻¹K₁ c = −(1/s) c.
     const Eigen::MatrixXd A = p.K0 + theta * p.C1 + theta * theta * p.M1;

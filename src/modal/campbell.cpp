@@ -2,16 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
-#include <future>
 #include <memory>
 #include <optional>
 
 #include "bladestab/base/constants.hpp"
-#include "bladestab/modal/mode_convergence.hpp"
+#include "bladestab/modal/basis_error.hpp"
 #include "bladestab/modal/mode_tracking.hpp"
 #include "support/scalar_search.hpp"
 #include "bladestab/modal/speed_sweep.hpp"
-#include "support/worker_threads.hpp"
+#include "support/work_pool.hpp"
 
 namespace bladestab {
 namespace {
@@ -122,7 +121,7 @@ void find_crossings(SpeedSweep& sweep, const Tracked& t, CampbellDiagram& d, std
         if (curve.frequency_hz[s] <= 0 || curve.frequency_hz[s + 1] <= 0) continue;
         const Eigen::VectorXcd shape = t.modes[s].shapes.col(t.pick[i][s]);
         const auto g = [&](double speed) { return frequency_of(sweep, shape, speed) - line * speed; };
-        const double root = g1 == 0 ? speeds[s + 1] : illinois_root(g, speeds[s], g0, speeds[s + 1], g1);
+        const double root = g1 == 0 ? speeds[s + 1] : bracketed_root(g, speeds[s], g0, speeds[s + 1], g1);
         // Slope of g by a central difference on the sweep's modes.
         const double h = 1e-4 * (speeds[s + 1] - speeds[s]);
         const double lo = std::max(speeds[s], root - h), hi = std::min(speeds[s + 1], root + h);
@@ -297,17 +296,171 @@ double worst_total(const CampbellDiagram& d, const std::vector<std::vector<Error
   return worst;
 }
 
-void take_worst(ErrorBudget& worst, const ErrorBudget& b) {
-  worst.basis = std::max(worst.basis, b.basis);
-  worst.reduction = std::max(worst.reduction, b.reduction);
-  worst.load = std::max(worst.load, b.load);
-  worst.method = std::max(worst.method, b.method);
-  for (const std::string& u : b.unbounded) {
-    if (std::find(worst.unbounded.begin(), worst.unbounded.end(), u) == worst.unbounded.end()) {
-      worst.unbounded.push_back(u);
+// The largest whole estimate and rounding part over the screened points.
+struct Screening {
+  double worst = 0, rounding = 0;
+};
+
+// The diagram of one round with every point's budget.
+struct RoundDiagram {
+  CampbellDiagram diagram;
+  Tracked tracked;
+  std::vector<std::vector<ErrorBudget>> budget;  // [curve][speed]
+};
+
+// One round of the estimate at a fixed basis: the base model, its richer models (one for the
+// Legendre basis, two for the sine basis) and their sweeps. The richer models' sweeps run beside
+// the base model's (each sweep is its own; BLAS runs single-threaded and is thread-safe), or in
+// turn where one thread is allowed. The richer models are solved densely where they are solved
+// whole, as `modes` does (ARPACK is for the lowest modes of large models, and some damped pairs
+// defeat it). Throws ReducedSweepUnavailable where a reduced sweep cannot certify some speed.
+class EstimateRound {
+public:
+  EstimateRound(const Scene& scene, const ModelSpec& spec, const CampbellOptions& options, bool dense)
+      : scene_(scene), options_(options), dense_(dense),
+        model_(std::make_unique<BladeModel>(assemble_model(scene, spec))),
+        count_(solve_count(*model_, options)), tracked_(tracked_count(*model_, options)), terms_{spec.terms} {
+    for (int level = 0; level < (spec.basis == BasisKind::sine ? 2 : 1); ++level) {
+      ModelSpec richer = spec;
+      richer.terms = reference_terms(spec.basis, terms_.back());
+      terms_.push_back(richer.terms);
+      refs_.push_back({std::make_unique<BladeModel>(assemble_model(scene, richer)), nullptr, {}});
     }
+    const EigenSolverKind richer_solver =
+        options.solver == EigenSolverKind::arpack ? EigenSolverKind::dense : options.solver;
+    run_indexed(2, options.threads, [&](std::size_t part) {
+      if (part == 0) {
+        base_ = sweep_of(*model_, options.solver);
+        return;
+      }
+      for (Reference& r : refs_) {
+        r.sweep = sweep_of(*r.model, reduced_sweep_applies(*r.model, scene.damping) ? richer_solver
+                                                                                    : EigenSolverKind::dense);
+      }
+    });
+    update_maps();
   }
-}
+
+  // The screen at the ends and the middle of the speeds (the reduced sweeps' samples, where they
+  // are exact), over the modes that oscillate.
+  Screening screen() {
+    const double lo = options_.speeds_rad_s.front(), hi = options_.speeds_rad_s.back();
+    Screening s;
+    for (double speed : {lo, 0.5 * (lo + hi), hi}) {
+      const SpeedModes here = base_->at(speed, true);
+      std::vector<SpeedModes> richer;
+      for (Reference& r : refs_) richer.push_back(r.sweep->at(speed, true));
+      for (int j = 0; j < tracked_; ++j) {
+        if (here.frequency_hz[j] > 0) {
+          const ErrorBudget b = point_budget(here, j, here.shapes.col(j), refs_, pointers(richer), terms_);
+          s.worst = std::max(s.worst, b.total());
+          s.rounding = std::max(s.rounding, b.method);
+        }
+      }
+    }
+    return s;
+  }
+
+  // The base model's diagram at every speed, the richer models solved beside it, and the budget of
+  // every point.
+  RoundDiagram diagram(const std::function<void(int, int)>& progress) {
+    const std::vector<double>& speeds = options_.speeds_rad_s;
+    RoundDiagram d;
+    std::vector<std::vector<SpeedModes>> richer(refs_.size());
+    run_indexed(2, options_.threads, [&](std::size_t part) {
+      if (part == 0) {
+        d.tracked = track(*base_, *model_, options_, d.diagram, progress);
+        return;
+      }
+      for (std::size_t r = 0; r < refs_.size(); ++r) richer[r] = refs_[r].sweep->solve(speeds);
+    });
+    update_maps();
+    const int ns = static_cast<int>(speeds.size());
+    d.budget.assign(tracked_, std::vector<ErrorBudget>(ns));
+    std::vector<const SpeedModes*> at(refs_.size());
+    for (int s = 0; s < ns; ++s) {
+      for (std::size_t r = 0; r < refs_.size(); ++r) at[r] = &richer[r][s];
+      const SpeedModes& here = d.tracked.modes[s];
+      for (int i = 0; i < tracked_; ++i) {
+        const int j = d.tracked.pick[i][s];
+        d.budget[i][s] = point_budget(here, j, here.shapes.col(j), refs_, at, terms_);
+      }
+    }
+    return d;
+  }
+
+  // The result: the crossings' and closest approaches' budgets from their frequencies' (relative).
+  CampbellWithErrors with_engine_order_budgets(RoundDiagram solved, double tolerance) {
+    CampbellDiagram& diagram = solved.diagram;
+    std::vector<Eigen::VectorXcd> shapes;
+    find_crossings(*base_, solved.tracked, diagram, shapes);
+    std::vector<ErrorBudget> crossing_budget;
+    for (std::size_t c = 0; c < shapes.size(); ++c) {
+      const EngineOrderCrossing& x = diagram.crossings[c];
+      const ErrorBudget f = frequency_budget(x.speed_rad_s, shapes[c]);
+      crossing_budget.push_back(scaled(f, x.amplification, x.amplification * x.residual));
+    }
+    std::vector<ErrorBudget> approach_budget;
+    if (options_.closest_approaches) {
+      find_closest_approaches(*base_, solved.tracked, diagram, shapes);
+      for (std::size_t c = 0; c < shapes.size(); ++c) {
+        const EngineOrderApproach& a = diagram.approaches[c];
+        // distance = |1 − kΩ/(2πf)|: a relative error ε of f moves it by (kΩ/2πf)·ε.
+        const double sensitivity = a.engine_order * a.speed_rad_s / (two_pi * a.frequency_hz);
+        const ErrorBudget f = frequency_budget(a.speed_rad_s, shapes[c]);
+        approach_budget.push_back(scaled(f, sensitivity, sensitivity * f.reduction));
+      }
+    }
+    return CampbellWithErrors{std::move(*model_),
+                              std::move(diagram),
+                              tolerance,
+                              std::vector<int>(terms_.begin() + 1, terms_.end()),
+                              std::move(solved.budget),
+                              std::move(crossing_budget),
+                              std::move(approach_budget)};
+  }
+
+private:
+  std::unique_ptr<SpeedSweep> sweep_of(const BladeModel& m, EigenSolverKind solver) const {
+    const double lo = options_.speeds_rad_s.front(), hi = options_.speeds_rad_s.back();
+    return dense_ ? make_dense_speed_sweep(m, scene_.damping, count_, solver)
+                  : make_speed_sweep(m, scene_.damping, count_, solver, options_.reduction_tolerance, lo, hi);
+  }
+  // The base sweep's coordinates in each richer sweep's (its basis may have grown since).
+  void update_maps() {
+    for (Reference& r : refs_) r.map = coordinate_map(*base_, *model_, *r.sweep, *r.model);
+  }
+  static std::vector<const SpeedModes*> pointers(const std::vector<SpeedModes>& modes) {
+    std::vector<const SpeedModes*> at;
+    for (const SpeedModes& m : modes) at.push_back(&m);
+    return at;
+  }
+  // The budget of the frequency followed by `shape` at `speed` (relative).
+  ErrorBudget frequency_budget(double speed, const Eigen::VectorXcd& shape) {
+    const SpeedModes here = base_->at(speed, true);
+    std::vector<SpeedModes> there;
+    for (Reference& r : refs_) there.push_back(r.sweep->at(speed, true));
+    const int j = most_like(here, shape);
+    return point_budget(here, j, here.shapes.col(j), refs_, pointers(there), terms_);
+  }
+  // A frequency's basis and method parts times `factor`, and the given reduction part.
+  static ErrorBudget scaled(const ErrorBudget& f, double factor, double reduction) {
+    ErrorBudget b;
+    b.basis = factor * f.basis;
+    b.reduction = reduction;
+    b.method = factor * f.method;
+    return b;
+  }
+
+  const Scene& scene_;
+  const CampbellOptions& options_;
+  bool dense_;
+  std::unique_ptr<BladeModel> model_;
+  int count_, tracked_;
+  std::vector<int> terms_;  // the base model's and each richer model's
+  std::vector<Reference> refs_;
+  std::unique_ptr<SpeedSweep> base_;
+};
 
 }  // namespace
 
@@ -319,175 +472,52 @@ CampbellDiagram campbell_diagram(const BladeModel& model, const DampingSpec& dam
 ErrorBudget CampbellWithErrors::worst() const {
   ErrorBudget w;
   for (const auto& curve : budget) {
-    for (const ErrorBudget& b : curve) take_worst(w, b);
+    for (const ErrorBudget& b : curve) w.raise_to(b);
   }
-  for (const ErrorBudget& b : crossing_budget) take_worst(w, b);
+  for (const ErrorBudget& b : crossing_budget) w.raise_to(b);
   return w;
 }
 
 ErrorBudget CampbellWithErrors::worst_at(std::size_t speed) const {
   ErrorBudget w;
-  for (const auto& curve : budget) take_worst(w, curve[speed]);
+  for (const auto& curve : budget) w.raise_to(curve[speed]);
   return w;
 }
 
 CampbellWithErrors campbell_with_error_estimate(const Scene& scene, const CampbellOptions& options, double tolerance,
                                                 const std::function<void(int, int)>& progress) {
   check_tolerance(tolerance);
-  const std::vector<double>& speeds = options.speeds_rad_s;
-  const double lo = speeds.front(), hi = speeds.back();
   CampbellOptions wanted = options;
-  // The richer models' solves beside the base model's, or in turn where one thread is allowed.
-  const std::launch richer_policy = beside_or_deferred(options.threads);
   wanted.reduction_tolerance = tolerance / 20;
   ModelSpec spec = scene.model;
   bool dense = false;  // set when a reduced sweep could not certify some speed
+  const auto raise = [&](double estimate) {
+    const std::optional<int> next = terms_for_tolerance(spec.basis, spec.terms, estimate, tolerance);
+    if (!next) throw tolerance_not_met(tolerance, spec, estimate);
+    spec.terms = *next;
+  };
   while (true) {
-    auto model = std::make_unique<BladeModel>(assemble_model(scene, spec));
-    const int count = solve_count(*model, wanted), nt = tracked_count(*model, wanted);
-    // The richer models are solved densely where they are solved whole, as `modes` does (ARPACK
-    // is for the lowest modes of large models, and some damped pairs defeat it).
-    const auto sweep_of = [&](const BladeModel& m, int modes, EigenSolverKind solver) {
-      return dense ? make_dense_speed_sweep(m, scene.damping, modes, solver)
-                   : make_speed_sweep(m, scene.damping, modes, solver, wanted.reduction_tolerance, lo, hi);
-    };
-    std::vector<int> terms{spec.terms};
-    std::vector<Reference> refs;
-    for (int level = 0; level < (spec.basis == BasisKind::sine ? 2 : 1); ++level) {
-      ModelSpec richer = spec;
-      richer.terms = reference_terms(spec.basis, terms.back());
-      terms.push_back(richer.terms);
-      refs.push_back({std::make_unique<BladeModel>(assemble_model(scene, richer)), nullptr, {}});
-    }
-    const auto raise = [&](double estimate) {
-      const std::optional<int> next = terms_for_tolerance(spec.basis, spec.terms, estimate, tolerance);
-      if (!next) throw tolerance_not_met(tolerance, spec, estimate);
-      spec.terms = *next;
-    };
     try {
-      // The richer models' sweeps run beside the base model's, on a second thread (each sweep is
-      // its own; BLAS runs single-threaded and is thread-safe).
-      const EigenSolverKind richer_solver =
-          wanted.solver == EigenSolverKind::arpack ? EigenSolverKind::dense : wanted.solver;
-      auto richer_sweeps = std::async(richer_policy, [&] {
-        for (Reference& r : refs) {
-          r.sweep = reduced_sweep_applies(*r.model, scene.damping) ? sweep_of(*r.model, count, richer_solver)
-                                                                   : sweep_of(*r.model, count, EigenSolverKind::dense);
-        }
-      });
-      std::unique_ptr<SpeedSweep> base;
-      try {
-        base = sweep_of(*model, count, wanted.solver);
-      } catch (...) {
-        if (richer_policy == std::launch::async) richer_sweeps.wait();
-        throw;
-      }
-      richer_sweeps.get();
-      const auto maps = [&] {
-        for (Reference& r : refs) r.map = coordinate_map(*base, *model, *r.sweep, *r.model);
-      };
-      // Screen at the ends and the middle (the reduced sweeps' samples, where they are exact): a
-      // basis that misses there is raised before the whole sweep.
-      maps();
-      double screened = 0, rounding = 0;
-      for (double speed : {lo, 0.5 * (lo + hi), hi}) {
-        const SpeedModes here = base->at(speed, true);
-        std::vector<SpeedModes> richer;
-        for (Reference& r : refs) richer.push_back(r.sweep->at(speed, true));
-        std::vector<const SpeedModes*> at;
-        for (const SpeedModes& m : richer) at.push_back(&m);
-        for (int j = 0; j < nt; ++j) {
-          if (here.frequency_hz[j] > 0) {
-            const ErrorBudget b = point_budget(here, j, here.shapes.col(j), refs, at, terms);
-            screened = std::max(screened, b.total());
-            rounding = std::max(rounding, b.method);
-          }
-        }
-      }
-      if (rounding > tolerance) throw tolerance_below_rounding(tolerance, rounding);
-      if (screened > tolerance) {
-        raise(screened);
+      EstimateRound round(scene, spec, wanted, dense);
+      // Screen at the ends and the middle: a basis that misses there is raised before the whole sweep.
+      const Screening screened = round.screen();
+      if (screened.rounding > tolerance) throw tolerance_below_rounding(tolerance, screened.rounding);
+      if (screened.worst > tolerance) {
+        raise(screened.worst);
         continue;
       }
-
-      CampbellDiagram diagram;
-      std::vector<std::vector<SpeedModes>> richer(refs.size());
-      auto richer_solved = std::async(richer_policy, [&] {
-        for (std::size_t r = 0; r < refs.size(); ++r) richer[r] = refs[r].sweep->solve(speeds);
-      });
-      Tracked t;
-      try {
-        t = track(*base, *model, wanted, diagram, progress);
-      } catch (...) {
-        if (richer_policy == std::launch::async) richer_solved.wait();
-        throw;
-      }
-      richer_solved.get();
-      maps();
-      const int ns = static_cast<int>(speeds.size());
-      std::vector<std::vector<ErrorBudget>> budget(nt, std::vector<ErrorBudget>(ns));
-      std::vector<const SpeedModes*> at(refs.size());
-      for (int s = 0; s < ns; ++s) {
-        for (std::size_t r = 0; r < refs.size(); ++r) at[r] = &richer[r][s];
-        const SpeedModes& here = t.modes[s];
-        for (int i = 0; i < nt; ++i) {
-          const int j = t.pick[i][s];
-          budget[i][s] = point_budget(here, j, here.shapes.col(j), refs, at, terms);
-        }
-      }
-      const double worst = worst_total(diagram, budget);
+      RoundDiagram solved = round.diagram(progress);
+      const double worst = worst_total(solved.diagram, solved.budget);
       if (worst > tolerance) {
-        for (const auto& curve : budget) {
+        double rounding = screened.rounding;
+        for (const auto& curve : solved.budget) {
           for (const ErrorBudget& b : curve) rounding = std::max(rounding, b.method);
         }
         if (rounding > tolerance) throw tolerance_below_rounding(tolerance, rounding);
         raise(worst);
         continue;
       }
-
-      // The budget of the frequency followed by `shape` at `speed` (relative).
-      const auto frequency_budget = [&](double speed, const Eigen::VectorXcd& shape) {
-        const SpeedModes here = base->at(speed, true);
-        std::vector<SpeedModes> there;
-        for (Reference& r : refs) there.push_back(r.sweep->at(speed, true));
-        for (std::size_t r = 0; r < refs.size(); ++r) at[r] = &there[r];
-        const int j = most_like(here, shape);
-        return point_budget(here, j, here.shapes.col(j), refs, at, terms);
-      };
-      std::vector<Eigen::VectorXcd> shapes;
-      find_crossings(*base, t, diagram, shapes);
-      std::vector<ErrorBudget> crossing_budget;
-      for (std::size_t c = 0; c < shapes.size(); ++c) {
-        const EngineOrderCrossing& x = diagram.crossings[c];
-        const ErrorBudget f = frequency_budget(x.speed_rad_s, shapes[c]);
-        ErrorBudget b;
-        b.basis = x.amplification * f.basis;
-        b.reduction = x.amplification * x.residual;
-        b.method = x.amplification * f.method;
-        crossing_budget.push_back(b);
-      }
-      std::vector<ErrorBudget> approach_budget;
-      if (wanted.closest_approaches) {
-        find_closest_approaches(*base, t, diagram, shapes);
-        for (std::size_t c = 0; c < shapes.size(); ++c) {
-          const EngineOrderApproach& a = diagram.approaches[c];
-          // distance = |1 − kΩ/(2πf)|: a relative error ε of f moves it by (kΩ/2πf)·ε.
-          const double sensitivity = a.engine_order * a.speed_rad_s / (two_pi * a.frequency_hz);
-          const ErrorBudget f = frequency_budget(a.speed_rad_s, shapes[c]);
-          ErrorBudget b;
-          b.basis = sensitivity * f.basis;
-          b.reduction = sensitivity * f.reduction;
-          b.method = sensitivity * f.method;
-          approach_budget.push_back(b);
-        }
-      }
-      return CampbellWithErrors{std::move(*model),
-                                std::move(diagram),
-                                tolerance,
-                                std::vector<int>(terms.begin() + 1, terms.end()),
-                                std::move(budget),
-                                std::move(crossing_budget),
-                                std::move(approach_budget)};
+      return round.with_engine_order_budgets(std::move(solved), tolerance);
     } catch (const ReducedSweepUnavailable&) {
       dense = true;
     }

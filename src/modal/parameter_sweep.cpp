@@ -3,17 +3,15 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <exception>
 #include <optional>
-#include <thread>
 
 #include <fmt/format.h>
 
 #include "bladestab/base/input_error.hpp"
-#include "bladestab/modal/mode_convergence.hpp"
+#include "bladestab/modal/basis_error.hpp"
 #include "bladestab/modal/mode_tracking.hpp"
 #include "bladestab/scene/scene.hpp"
-#include "support/worker_threads.hpp"
+#include "support/work_pool.hpp"
 
 namespace bladestab {
 namespace {
@@ -31,7 +29,7 @@ void check_key_form(const std::string& key) {
 
 // The scene at one value. The scene without the swept key was read first, so what fails here
 // fails because of the key or its value.
-Scene scene_at(const std::string& text, const std::string& source, std::vector<std::string> overrides,
+Scene scene_with_value(const std::string& text, const std::string& source, std::vector<std::string> overrides,
                const ParameterSweepOptions& o, double value) {
   overrides.push_back(o.key + "=" + scene_value_text(value));
   try {
@@ -71,6 +69,78 @@ Eigen::MatrixXcd shapes_of(const ModalSolution& solution, const std::vector<int>
   for (std::size_t i = 0; i < count; ++i) shapes.col(i) = solution.modes[pick.empty() ? i : pick[i]].shape;
   return shapes;
 }
+
+// The sweep's curves, built value by value in order: the first value's lowest modes, followed by
+// their shapes while the dofs stay the same, by frequency order where they change.
+class SweepTracker {
+public:
+  explicit SweepTracker(const ParameterSweepOptions& o) : o_(o) {}
+
+  // Value v's modes joined to the curves.
+  void add(int v, const Scene& scene, const ConvergedModes& here) {
+    const ModalSolution& solution = here.solution;
+    const int n = here.model.layout.size(), available = static_cast<int>(solution.modes.size());
+    std::vector<double> correlation;
+    if (v == 0) {
+      first_model_ = here.model;
+      first_solver_ = solution.solver;
+      const int tracked = std::min(o_.mode_count, available);
+      modes_.resize(tracked);
+      pick_.resize(tracked);
+      for (int i = 0; i < tracked; ++i) {
+        pick_[i] = i;
+        modes_[i].index = i + 1;
+        modes_[i].family = solution.modes[i].family;
+      }
+      correlation.assign(tracked, 1.0);
+      matched_by_.push_back(ModeMatch::first);
+    } else if (n == dofs_.back()) {
+      // Same dofs: the mode most like each tracked shape, by MAC in this value's mass matrix.
+      pick_ = assign_by_correlation(modal_assurance_matrix(previous_shapes_, shapes_of(solution), here.model.M),
+                                    correlation);
+      matched_by_.push_back(ModeMatch::shape);
+    } else {
+      // Other dofs (another basis size or field set): the shapes do not compare; by frequency order.
+      for (std::size_t i = 0; i < pick_.size(); ++i) pick_[i] = static_cast<int>(i);
+      correlation.assign(pick_.size(), not_matched_by_shape);
+      matched_by_.push_back(ModeMatch::order);
+    }
+    if (std::any_of(pick_.begin(), pick_.end(), [&](int k) { return k < 0 || k >= available; })) {
+      throw ParameterError("count", fmt::format("{}: the model at {} = {} has only {} modes", o_.mode_count, o_.key,
+                                                scene_value_text(o_.values[v]), available));
+    }
+    for (std::size_t i = 0; i < pick_.size(); ++i) {
+      const Mode& m = solution.modes[pick_[i]];
+      SweptMode& curve = modes_[i];
+      curve.families.push_back(m.family);
+      curve.frequency_hz.push_back(m.frequency_hz);
+      curve.lambda.push_back(m.lambda);
+      curve.damping_ratio.push_back(m.damping_ratio);
+      curve.correlation.push_back(correlation[i]);
+      curve.error_estimate.push_back(here.budget(pick_[i]).total());
+    }
+    previous_shapes_ = shapes_of(solution, pick_);
+    speeds_.push_back(scene.operation.speed_rad_s);
+    dofs_.push_back(n);
+    reference_terms_.push_back(here.reference_terms);
+  }
+
+  ParameterSweep sweep() {
+    return ParameterSweep{std::move(*first_model_),    o_.key,          o_.values, std::move(speeds_), std::move(dofs_),
+                          std::move(reference_terms_), std::move(matched_by_), first_solver_, std::move(modes_)};
+  }
+
+private:
+  const ParameterSweepOptions& o_;
+  std::vector<SweptMode> modes_;
+  std::vector<double> speeds_;
+  std::vector<int> dofs_, reference_terms_;
+  std::vector<ModeMatch> matched_by_;
+  std::optional<BladeModel> first_model_;
+  EigenSolverKind first_solver_ = EigenSolverKind::dense;
+  std::vector<int> pick_;             // per tracked mode: its index among this value's modes
+  Eigen::MatrixXcd previous_shapes_;  // the tracked modes' shapes at the previous value
+};
 
 }  // namespace
 
@@ -114,95 +184,31 @@ ParameterSweep parameter_sweep(const std::string& text, const std::string& sourc
   if (o.values.size() < 2) throw ParameterError("values", fmt::format("{}: needs at least 2 values", o.values_text));
   parse_scene(text, source, overrides);  // the scene itself, before the key is touched
 
-  const int nv = static_cast<int>(o.values.size());
-  std::vector<SweptMode> modes;
-  std::vector<double> speeds;
-  std::vector<int> dofs, reference_terms;
-  std::vector<ModeMatch> matched_by;
-  std::optional<BladeModel> first_model;
-  EigenSolverKind first_solver = EigenSolverKind::dense;
-  std::vector<int> pick;            // per tracked mode: its index among this value's modes
-  Eigen::MatrixXcd previous_shapes; // the tracked modes' shapes at the previous value
-
-  // One value's modes joined to the curves.
-  const auto track = [&](int v, const Scene& scene, const ConvergedModes& here) {
-    const ModalSolution& solution = here.solution;
-    const int n = here.model.layout.size(), available = static_cast<int>(solution.modes.size());
-    std::vector<double> correlation;
-    if (v == 0) {
-      first_model = here.model;
-      first_solver = solution.solver;
-      const int tracked = std::min(o.mode_count, available);
-      modes.resize(tracked);
-      pick.resize(tracked);
-      for (int i = 0; i < tracked; ++i) {
-        pick[i] = i;
-        modes[i].index = i + 1;
-        modes[i].family = solution.modes[i].family;
-      }
-      correlation.assign(tracked, 1.0);
-      matched_by.push_back(ModeMatch::first);
-    } else if (n == dofs.back()) {
-      // Same dofs: the mode most like each tracked shape, by MAC in this value's mass matrix.
-      pick = assign_by_correlation(modal_assurance_matrix(previous_shapes, shapes_of(solution), here.model.M),
-                                   correlation);
-      matched_by.push_back(ModeMatch::shape);
-    } else {
-      // Other dofs (another basis size or field set): the shapes do not compare; by frequency order.
-      for (std::size_t i = 0; i < pick.size(); ++i) pick[i] = static_cast<int>(i);
-      correlation.assign(pick.size(), not_matched_by_shape);
-      matched_by.push_back(ModeMatch::order);
-    }
-    if (std::any_of(pick.begin(), pick.end(), [&](int k) { return k < 0 || k >= available; })) {
-      throw ParameterError("count", fmt::format("{}: the model at {} = {} has only {} modes", o.mode_count, o.key,
-                                   scene_value_text(o.values[v]), available));
-    }
-    for (std::size_t i = 0; i < pick.size(); ++i) {
-      const Mode& m = solution.modes[pick[i]];
-      SweptMode& curve = modes[i];
-      curve.families.push_back(m.family);
-      curve.frequency_hz.push_back(m.frequency_hz);
-      curve.lambda.push_back(m.lambda);
-      curve.damping_ratio.push_back(m.damping_ratio);
-      curve.correlation.push_back(correlation[i]);
-      curve.error_estimate.push_back(here.budget(pick[i]).total());
-    }
-    previous_shapes = shapes_of(solution, pick);
-    speeds.push_back(scene.operation.speed_rad_s);
-    dofs.push_back(n);
-    reference_terms.push_back(here.reference_terms);
-  };
-
   // The values are independent: solved a batch at a time, one per worker thread (BLAS runs single-threaded;
   // ARPACK keeps its state in Fortran SAVE variables, so it runs alone), then tracked in order; a
   // batch bounds the memory held for large models. The first value that fails, in the order
   // given, is the one reported.
+  struct Solved {
+    Scene scene;
+    ConvergedModes modes;
+  };
+  const int nv = static_cast<int>(o.values.size());
   const int workers = o.solver == EigenSolverKind::arpack ? 1 : std::min(nv, worker_threads(o.threads));
+  SweepTracker tracker(o);
   for (int start = 0; start < nv; start += workers) {
     const int batch = std::min(workers, nv - start);
-    std::vector<std::optional<Scene>> scenes(batch);
-    std::vector<std::optional<ConvergedModes>> solved(batch);
-    std::vector<std::exception_ptr> failed(batch);
-    const auto solve = [&](int b) {
-      try {
-        scenes[b] = scene_at(text, source, overrides, o, o.values[start + b]);
-        solved[b] = modes_at(*scenes[b], o);
-      } catch (...) {
-        failed[b] = std::current_exception();
-      }
-    };
-    std::vector<std::thread> threads;
-    for (int b = 1; b < batch; ++b) threads.emplace_back(solve, b);
-    solve(0);
-    for (std::thread& t : threads) t.join();
+    WorkPool<Solved> solved(workers, batch, [&](std::size_t b) {
+      Scene scene = scene_with_value(text, source, overrides, o, o.values[start + b]);
+      ConvergedModes modes = modes_at(scene, o);
+      return Solved{std::move(scene), std::move(modes)};
+    });
     for (int b = 0; b < batch; ++b) {
-      if (failed[b]) std::rethrow_exception(failed[b]);
-      track(start + b, *scenes[b], *solved[b]);
+      const Solved value = solved.get(b);
+      tracker.add(start + b, value.scene, value.modes);
       if (progress) progress(start + b + 1, nv);
     }
   }
-  return ParameterSweep{std::move(*first_model), o.key, o.values, std::move(speeds), std::move(dofs),
-                        std::move(reference_terms), std::move(matched_by), first_solver, std::move(modes)};
+  return tracker.sweep();
 }
 
 }  // namespace bladestab

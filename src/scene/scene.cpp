@@ -30,6 +30,37 @@ namespace limits = scene_limits;
 // Paths are echoed longer than values: the directory is part of what the user needs to see.
 constexpr std::size_t max_path_shown = 240;
 
+// Each choice's names in the scene file, read by SectionReader::choice and written by to_string.
+template <class Enum>
+using Names = std::vector<std::pair<std::string, Enum>>;
+const Names<BasisKind> basis_names{{"sine", BasisKind::sine}, {"legendre", BasisKind::legendre}};
+const Names<BeamTheory> theory_names{{"timoshenko", BeamTheory::timoshenko},
+                                     {"euler-bernoulli", BeamTheory::euler_bernoulli}};
+const Names<ReductionKind> reduction_names{
+    {"auto", ReductionKind::automatic}, {"modal", ReductionKind::modal}, {"none", ReductionKind::none}};
+const Names<DampingModel> damping_names{{"none", DampingModel::none},
+                                        {"modal", DampingModel::modal},
+                                        {"rayleigh", DampingModel::rayleigh},
+                                        {"paper", DampingModel::paper}};
+const Names<PulseProfile> profile_names{{"half-sine", PulseProfile::half_sine},
+                                        {"cosine", PulseProfile::cosine},
+                                        {"triangular", PulseProfile::triangular},
+                                        {"saw-tooth", PulseProfile::sawtooth},
+                                        {"rectangular", PulseProfile::rectangular},
+                                        {"impulse", PulseProfile::impulse}};
+const Names<LoadApproximation> approximation_names{{"cosine", LoadApproximation::cosine},
+                                                   {"fourier", LoadApproximation::fourier},
+                                                   {"exact", LoadApproximation::exact}};
+const Names<LoadMode> mode_names{{"force", LoadMode::force}, {"clearance", LoadMode::clearance}};
+
+template <class Enum>
+const char* name_of(const Names<Enum>& names, Enum value) {
+  for (const auto& [name, v] : names) {
+    if (v == value) return name.c_str();
+  }
+  return "?";
+}
+
 // Appends `node` in TOML-like form, arrays and inline tables on one line, stopping once `out`
 // passes `limit` characters (an array may have a million elements).
 void append_shown(const toml::node& node, std::string& out, std::size_t limit) {
@@ -124,7 +155,8 @@ public:
   }
 
   template <class Enum>
-  Enum choice(const std::string& key, const std::map<std::string, Enum>& options) {
+  Enum choice(const std::string& key, const Names<Enum>& table) {
+    const std::map<std::string, Enum> options(table.begin(), table.end());  // listed in alphabetical order
     const toml::node& node = require(key);
     std::string names;
     for (const auto& [name, unused] : options) names += (names.empty() ? "" : ", ") + fmt::format("\"{}\"", name);
@@ -295,10 +327,8 @@ RequirementsSpec read_requirements(const toml::table& root, const std::string& s
   return r;
 }
 
-// `source` is the scene's name as messages show it.
-Scene read_scene(const toml::table& root, const std::string& source_name, const std::string& source) {
-  Scene scene;
-  scene.source = source_name;
+// Every top-level table is a known section.
+void check_sections(const toml::table& root, const std::string& source) {
   for (const auto& [key, node] : root) {
     static const std::set<std::string> sections{"blade", "model", "operation", "damping", "load", "requirements"};
     if (sections.count(std::string(key.str())) == 0) {
@@ -308,10 +338,12 @@ Scene read_scene(const toml::table& root, const std::string& source_name, const 
                           std::string(key.str()), SceneKeyError::Reason::unknown);
     }
   }
+}
 
+BladeSpec read_blade(const toml::table& root, const std::string& source) {
   SectionReader blade(root, "blade", source);
   blade.known({"slenderness", "inertia"});
-  BladeSpec& b = scene.blade;
+  BladeSpec b;
   b.length = blade.number("length", limits::length_m, "span L in m");
   b.hub_radius = blade.number("hub_radius", limits::hub_radius_m, "hub radius r in m");
   b.area = blade.number("area", limits::area_m2, "cross-section area in m^2");
@@ -339,19 +371,20 @@ Scene read_scene(const toml::table& root, const std::string& source_name, const 
   b.shear_coefficient = blade.number("shear_coefficient", limits::shear_coefficient, "Timoshenko shear coefficient κ");
   b.stagger_deg = blade.number("stagger_deg", limits::stagger_deg, "stagger angle β in degrees");
   blade.reject_unknown();
+  return b;
+}
 
+ModelSpec read_model(const toml::table& root, const std::string& source) {
   SectionReader model(root, "model", source);
-  ModelSpec& m = scene.model;
-  m.basis = model.choice<BasisKind>("basis", {{"sine", BasisKind::sine}, {"legendre", BasisKind::legendre}});
+  ModelSpec m;
+  m.basis = model.choice("basis", basis_names);
   m.terms = model.integer("terms", 1, 200);
-  m.theory = model.choice<BeamTheory>(
-      "theory", {{"timoshenko", BeamTheory::timoshenko}, {"euler-bernoulli", BeamTheory::euler_bernoulli}});
+  m.theory = model.choice("theory", theory_names);
   m.axial = model.boolean("axial");
   m.coriolis = model.boolean("coriolis");
   model.known({"reduction", "reduction_vectors", "cutoff_hz"});
   if (model.has("reduction")) {
-    m.reduction.kind = model.choice<ReductionKind>(
-        "reduction", {{"auto", ReductionKind::automatic}, {"modal", ReductionKind::modal}, {"none", ReductionKind::none}});
+    m.reduction.kind = model.choice("reduction", reduction_names);
   }
   if (model.has("reduction_vectors")) m.reduction.vectors = model.integer("reduction_vectors", 1, 200);
   m.reduction.cutoff_hz = model.optional_number("cutoff_hz", limits::cutoff_hz, "modal cut-off in Hz").value_or(0);
@@ -361,24 +394,28 @@ Scene read_scene(const toml::table& root, const std::string& source_name, const 
                         "model.cutoff_hz", SceneKeyError::Reason::unused);
   }
   model.reject_unknown();
+  return m;
+}
 
+OperationSpec read_operation(const toml::table& root, const std::string& source) {
+  OperationSpec o;
   SectionReader operation(root, "operation", source);
-  scene.operation.speed_rad_s = operation.number("speed_rad_s", limits::speed_rad_s, "rotor speed Ω in rad/s");
+  o.speed_rad_s = operation.number("speed_rad_s", limits::speed_rad_s, "rotor speed Ω in rad/s");
   // A static compressive tip load F_a = value · F_cr (Sinha's Fig. 9); whether the blade carries it
   // at its speed is checked where the model is assembled (model.hpp).
-  scene.operation.tip_compression_over_fcr =
+  o.tip_compression_over_fcr =
       operation
           .optional_number("tip_compression_over_fcr", limits::tip_compression_over_fcr,
                            "static tip compression F_a / F_cr, compression positive; F_cr = π² E I / (4 L²)")
           .value_or(0);
   operation.reject_unknown();
+  return o;
+}
 
+DampingSpec read_damping(const toml::table& root, const std::string& source, double speed) {
   SectionReader damping(root, "damping", source);
-  DampingSpec& d = scene.damping;
-  d.model = damping.choice<DampingModel>("model", {{"none", DampingModel::none},
-                                                    {"modal", DampingModel::modal},
-                                                    {"rayleigh", DampingModel::rayleigh},
-                                                    {"paper", DampingModel::paper}});
+  DampingSpec d;
+  d.model = damping.choice("model", damping_names);
   damping.known({"ratio", "frequencies_hz"});
   if (d.model != DampingModel::none) {
     d.ratio = damping.number("ratio", limits::damping_ratio, "damping ratio ζ");
@@ -390,40 +427,36 @@ Scene read_scene(const toml::table& root, const std::string& source_name, const 
                                    source, d.frequencies_hz[0], d.frequencies_hz[1]));
     }
   }
-  if (d.model == DampingModel::paper && scene.operation.speed_rad_s == 0) {
-    throw InputError(fmt::format("{}: damping.model = \"paper\": C_D = (2ζ/Ω) K_S needs operation.speed_rad_s > 0 "
-                                 "(use \"modal\" or \"rayleigh\" at rest)", source));
+  try {
+    check_damping_speed(d, speed, "operation.speed_rad_s");
+  } catch (const InputError& e) {
+    throw InputError(fmt::format("{}: {}", source, e.what()));
   }
   damping.reject_unknown(fmt::format("damping.model = \"{}\"", to_string(d.model)));
+  return d;
+}
 
+LoadSpec read_load(const toml::table& root, const std::string& source, double speed) {
   SectionReader load(root, "load", source);
-  LoadSpec& l = scene.load;
-  l.profile = load.choice<PulseProfile>("profile", {{"half-sine", PulseProfile::half_sine},
-                                                     {"cosine", PulseProfile::cosine},
-                                                     {"triangular", PulseProfile::triangular},
-                                                     {"saw-tooth", PulseProfile::sawtooth},
-                                                     {"rectangular", PulseProfile::rectangular},
-                                                     {"impulse", PulseProfile::impulse}});
+  LoadSpec l;
+  l.profile = load.choice("profile", profile_names);
   l.fmax_over_fcr = load.number("fmax_over_fcr", limits::fmax_over_fcr, "peak tip load F_max / F_cr");
   l.contact_time_rev = load.number("contact_time_rev", limits::contact_time_rev,
                                    "contact time as a fraction of a revolution");
   l.pulses_per_rev = load.integer("pulses_per_rev", 1, 1000);
   l.pulse_count = load.integer("pulse_count", 0, 1000000000);
-  l.approximation = load.choice<LoadApproximation>(
-      "approximation", {{"cosine", LoadApproximation::cosine},
-                        {"fourier", LoadApproximation::fourier},
-                        {"exact", LoadApproximation::exact}});
-  l.mode = load.choice<LoadMode>("mode", {{"force", LoadMode::force}, {"clearance", LoadMode::clearance}});
+  l.approximation = load.choice("approximation", approximation_names);
+  l.mode = load.choice("mode", mode_names);
   l.friction = load.number("friction", limits::friction, "Coulomb friction coefficient μ");
   l.clearance = load.number("clearance", limits::clearance_m, "running clearance in m");
   l.pulse_frequency_hz = load.optional_number("pulse_frequency_hz", limits::pulse_frequency_hz, "pulse frequency in Hz");
-  if (l.pulse_frequency_hz && scene.operation.speed_rad_s > 0) {
+  if (l.pulse_frequency_hz && speed > 0) {
     // t̄_c is a fraction of a revolution; the pulses come at their own frequency (pulse_train).
-    const double contact_s = l.contact_time_rev * two_pi / scene.operation.speed_rad_s;
+    const double contact_s = l.contact_time_rev * two_pi / speed;
     if (contact_s * *l.pulse_frequency_hz > 1 + 1e-12) {
       load.fail_both("pulse_frequency_hz", "contact_time_rev",
                      fmt::format("the contact ({:.3g} s at operation.speed_rad_s = {}) outlasts the pulse period "
-                                 "({:.3g} s); lower either", contact_s, scene.operation.speed_rad_s,
+                                 "({:.3g} s); lower either", contact_s, speed,
                                  1 / *l.pulse_frequency_hz));
     }
   }
@@ -444,6 +477,19 @@ Scene read_scene(const toml::table& root, const std::string& source_name, const 
                    fmt::format("pulses overlap; t̄_c must be <= 1/pulses_per_rev = {:.6g}", 1.0 / l.pulses_per_rev));
   }
   load.reject_unknown("load.mode = \"force\"");
+  return l;
+}
+
+// `source` is the scene's name as messages show it.
+Scene read_scene(const toml::table& root, const std::string& source_name, const std::string& source) {
+  check_sections(root, source);
+  Scene scene;
+  scene.source = source_name;
+  scene.blade = read_blade(root, source);
+  scene.model = read_model(root, source);
+  scene.operation = read_operation(root, source);
+  scene.damping = read_damping(root, source, scene.operation.speed_rad_s);
+  scene.load = read_load(root, source, scene.operation.speed_rad_s);
   if (root.contains("requirements")) scene.requirements = read_requirements(root, source);
   return scene;
 }
@@ -499,45 +545,25 @@ std::string read_scene_file(const std::string& path) {
   return text;
 }
 
-const char* to_string(BasisKind k) { return k == BasisKind::sine ? "sine" : "legendre"; }
-const char* to_string(BeamTheory t) { return t == BeamTheory::timoshenko ? "timoshenko" : "euler-bernoulli"; }
-const char* to_string(DampingModel d) {
-  switch (d) {
-    case DampingModel::none: return "none";
-    case DampingModel::modal: return "modal";
-    case DampingModel::rayleigh: return "rayleigh";
-    case DampingModel::paper: return "paper";
-  }
-  return "?";
-}
-const char* to_string(PulseProfile p) {
-  switch (p) {
-    case PulseProfile::half_sine: return "half-sine";
-    case PulseProfile::cosine: return "cosine";
-    case PulseProfile::triangular: return "triangular";
-    case PulseProfile::sawtooth: return "saw-tooth";
-    case PulseProfile::rectangular: return "rectangular";
-    case PulseProfile::impulse: return "impulse";
-  }
-  return "?";
+Scene scene_at(Scene scene, double speed_rad_s, double theta_rad_s, double fmax_over_fcr) {
+  scene.operation.speed_rad_s = speed_rad_s;
+  scene.load.pulse_frequency_hz = theta_rad_s / two_pi;
+  scene.load.fmax_over_fcr = fmax_over_fcr;
+  return scene;
 }
 
-const char* to_string(ReductionKind k) {
-  switch (k) {
-    case ReductionKind::automatic: return "auto";
-    case ReductionKind::modal: return "modal";
-    case ReductionKind::none: return "none";
+void check_damping_speed(const DampingSpec& damping, double speed_rad_s, const std::string& speed_name) {
+  if (damping.model == DampingModel::paper && !(speed_rad_s > 0)) {
+    throw InputError(fmt::format("damping.model = \"paper\": C_D = (2ζ/Ω) K_S needs {} > 0, not {} rad/s (use "
+                                 "\"modal\" or \"rayleigh\" at rest)", speed_name, speed_rad_s));
   }
-  return "?";
 }
 
-const char* to_string(LoadApproximation a) {
-  switch (a) {
-    case LoadApproximation::cosine: return "cosine";
-    case LoadApproximation::fourier: return "fourier";
-    case LoadApproximation::exact: return "exact";
-  }
-  return "?";
-}
+const char* to_string(BasisKind k) { return name_of(basis_names, k); }
+const char* to_string(BeamTheory t) { return name_of(theory_names, t); }
+const char* to_string(DampingModel d) { return name_of(damping_names, d); }
+const char* to_string(PulseProfile p) { return name_of(profile_names, p); }
+const char* to_string(ReductionKind k) { return name_of(reduction_names, k); }
+const char* to_string(LoadApproximation a) { return name_of(approximation_names, a); }
 
 }  // namespace bladestab

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
-#include <future>
 #include <limits>
 #include <map>
 #include <stdexcept>
@@ -13,9 +12,9 @@
 
 #include "bladestab/base/constants.hpp"
 #include "bladestab/ltp/floquet.hpp"
-#include "bladestab/modal/mode_convergence.hpp"
+#include "bladestab/modal/basis_error.hpp"
 #include "bladestab/base/numerical_error.hpp"
-#include "support/worker_threads.hpp"
+#include "support/work_pool.hpp"
 
 namespace bladestab {
 namespace {
@@ -34,10 +33,10 @@ double relative_change(const Boundary& a, const Boundary& b, bool in_load) {
 }
 
 // For each boundary of `base`, the index of its counterpart in `other`, or −1. Within each
-// family, mode and order both are taken in order of value and the shorter run is laid along the
+// multiplier, mode and order both are taken in order of value and the shorter run is laid along the
 // longer at the offset of least total relative distance: the two edges of a region keep their
 // order even when a model change moves them by more than the region is wide (nearest-value
-// matching paired both edges of the paper blade's order-3 region with one edge under a cut-off).
+// matching pairs both edges of the paper blade's order-3 region with one edge under a cut-off).
 std::vector<int> match(const std::vector<Boundary>& base, const std::vector<Boundary>& other, bool in_load) {
   std::vector<int> counterpart(base.size(), -1);
   const auto same_kind = [](const Boundary& a, const Boundary& b) {
@@ -79,8 +78,8 @@ std::vector<int> match(const std::vector<Boundary>& base, const std::vector<Boun
   return counterpart;
 }
 
-// The boundaries of one model of the scene, cached per approximation k. The two families are
-// independent eigenproblems of equal size: with two threads the +1 family's runs beside the −1's.
+// The boundaries of one model of the scene, cached per approximation k. The two multiplier
+// signs are independent eigenproblems of equal size: with two threads the +1 sign's runs beside the −1's.
 // `solved` is called after each new k.
 class BoundarySolver {
 public:
@@ -90,13 +89,14 @@ public:
   const std::vector<Boundary>& at(int k) {
     auto it = cache_.find(k);
     if (it == cache_.end()) {
-      const auto family = [this, k](int multiplier) {
+      const auto of_sign = [this, k](int multiplier) {
         return theta_ ? boundary_loads(system_, peak_, *theta_, k, multiplier)
                       : boundary_frequencies(system_, peak_, k, multiplier);
       };
-      std::future<std::vector<Boundary>> plus = std::async(beside_or_deferred(threads_), family, 1);
-      std::vector<Boundary> both = family(-1), more = plus.get();
-      both.insert(both.end(), more.begin(), more.end());
+      std::vector<std::vector<Boundary>> sides =
+          run_indexed(2, threads_, [&](std::size_t side) { return of_sign(side == 0 ? -1 : 1); });
+      std::vector<Boundary>& both = sides[0];
+      both.insert(both.end(), sides[1].begin(), sides[1].end());
       std::sort(both.begin(), both.end(), [this](const Boundary& a, const Boundary& b) {
         return value_of(a, theta_.has_value()) < value_of(b, theta_.has_value());
       });
@@ -175,17 +175,69 @@ std::vector<EstimatedBoundary> converge_at(BoundarySolver& solver, int k, bool i
 
 ErrorBudget BoundaryAnalysis::total() const {
   ErrorBudget t;
-  for (const EstimatedBoundary& b : boundaries) {
-    t.basis = std::max(t.basis, b.budget.basis);
-    t.reduction = std::max(t.reduction, b.budget.reduction);
-    t.load = std::max(t.load, b.budget.load);
-    t.method = std::max(t.method, b.budget.method);
-    for (const std::string& u : b.budget.unbounded) {
-      if (std::find(t.unbounded.begin(), t.unbounded.end(), u) == t.unbounded.end()) t.unbounded.push_back(u);
-    }
-  }
+  for (const EstimatedBoundary& b : boundaries) t.raise_to(b.budget);
   return t;
 }
+
+namespace {
+
+// The check of the boundaries converged at result.approximation: the lowest-order ones (one or
+// two), each by the multipliers of a monodromy (multiplier_gap, Magnus steps) on a system cut to the
+// modes below check_reach·order·θ/2π, whose steps over a period stay cheap. Fills result.checks;
+// whether every gap is within its allowance.
+bool check_multipliers(const BladeModel& model, const Scene& scene, const LoadSeries& load, double peak,
+                       const BoundaryRequest& r, BoundaryAnalysis& result) {
+  const bool in_load = r.theta_rad_s.has_value();
+  result.checks.clear();
+  int lowest = std::numeric_limits<int>::max();
+  for (const EstimatedBoundary& e : result.boundaries) lowest = std::min(lowest, e.boundary.order);
+  bool passed = true;
+  for (const EstimatedBoundary& e : result.boundaries) {
+    if (e.boundary.order != lowest || result.checks.size() == 2) continue;
+    const double reach_hz = check_reach * std::max(1, lowest) * e.boundary.theta_rad_s / two_pi;
+    BoundaryCheck check;
+    check.cutoff_hz = r.cutoff_hz > 0 ? std::min(r.cutoff_hz, reach_hz) : reach_hz;
+    BoundarySolver checker(periodic_system(model, scene, load, {ReductionKind::modal, 0, check.cutoff_hz}), peak,
+                           r.theta_rad_s, r.threads, {});
+    if (checker.system().kept_modes == checker.system().all_modes) check.cutoff_hz = 0;
+    const std::vector<Boundary>& there = checker.at(e.approximation);
+    const int j = match({e.boundary}, there, in_load)[0];  // the same boundary in the check's model
+    // Multipliers split like the square root of the distance from the boundary (test_map:
+    // 2e-4 in ρ for 1e-8 in F̄); the check's boundary carries the same harmonics' error.
+    check.allowed = std::max(1e-3, 10 * std::sqrt(e.budget.method));
+    check.boundary = j < 0 ? e.boundary : there[j];
+    check.gap = j < 0 ? std::numeric_limits<double>::infinity()
+                      : multiplier_gap(checker.system(), peak, check.boundary, check_monodromy_tolerance);
+    passed = passed && check.gap <= check.allowed;
+    result.checks.push_back(check);
+  }
+  return passed;
+}
+
+// One part of each reported boundary's budget: `factor` times its change against its counterpart
+// in `other`, at the approximation it comes from; a boundary without one gets 1, and `missing`
+// names the part as unbounded.
+void compare_part(BoundaryAnalysis& result, BoundarySolver& other, bool in_load, double factor,
+                  double ErrorBudget::*part, const char* missing) {
+  for (int k : {result.approximation, result.approximation + 2}) {
+    std::vector<Boundary> at_k;  // the reported boundaries that come from k, matched together
+    for (const EstimatedBoundary& e : result.boundaries) {
+      if (e.approximation == k) at_k.push_back(e.boundary);
+    }
+    if (at_k.empty()) continue;
+    const std::vector<Boundary>& there = other.at(k);
+    const std::vector<int> to = match(at_k, there, in_load);
+    std::size_t next = 0;
+    for (EstimatedBoundary& e : result.boundaries) {
+      if (e.approximation != k) continue;
+      const int j = to[next++];
+      e.budget.*part = j < 0 ? 1.0 : factor * relative_change(e.boundary, there[j], in_load);
+      if (j < 0) e.budget.unbounded.push_back(missing);
+    }
+  }
+}
+
+}  // namespace
 
 BoundaryAnalysis boundaries_with_error_estimate(const Scene& scene_in, const BoundaryRequest& r) {
   const bool in_load = r.theta_rad_s.has_value();
@@ -235,51 +287,13 @@ BoundaryAnalysis boundaries_with_error_estimate(const Scene& scene_in, const Bou
     if (worst > r.tolerance) continue;
     result.approximation = k;
     result.boundaries = std::move(found);
-    // The check: the lowest-order boundaries (one or two) on a system whose fastest mode RKF45
-    // integrates cheaply over a period.
-    result.checks.clear();
-    int lowest = std::numeric_limits<int>::max();
-    for (const EstimatedBoundary& e : result.boundaries) lowest = std::min(lowest, e.boundary.order);
-    bool passed = true;
-    for (const EstimatedBoundary& e : result.boundaries) {
-      if (e.boundary.order != lowest || result.checks.size() == 2) continue;
-      const double reach_hz = check_reach * std::max(1, lowest) * e.boundary.theta_rad_s / two_pi;
-      BoundaryCheck check;
-      check.cutoff_hz = r.cutoff_hz > 0 ? std::min(r.cutoff_hz, reach_hz) : reach_hz;
-      BoundarySolver checker = solver_for(model, load, check.cutoff_hz, false);
-      if (checker.system().kept_modes == checker.system().all_modes) check.cutoff_hz = 0;
-      const std::vector<Boundary>& there = checker.at(e.approximation);
-      const int j = match({e.boundary}, there, in_load)[0];  // the same boundary in the check's model
-      // Multipliers split like the square root of the distance from the boundary (test_map:
-      // 2e-4 in ρ for 1e-8 in F̄); the check's boundary carries the same harmonics' error.
-      check.allowed = std::max(1e-3, 10 * std::sqrt(e.budget.method));
-      check.boundary = j < 0 ? e.boundary : there[j];
-      check.gap = j < 0 ? std::numeric_limits<double>::infinity()
-                        : multiplier_gap(checker.system(), peak, check.boundary, check_monodromy_tolerance);
-      passed = passed && check.gap <= check.allowed;
-      result.checks.push_back(check);
-    }
+    const bool passed = check_multipliers(model, scene, load, peak, r, result);
     if (passed) break;
   }
 
   // The other parts of each budget, at the approximation each boundary comes from.
   const auto compare = [&](BoundarySolver& other, double factor, double ErrorBudget::*part, const char* missing) {
-    for (int k : {result.approximation, result.approximation + 2}) {
-      std::vector<Boundary> at_k;  // the reported boundaries that come from k, matched together
-      for (const EstimatedBoundary& e : result.boundaries) {
-        if (e.approximation == k) at_k.push_back(e.boundary);
-      }
-      if (at_k.empty()) continue;
-      const std::vector<Boundary>& there = other.at(k);
-      const std::vector<int> to = match(at_k, there, in_load);
-      std::size_t next = 0;
-      for (EstimatedBoundary& e : result.boundaries) {
-        if (e.approximation != k) continue;
-        const int j = to[next++];
-        e.budget.*part = j < 0 ? 1.0 : factor * relative_change(e.boundary, there[j], in_load);
-        if (j < 0) e.budget.unbounded.push_back(missing);
-      }
-    }
+    compare_part(result, other, in_load, factor, part, missing);
     --comparisons_left;
   };
   ModelSpec richer = scene.model;

@@ -19,12 +19,12 @@ std::vector<InstabilityRegion> instability_regions(const Scene& scene, const Bou
   const bool in_load = request.theta_rad_s.has_value();
   const double fcr = BladeProperties(scene.blade).critical_load();
   const auto value = [in_load](const Boundary& b) { return in_load ? b.peak_force_n : b.theta_rad_s; };
-  // The boundaries of each family, in order along the line.
-  std::map<int, std::vector<Boundary>> families;
-  for (const EstimatedBoundary& e : analysis.boundaries) families[e.boundary.multiplier].push_back(e.boundary);
+  // The boundaries of each multiplier sign, in order along the line.
+  std::map<int, std::vector<Boundary>> by_sign;
+  for (const EstimatedBoundary& e : analysis.boundaries) by_sign[e.boundary.multiplier].push_back(e.boundary);
   // The scene at a point of the line: θ at the scene's load, or F_max at the given θ.
-  // Unstable at x in this family: the dominant multiplier real, beyond +1 or −1 as the family's
-  // (a complex one is a combination resonance; the other sign is the other family's region).
+  // Unstable at x for this sign: the dominant multiplier real, beyond +1 or −1 as the sign
+  // (a complex one is a combination resonance; the other sign's is that sign's region).
   const auto unstable_at = [&](double x, int multiplier, double& max_abs) {
     Scene at = scene;
     if (in_load) {
@@ -39,7 +39,7 @@ std::vector<InstabilityRegion> instability_regions(const Scene& scene, const Bou
     return !a.stable && std::abs(rho.imag()) <= 1e-6 * std::abs(rho) && rho.real() * multiplier > 0;
   };
   std::vector<InstabilityRegion> regions;
-  for (auto& [multiplier, bounds] : families) {
+  for (auto& [multiplier, bounds] : by_sign) {
     std::sort(bounds.begin(), bounds.end(),
               [&](const Boundary& x, const Boundary& y) { return value(x) < value(y); });
     // Interval k lies between boundary k − 1 and boundary k; the window closes the first and last.

@@ -24,7 +24,7 @@ namespace {
 // Speeds of the Campbell diagram over the range, and of the onset's scan.
 constexpr int margin_speeds = 201;
 constexpr int scan_speeds = 41;
-// Harmonics per family of the scan's boundary equations (the converged analysis raises its own).
+// Harmonics per multiplier sign of the scan's boundary equations (the converged analysis raises its own).
 constexpr int scan_approximation = 4;
 // Regions of order n ≤ this (θ ≈ 2ω/n) are sought: higher orders are thin tongues that any damping
 // closes, and new ones appear with every harmonic (boundaries.hpp).
@@ -38,11 +38,8 @@ const RequirementsSpec& requirements_of(const Scene& scene) {
 }
 
 // The scene at speed Ω with the pulses at θ = kΩ and the load F̄.
-Scene scene_at(Scene scene, double speed, double fbar) {
-  scene.operation.speed_rad_s = speed;
-  scene.load.pulse_frequency_hz = scene.load.pulses_per_rev * speed / two_pi;
-  scene.load.fmax_over_fcr = fbar;
-  return scene;
+Scene at_speed(const Scene& scene, double speed, double fbar) {
+  return scene_at(scene, speed, scene.load.pulses_per_rev * speed, fbar);
 }
 
 // The least F̄ of a boundary of order ≤ sought_order at speed Ω with θ = kΩ (the first one met
@@ -55,7 +52,7 @@ struct Onset {
 };
 Onset scanned_onset(const Scene& scene, const BladeModel& model, int vectors, double speed, double window) {
   const double fcr = model.blade.critical_load(), theta = scene.load.pulses_per_rev * speed;
-  const Scene at = scene_at(scene, speed, window);
+  const Scene at = at_speed(scene, speed, window);
   const PeriodicSystem sys =
       periodic_system(model, at, load_series(at), {ReductionKind::automatic, vectors, 0});
   Onset onset{window};
@@ -103,13 +100,71 @@ std::vector<Tip> undamped_tips(const Scene& scene, const BladeModel& model, cons
         const double g0 = 2 * at[s][m] - n * k * speeds[s], g1 = 2 * at[s + 1][m] - n * k * speeds[s + 1];
         if (g0 == 0) tips.push_back({speeds[s], m + 1, n});
         if ((g0 < 0 && g1 > 0) || (g0 > 0 && g1 < 0)) {
-          tips.push_back({illinois_root(gap, speeds[s], g0, speeds[s + 1], g1), m + 1, n});
+          tips.push_back({bracketed_root(gap, speeds[s], g0, speeds[s + 1], g1), m + 1, n});
         }
         if (s + 2 == speeds.size() && g1 == 0) tips.push_back({speeds[s + 1], m + 1, n});
       }
     }
   }
   return tips;
+}
+
+// The worst speed of the range for the stability requirement: the least onset along a scan of
+// evenly spaced speeds, or, undamped, the lowest-order tip inside the range (onset 0), refined by a
+// search on the continuous scan around it. `progress` after each scanned speed.
+struct WorstSpeed {
+  double speed = 0;
+  std::optional<Tip> tip;
+  int scanned = 0;  // speeds scanned
+};
+WorstSpeed worst_speed(const Scene& scene, const BladeModel& model, int vectors, double lo, double hi,
+                       double window, const std::function<void(int, int)>& progress) {
+  // The scan along the range.
+  std::vector<double> speeds(scan_speeds);
+  std::vector<Onset> onsets(scan_speeds);
+  for (int s = 0; s < scan_speeds; ++s) {
+    speeds[s] = s + 1 == scan_speeds ? hi : lo + (hi - lo) * s / (scan_speeds - 1);
+    onsets[s] = scanned_onset(scene, model, vectors, speeds[s], window);
+    if (progress) progress(s + 1, scan_speeds);
+  }
+  const double step = (hi - lo) / (scan_speeds - 1);
+  // Undamped, a tip inside the range is the worst point (onset 0); the lowest order first.
+  std::optional<Tip> tip;
+  if (scene.damping.model == DampingModel::none) {
+    for (const Tip& t : undamped_tips(scene, model, speeds)) {
+      if (!tip || t.order < tip->order || (t.order == tip->order && t.mode < tip->mode)) tip = t;
+    }
+  }
+  // The least onset, refined on the continuous scan around the tip or the scan's least point.
+  const double centre =
+      tip ? tip->speed
+          : speeds[std::min_element(onsets.begin(), onsets.end(),
+                                    [](const Onset& a, const Onset& b) { return a.fbar < b.fbar; }) - onsets.begin()];
+  const double a = std::max(lo, centre - step), b = std::min(hi, centre + step);
+  const double refined = golden_minimum(
+      [&](double speed) { return scanned_onset(scene, model, vectors, speed, window).fbar; }, a, b, 1e-6 * step);
+  return {refined, tip, scan_speeds + 1};
+}
+
+// The onset the requirement reports: a tip's (at F̄ = 0, of its mode and order), else the lowest
+// region's lower edge with its error estimate.
+void name_onset(RubStabilityResult& r, const std::optional<Tip>& tip, const InstabilityRegion* lowest,
+                const BoundaryAnalysis& analysis, double fcr) {
+  if (tip) {
+    r.tip = true;
+    r.onset_fmax_over_fcr = 0;
+    r.mode = tip->mode;
+    r.order = tip->order;
+    r.multiplier = tip->order % 2 == 1 ? -1 : 1;  // odd orders: 2T-periodic (−1); even: T-periodic (+1)
+  } else if (lowest) {
+    r.onset_fmax_over_fcr = lowest->lower / fcr;
+    r.mode = lowest->mode;
+    r.order = lowest->order;
+    r.multiplier = lowest->multiplier;
+    for (const EstimatedBoundary& e : analysis.boundaries) {
+      if (e.boundary.peak_force_n == lowest->lower) r.onset_error_estimate = e.budget.total();
+    }
+  }
 }
 
 }  // namespace
@@ -187,37 +242,15 @@ RubStabilityResult check_rub_stability(const Scene& scene, const std::function<v
   const double lo = req.speed_lo_rad_s, hi = req.speed_hi_rad_s, window = r.window_fmax_over_fcr;
   const BladeModel model = assemble_model(scene);
   const double fcr = model.blade.critical_load();
-  const int vectors = tongue_vectors(model, scene_at(scene, lo, 0), r.pulses_per_rev * hi, sought_order);
+  const int vectors = tongue_vectors(model, at_speed(scene, lo, 0), r.pulses_per_rev * hi, sought_order);
 
-  // The scan along the range.
-  std::vector<double> speeds(scan_speeds);
-  std::vector<Onset> onsets(scan_speeds);
-  for (int s = 0; s < scan_speeds; ++s) {
-    speeds[s] = s + 1 == scan_speeds ? hi : lo + (hi - lo) * s / (scan_speeds - 1);
-    onsets[s] = scanned_onset(scene, model, vectors, speeds[s], window);
-    if (progress) progress(s + 1, scan_speeds);
-  }
-  r.speeds_scanned = scan_speeds;
-  const double step = (hi - lo) / (scan_speeds - 1);
-  // Undamped, a tip inside the range is the worst point (onset 0); the lowest order first.
-  std::optional<Tip> tip;
-  if (scene.damping.model == DampingModel::none) {
-    for (const Tip& t : undamped_tips(scene, model, speeds)) {
-      if (!tip || t.order < tip->order || (t.order == tip->order && t.mode < tip->mode)) tip = t;
-    }
-  }
-  // The least onset, refined on the continuous scan around the tip or the scan's least point.
-  const double centre =
-      tip ? tip->speed
-          : speeds[std::min_element(onsets.begin(), onsets.end(),
-                                    [](const Onset& a, const Onset& b) { return a.fbar < b.fbar; }) - onsets.begin()];
-  const double a = std::max(lo, centre - step), b = std::min(hi, centre + step);
-  const double worst_speed = golden_minimum(
-      [&](double speed) { return scanned_onset(scene, model, vectors, speed, window).fbar; }, a, b, 1e-6 * step);
-  r.speeds_scanned += 1;
+  const WorstSpeed worst_at = worst_speed(scene, model, vectors, lo, hi, window, progress);
+  const std::optional<Tip>& tip = worst_at.tip;
+  const double worst_speed = worst_at.speed;
+  r.speeds_scanned = worst_at.scanned;
 
   // The onset there, converged with its error; each candidate region checked by Floquet.
-  const Scene worst = scene_at(scene, worst_speed, window);
+  const Scene worst = at_speed(scene, worst_speed, window);
   BoundaryRequest request;
   request.theta_rad_s = r.pulses_per_rev * worst_speed;
   request.window = std::make_pair(0.0, window * fcr);
@@ -228,21 +261,7 @@ RubStabilityResult check_rub_stability(const Scene& scene, const std::function<v
   r.check_speed_rad_s = worst_speed;
   r.speed_rad_s = tip ? tip->speed : worst_speed;
   const InstabilityRegion* lowest = regions.empty() ? nullptr : &regions.front();  // sorted by their lower end
-  if (tip) {
-    r.tip = true;
-    r.onset_fmax_over_fcr = 0;
-    r.mode = tip->mode;
-    r.order = tip->order;
-    r.multiplier = tip->order % 2 == 1 ? -1 : 1;  // odd orders: 2T-periodic (−1); even: T-periodic (+1)
-  } else if (lowest) {
-    r.onset_fmax_over_fcr = lowest->lower / fcr;
-    r.mode = lowest->mode;
-    r.order = lowest->order;
-    r.multiplier = lowest->multiplier;
-    for (const EstimatedBoundary& e : analysis.boundaries) {
-      if (e.boundary.peak_force_n == lowest->lower) r.onset_error_estimate = e.budget.total();
-    }
-  }
+  name_onset(r, tip, lowest, analysis, fcr);
   const bool onset_within = r.onset_fmax_over_fcr && *r.onset_fmax_over_fcr <= r.required;
   // Floquet: inside the lowest region (below the requirement) where it fails, at the requirement where it holds.
   if (onset_within && lowest) {
@@ -250,7 +269,7 @@ RubStabilityResult check_rub_stability(const Scene& scene, const std::function<v
   } else {
     r.check_fmax_over_fcr = r.required;
   }
-  const StabilityAnswer answer = analyse_stability(scene_at(scene, worst_speed, r.check_fmax_over_fcr),
+  const StabilityAnswer answer = analyse_stability(at_speed(scene, worst_speed, r.check_fmax_over_fcr),
                                                    {FloquetMethod::automatic, 0, floquet_tolerance});
   r.max_abs_multiplier = answer.floquet.max_abs_multiplier;
   r.check_stable = answer.stable;

@@ -11,11 +11,11 @@
 
 #include "bladestab/blade/damping.hpp"
 #include "bladestab/base/input_error.hpp"
-#include "bladestab/modal/mode_convergence.hpp"
+#include "bladestab/modal/basis_error.hpp"
 #include "bladestab/stability/periodic_system.hpp"
 #include "bladestab/blade/reduction.hpp"
 #include "bladestab/ltp/step_doubling.hpp"
-#include "support/worker_threads.hpp"
+#include "support/work_pool.hpp"
 
 namespace bladestab {
 namespace {
@@ -77,20 +77,20 @@ VariantRho variant_max_rho(const Scene& scene, const Fidelity& f, double tol) {
 }
 
 // The variants of the budget, each differing from `f` in one part only. They do not depend on the
-// answer, so they run beside it (SideTasks), the richer reduction first: its model is the largest.
+// answer, so they run beside it (WorkPool), the richer reduction first: its model is the largest.
 struct BudgetVariants {
   static constexpr std::size_t none = static_cast<std::size_t>(-1);
-  std::unique_ptr<SideTasks<VariantRho>> tasks;
+  std::unique_ptr<WorkPool<VariantRho>> tasks;
   std::size_t basis = none, reduction = none, load = none;
   double basis_factor = 1, reduction_factor = 1;
 };
 
 BudgetVariants start_variants(const Scene& scene, const Fidelity& f, double tol, int threads) {
   const double variant_tol = tol / 8;
-  std::vector<std::function<VariantRho()>> tasks;
+  std::vector<Fidelity> variants;
   const auto add = [&](Fidelity variant) {
-    tasks.emplace_back([&scene, variant_tol, variant] { return variant_max_rho(scene, variant, variant_tol); });
-    return tasks.size() - 1;
+    variants.push_back(std::move(variant));
+    return variants.size() - 1;
   };
   BudgetVariants v;
   if (f.reduction.kind == ReductionKind::automatic) {
@@ -115,7 +115,11 @@ BudgetVariants start_variants(const Scene& scene, const Fidelity& f, double tol,
     exact.load = exact_pulse_mean(pulse_train(scene));
     v.load = add(exact);
   }
-  v.tasks = std::make_unique<SideTasks<VariantRho>>(threads, std::move(tasks));
+  const std::size_t count = variants.size();
+  v.tasks = std::make_unique<WorkPool<VariantRho>>(
+      threads, count, [&scene, variant_tol, variants = std::move(variants)](std::size_t i) {
+        return variant_max_rho(scene, variants[i], variant_tol);
+      });
   return v;
 }
 

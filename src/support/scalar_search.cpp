@@ -2,26 +2,18 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+
+#include <boost/math/tools/toms748_solve.hpp>
 
 namespace bladestab {
 
-double illinois_root(const std::function<double(double)>& g, double a, double ga, double b, double gb) {
-  int side = 0;
-  for (int iter = 0; iter < 60 && std::abs(b - a) > 1e-12 * std::max(1.0, std::abs(b)); ++iter) {
-    const double c = (a * gb - b * ga) / (gb - ga);
-    const double gc = g(c);
-    if (gc == 0) return c;
-    if ((gc > 0) == (gb > 0)) {
-      b = c, gb = gc;
-      if (side == -1) ga *= 0.5;
-      side = -1;
-    } else {
-      a = c, ga = gc;
-      if (side == 1) gb *= 0.5;
-      side = 1;
-    }
-  }
-  return std::abs(ga) < std::abs(gb) ? a : b;
+double bracketed_root(const std::function<double(double)>& g, double a, double ga, double b, double gb) {
+  const double tolerance = 1e-12 * std::max(1.0, std::abs(b));
+  const auto close_enough = [tolerance](double lo, double hi) { return hi - lo <= tolerance; };
+  std::uintmax_t iterations = 100;
+  const std::pair<double, double> bracket = boost::math::tools::toms748_solve(g, a, b, ga, gb, close_enough, iterations);
+  return 0.5 * (bracket.first + bracket.second);
 }
 
 double golden_minimum(const std::function<double(double)>& f, double a, double b, double tolerance) {

@@ -8,7 +8,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "bladestab/modal/mode_convergence.hpp"
+#include "bladestab/modal/basis_error.hpp"
 #include "bladestab/scene/scene.hpp"
 #include "bladestab/stability/stability_analysis.hpp"
 

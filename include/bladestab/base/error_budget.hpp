@@ -11,6 +11,7 @@
 //   method     steps, harmonics, eigensolver rounding
 //
 // A part that could not be bounded is named in `unbounded`, and outputs say so.
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,17 @@ struct ErrorBudget {
   std::vector<std::string> unbounded;  // e.g. "load: the impulse has no Fourier series"
 
   double total() const { return basis + reduction + load + method; }
+  // Each part raised to `other`'s where that is larger; its unbounded parts added, each once (the
+  // worst budget over many results).
+  void raise_to(const ErrorBudget& other) {
+    basis = std::max(basis, other.basis);
+    reduction = std::max(reduction, other.reduction);
+    load = std::max(load, other.load);
+    method = std::max(method, other.method);
+    for (const std::string& u : other.unbounded) {
+      if (std::find(unbounded.begin(), unbounded.end(), u) == unbounded.end()) unbounded.push_back(u);
+    }
+  }
 };
 
 }  // namespace bladestab

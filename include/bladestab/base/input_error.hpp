@@ -26,7 +26,7 @@ private:
 };
 
 // An InputError about one scene key ("section.key"; a section alone for an unknown section), with
-// how it failed, so that a caller that set the key itself (`sweep --key`) can tell a key the scene
+// how it failed, so that a caller that set the key itself (a parameter sweep) can tell a key the scene
 // does not have or does not use, or one that takes no number, from a value the key does not allow.
 class SceneKeyError : public InputError {
 public:

@@ -29,15 +29,15 @@ struct Boundary {
 };
 
 // `system` (with its modal form) supplies the matrices and the coefficient's shape, at the amplitude
-// `peak_force_n`. All boundary θ > 0 at that amplitude, sorted by θ: of both families, or of the
-// one whose multiplier is `family` (−1 or +1; each family is its own eigenproblem, so one costs half).
+// `peak_force_n`. All boundary θ > 0 at that amplitude, sorted by θ: of both multiplier signs, or of the
+// one whose multiplier is `multiplier_sign` (−1 or +1; each sign is its own eigenproblem, so one costs half).
 std::vector<Boundary> boundary_frequencies(const LinearPeriodicSystem& system, double peak_force_n, int approximation,
-                                           int family = 0);
+                                           int multiplier_sign = 0);
 
 // All boundary amplitudes ≥ 0 at the frequency θ (the system's coefficients are at the amplitude
-// `system_peak_force_n`), sorted by amplitude; both families or `family` as above.
+// `system_peak_force_n`), sorted by amplitude; both signs or `multiplier_sign` as above.
 std::vector<Boundary> boundary_loads(const LinearPeriodicSystem& system, double system_peak_force_n, double theta_rad_s,
-                                     int approximation, int family = 0);
+                                     int approximation, int multiplier_sign = 0);
 
 // |ρ − b.multiplier| for the Floquet multiplier ρ of `system` closest to ±1 at the boundary point
 // (θ = b.theta_rad_s, amplitude b.peak_force_n; the system's is `system_peak_force_n`), from the

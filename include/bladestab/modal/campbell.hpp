@@ -5,7 +5,7 @@
 //
 // The modes at every speed come from a SpeedSweep (include/bladestab/speed_sweep.hpp): for an
 // undamped blade one reduced basis for the whole speed range, every frequency bounded against the
-// whole Ritz model; otherwise (damping, or --solver dense/arpack) a whole solve per speed.
+// whole Ritz model; otherwise (damping, or the dense or ARPACK solver asked for) a whole solve per speed.
 #include <functional>
 #include <vector>
 

@@ -2,7 +2,7 @@
 // Natural frequencies against any numeric scene key (`bladestab sweep`), e.g. the slenderness d̄
 // (Sinha's Figs. 7, 8) or a static tip compression F_a / F_cr (Fig. 9).
 //
-// For each value the scene is read again with "key=value" applied after the --set overrides (the
+// For each value the scene is read again with "key=value" applied after `overrides` (the
 // scene's own override machinery, so every key is validated as in a scene file), its model
 // assembled (assemble_model: a static tip compression included) and its modes solved at the
 // scene's speed with their error estimates, as `modes` does (modes_with_error_estimate). The
@@ -20,7 +20,7 @@ namespace bladestab {
 
 struct ParameterSweepOptions {
   std::string key;          // "section.key": a scene key that takes a number
-  std::string values_text;  // the values as the user gave them (--values a:b:n), for messages
+  std::string values_text;  // the values as the user gave them (e.g. "a:b:n"), for messages
   std::vector<double> values;
   int mode_count = 8;
   EigenSolverKind solver = EigenSolverKind::automatic;
@@ -58,10 +58,10 @@ struct ParameterSweep {
   double min_correlation() const;       // over the points matched by shape (1 if none)
 };
 
-// The sweep of the scene given as TOML text (`source` names it in messages). InputError, one
-// line, naming --key for a key the scene does not have, does not use or that takes no number;
-// naming --values for a value the key does not allow (the scene's message, e.g. a blade that
-// buckles under a static compression); naming --count when a value's model has fewer modes.
+// The sweep of the scene given as TOML text (`source` names it in messages). ParameterError, one
+// line, on `key` for a key the scene does not have, does not use or that takes no number; on
+// `values` for a value the key does not allow (the scene's message, e.g. a blade that buckles
+// under a static compression); on `count` when a value's model has fewer modes.
 // `progress(done, total)` after each value.
 ParameterSweep parameter_sweep(const std::string& scene_text, const std::string& source,
                                const std::vector<std::string>& overrides, const ParameterSweepOptions& options,

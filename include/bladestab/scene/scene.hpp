@@ -1,7 +1,7 @@
 #pragma once
 // A scene: one TOML file describing a blade, how it is modelled, how it runs and how it is loaded.
 // All values are SI. `load_scene` reads and validates it; every key can be overridden with
-// "section.key=value" strings (the CLI's --set).
+// "section.key=value" strings.
 #include <cstddef>
 #include <optional>
 #include <string>
@@ -58,6 +58,10 @@ struct DampingSpec {
   std::vector<double> frequencies_hz;  // rayleigh: the two frequencies that get ratio ζ exactly
 };
 
+// The paper's damping C_D = (2ζ/Ω) K_S (37) needs a speed Ω > 0: InputError naming damping.model and
+// `speed_name` (the scene's operation.speed_rad_s, or a speed an analysis asks for) otherwise.
+void check_damping_speed(const DampingSpec& damping, double speed_rad_s, const std::string& speed_name);
+
 enum class PulseProfile { half_sine, cosine, triangular, sawtooth, rectangular, impulse };
 enum class LoadApproximation { cosine, fourier, exact };
 enum class LoadMode { force, clearance };
@@ -113,6 +117,10 @@ std::string read_scene_file(const std::string& path);
 // one file with many overrides).
 Scene parse_scene(const std::string& toml_text, const std::string& source_name,
                   const std::vector<std::string>& overrides = {});
+
+// The scene at an operating point: rotor speed Ω [rad/s], pulse frequency θ [rad/s] and peak load
+// F̄ = F_max / F_cr; everything else as in `scene`.
+Scene scene_at(Scene scene, double speed_rad_s, double theta_rad_s, double fmax_over_fcr);
 
 const char* to_string(BasisKind);
 const char* to_string(BeamTheory);

@@ -2,9 +2,9 @@
 // The allowed ranges of the scene's numbers. Each is wide enough for any real blade, from a model
 // fan to a wind-turbine rotor, and narrow enough that what is derived from it (ω², F_cr, the
 // Rayleigh coefficients, the pulse's harmonics, the Magnus exponents) stays well inside the double
-// range: a Young's modulus of 1e-308 made every frequency 0 and printed NaN, one of 1e308 crashed
-// the boundary eigensolver. The command-line options that stand for the same quantities (--speeds,
-// --theta, --at-theta, --fmax, --points, --cutoff-hz) take the same ranges.
+// range: a Young's modulus of 1e-308 makes every frequency 0 and NaN appear, one of 1e308 crashes
+// the boundary eigensolver. A program's parameters that stand for the same quantities (speeds, pulse
+// frequencies, loads, cut-offs) take the same ranges.
 #include "bladestab/scene/allowed_range.hpp"
 
 namespace bladestab::scene_limits {

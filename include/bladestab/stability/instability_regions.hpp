@@ -3,11 +3,11 @@
 // or F̄_max at a given θ — as intervals between boundaries (docs/theory.md §4), for CI scripts that ask
 // "is this operating range clear?".
 //
-// Between two consecutive boundaries of one family (multiplier ±1) lies either a region of that
-// family or a gap; the window's ends close the first and last intervals. Which one is decided by
+// Between two consecutive boundaries of one multiplier sign (±1) lies either a region of that
+// sign or a gap; the window's ends close the first and last intervals. Which one is decided by
 // the Floquet multipliers at the interval's middle (a check that shares nothing with the boundary
-// equations): unstable there, with the dominant multiplier real and of the family's sign, it is a
-// region. Families, not kinds (mode, order), are paired: at high loads the label of a boundary,
+// equations): unstable there, with the dominant multiplier real and of the boundaries' sign, it is a
+// region. Signs, not kinds (mode, order), are paired: at high loads the label of a boundary,
 // the dominant harmonic of its eigenvector, can differ between a region's two edges (measured on
 // the paper blade at F̄ = 5: the order-3 region from 177.7 to 209.9 rad/s has its lower edge
 // labelled order 1). A region is labelled by its edges, the higher order where they differ. Regions of

@@ -54,7 +54,7 @@ struct RubStabilityResult {
   double onset_error_estimate = 0;            // relative on the onset (0 at a tip)
   int multiplier = 0, mode = 0, order = 0;    // the region that opens there
   bool tip = false;             // undamped: the region's tip θ = 2ω_m/n = kΩ lies in the range
-  int approximation = 0;        // harmonics per family of the converged boundaries
+  int approximation = 0;        // harmonics per multiplier sign of the converged boundaries
   // The Floquet check at (check_speed, check_fmax): inside the lowest region where the
   // requirement fails, at the required load where it holds.
   double check_speed_rad_s = 0, check_fmax_over_fcr = 0;

@@ -8,7 +8,7 @@
 //  2. Floquet multipliers by the requested method, with its own checks (floquet.hpp);
 //  3. the error budget on max|ρ|, each part from a second computation that differs in that part only
 //     (each on its own thread, started with the answer: none depends on it):
-//       basis      the same at the richer Ritz basis of mode_convergence.hpp (sine: ×2, its
+//       basis      the same at the richer Ritz basis of basis_error.hpp (sine: ×2, its
 //                  algebraic convergence makes the difference understate the error up to 2×);
 //       reduction  the reduced model against one with twice the vectors (×2: projections do not
 //                  converge monotonically), or, for a modal cut-off, against the automatic reduction;

@@ -28,7 +28,7 @@ struct MapOptions {
   std::vector<double> grid_x, grid_fbar;  // shading grid: θ or Ω [rad/s], F̄
   std::vector<double> trace;              // curve parameter: F̄ values (θ plane) or Ω values (speed plane)
   int engine_order = 1;                   // speed plane: θ = k Ω
-  int approximation = 4;                  // harmonics per family in the boundary equations (at least)
+  int approximation = 4;                  // harmonics per multiplier sign in the boundary equations (at least)
   int max_order = 4;                      // boundary curves drawn from orders n ≤ max_order (θ ≈ 2ω/n); traced to 2·max_order
   double tolerance = 1e-3;                // on max|ρ| of the shading and on the curves (CurveFidelity)
   int resolution_x = 400, resolution_y = 200;  // effective cells of the refined shading (at least)
@@ -60,7 +60,7 @@ struct BoundaryCurve {
 // the window in the speed plane); a missing or extra boundary counts as the whole span.
 struct CurveFidelity {
   ReductionSpec reduction;        // automatic (with its vectors per load level) or none
-  int approximation = 0;          // harmonics per family
+  int approximation = 0;          // harmonics per multiplier sign
   std::vector<double> checked_at; // the trace values (F̄ or Ω) of the lines checked
   ErrorBudget budget;
   bool tolerance_met = false;     // budget.total() ≤ the map's tolerance

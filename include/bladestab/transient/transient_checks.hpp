@@ -1,7 +1,7 @@
 #pragma once
 // Whether a transient is a result or an artefact: its energy balance (docs/theory.md §5, (55)–(58)), which the
 // Runge–Kutta steps do not preserve by construction and so cannot fake, and the range of the linear
-// small-deflection model (docs/theory.md §1). A run failing either is an error, not a result (issue 8).
+// small-deflection model (docs/theory.md §1). A run failing either is an error, not a result.
 #include <optional>
 #include <string>
 

@@ -1,4 +1,4 @@
-#include "bladestab/modal/mode_convergence.hpp"
+#include "bladestab/modal/basis_error.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -105,10 +105,7 @@ double frequency_rounding(const Eigen::MatrixXd& absolute_stiffness, const Eigen
 
 ErrorBudget ConvergedModes::worst_budget() const {
   ErrorBudget worst;
-  for (std::size_t k = 0; k < relative_error.size(); ++k) {
-    worst.basis = std::max(worst.basis, budget(k).basis);
-    worst.method = std::max(worst.method, budget(k).method);
-  }
+  for (std::size_t k = 0; k < relative_error.size(); ++k) worst.raise_to(budget(k));
   return worst;
 }
 

@@ -1,7 +1,9 @@
 #pragma once
-// Error estimates for computed modes ("model only what a scene needs"): each mode is compared
-// with the same mode (same family, same rank within it) of a richer model, and the number of
-// terms can be raised until every requested mode meets a tolerance.
+// The Ritz basis's error and the policy that bounds it ("model only what a scene needs"): the
+// richer basis a result is compared with (reference_terms) and how far its difference understates
+// the error (basis_tail), the terms a tolerance needs (terms_for_tolerance), and for computed
+// modes, each compared with the same mode (same family, same rank within it) of a richer model
+// with the terms raised until every requested mode meets a tolerance.
 #include <optional>
 #include <vector>
 
@@ -34,7 +36,7 @@ inline constexpr double eigensolver_rounding = 1e-12;
 // shear energy κGA∫(v' − θ)² is a small difference of large terms): 10·ε·(|q|ᵀ|K||q|)/(qᴴKq),
 // ε the machine epsilon, half of it for ω = (k/m)^½ and 20 for the summation (measured on the
 // paper blade's first mode, |q|ᵀ|K||q|/qᴴKq = 4.9e3 at rest: dense eigenvalue and Rayleigh
-// quotient 1.8e-12 apart, where 1e-12 was assumed; at d̄ = 0.001 the ratio is 4.9e5).
+// quotient 1.8e-12 apart, above a flat 1e-12; at d̄ = 0.001 the ratio is 4.9e5).
 // `absolute_stiffness` is |K| entry by entry.
 double frequency_rounding(const Eigen::MatrixXd& absolute_stiffness, const Eigen::VectorXd& absolute_shape,
                           double stiffness_form);
@@ -65,7 +67,7 @@ BasisTail basis_tail(const std::vector<double>& f, const std::vector<int>& n);
 // convergence like N^−2 (its asymptotic rate is 1) would need more than 200 terms.
 std::optional<int> terms_for_tolerance(BasisKind basis, int terms, double estimate, double tolerance);
 
-// InputError (naming --tolerance) unless 0 < tolerance < 1 and tolerance > 1e-12, the
+// ParameterError on `tolerance` unless 0 < tolerance < 1 and tolerance > 1e-12, the
 // eigensolver's rounding that every estimate includes.
 void check_tolerance(double tolerance);
 
