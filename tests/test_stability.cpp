@@ -284,3 +284,31 @@ TEST_CASE("boundary frequencies coincide with where the stability verdict change
     CHECK(std::abs(lo / theta_b - 1) < 1e-6);
   }
 }
+
+TEST_CASE("a period too long for the Magnus monodromy: the message says why from the system, not from a setting",
+          "[stability]") {
+  const auto refusal = [](const PeriodicSystem& sys) {
+    try {
+      floquet_multipliers(sys, {FloquetMethod::monodromy, 0, 1e-6, false});
+    } catch (const std::exception& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  // The pulses of a speed range from 0 to 1e-300 rad/s: even the slowest mode (ω₁ ≈ 107 rad/s at
+  // rest) turns ~1e302 times a period; no choice of modes helps.
+  const Setup slow = setup(paper_scene({"model.terms=4", "operation.speed_rad_s=0", "load.pulse_frequency_hz=1e-300"}));
+  const std::string too_slow = refusal(slow.system);
+  INFO(too_slow);
+  CHECK(too_slow.find("even for the slowest mode kept") != std::string::npos);
+  CHECK(too_slow.find("the pulses are too slow") != std::string::npos);
+  CHECK(too_slow.find("model.reduction") == std::string::npos);
+  // All 48 modes of the whole Ritz model (its stiffest ≈ 3e5 rad/s) over a 2 s period: fewer modes would do.
+  const Scene whole = paper_scene({"operation.speed_rad_s=0", "load.pulse_frequency_hz=0.5"});
+  const BladeModel m = assemble_model(whole);
+  const std::string stiff =
+      refusal(periodic_system(m, whole, load_series(whole), {ReductionKind::none, 0, 0}));
+  INFO(stiff);
+  CHECK(stiff.find("keeps 48 of its 48 modes") != std::string::npos);
+  CHECK(stiff.find("keep fewer") != std::string::npos);
+}

@@ -222,7 +222,7 @@ Command register_boundaries(CLI::App& app) {
                     "instead: all boundary F̄_max at this pulse frequency θ [rad/s]");
   add_number_option(*command, "--cutoff-hz", request->cutoff_hz, AllowedRange::closed(0, scene_limits::cutoff_hz.hi),
                     "keep only the modes below this frequency (default 0: all)");
-  add_integer_option(*command, "--max-order", request->max_order, 0, 2 * request->max_approximation - 3,
+  add_integer_option(*command, "--max-order", request->max_order, 1, 2 * request->max_approximation - 3,
                      "highest order n (θ ≈ 2ω/n) reported and converged (default 4)");
   add_threads_option(*command, request->threads);
   command->add_option("--range", *range,
@@ -235,6 +235,9 @@ Command register_boundaries(CLI::App& app) {
         command->count("--range") > 0 ? std::optional(parse_window(*range)) : std::nullopt;
     const Scene scene = options->load();
     if (in_load) check_pulse_fits(scene, *at_theta);
+    if (request->cutoff_hz > 0) {
+      check_modal_cutoff(scene, request->cutoff_hz, fmt::format("--cutoff-hz {:g}", request->cutoff_hz));
+    }
     const BladeModel model = assemble_model(scene);
     if (window) {
       const double unit = in_load ? model.blade.critical_load() : 1.0;  // F̄_max → N

@@ -171,9 +171,11 @@ void print(const SceneOptions& options, const Scene& scene, const StabilityAnswe
 // checked before anything is computed (an input error, exit 2).
 void check_export_path(const std::string& path) {
   const std::filesystem::path p(path);
-  if (p.extension() != ".json" || p.stem().empty()) {
-    throw InputError(fmt::format("--export-matrices {}: must be a FILE.json (the manifest; the matrices go beside it "
-                                 "as FILE.A0.mtx, FILE.B.mtx and FILE.load.mtx)", echoed(path, 240)));
+  // The temporaries beside the files (output_files.hpp) add about 30 bytes to a name of at most 255.
+  if (p.extension() != ".json" || p.stem().empty() || p.filename().string().size() > 200) {
+    throw InputError(fmt::format("--export-matrices {}: must be a FILE.json of at most 200 bytes (the manifest; the "
+                                 "matrices go beside it as FILE.A0.mtx, FILE.B.mtx and FILE.load.mtx)",
+                                 echoed(path, 240)));
   }
   check_output_directory(fmt::format("--export-matrices {}: its directory", echoed(path, 240)),
                          p.has_parent_path() ? p.parent_path().string() : ".");
@@ -248,7 +250,10 @@ Command register_stability(CLI::App& app) {
     const bool exporting = command->count("--export-matrices") > 0;
     if (exporting) check_export_path(*export_path);
     Scene scene = options->load();
-    if (*cutoff > 0) scene.model.reduction = {ReductionKind::modal, 0, *cutoff};
+    if (*cutoff > 0) {
+      check_modal_cutoff(scene, *cutoff, fmt::format("--cutoff-hz {:g}", *cutoff));
+      scene.model.reduction = {ReductionKind::modal, 0, *cutoff};
+    }
     if (exporting && scene.load.approximation == LoadApproximation::exact) {
       throw InputError(fmt::format("--export-matrices {}: load.approximation = \"exact\" is integrated through each "
                                    "pulse and has no series to export; use \"cosine\" or \"fourier\"",

@@ -131,6 +131,23 @@ int step_levels(int first) {
   return levels;
 }
 
+// Why a period needs more than max_magnus_steps steps (h‖A‖ ≤ 2 asks ‖A‖T/2 of them): the pulses
+// are too slow where even the slowest kept mode needs that many (a speed range from 0 to 1e-300
+// rad/s did), else the model keeps modes stiffer than the period takes. Which of the settings
+// that choose the modes the scene has is not known here: the message states how many it kept.
+NumericalError too_many_steps(const PeriodicSystem& sys) {
+  const double slowest = sys.modal_frequencies.minCoeff(), stiffest = sys.modal_frequencies.maxCoeff();
+  const std::string need = fmt::format("the monodromy needs more than {} Magnus steps per period 2π/θ = {:.3g} s "
+                                       "(θ = {:.3g} rad/s)", max_magnus_steps, sys.period(), sys.angular_frequency);
+  if (slowest * sys.period() / 2 > max_magnus_steps) {
+    return NumericalError(fmt::format("{} even for the slowest mode kept, {:.3g} rad/s: the pulses are too slow for "
+                                      "a Floquet analysis of this blade; raise the pulse frequency", need, slowest));
+  }
+  return NumericalError(fmt::format("{}: the model keeps {} of its {} modes, the stiffest at {:.3g} rad/s; keep "
+                                    "fewer (a modal cut-off below it, or fewer reduction vectors)",
+                                    need, sys.kept_modes, sys.all_modes, stiffest));
+}
+
 // Doubles the Magnus steps until the multiplier sets of successive counts show convergence.
 //
 // The ladder starts at 1/64 of the count where h‖A‖ ≤ 2 (the Magnus series' sufficient
@@ -147,12 +164,7 @@ int step_levels(int first) {
 // them must disagree by the ratio.
 Attempt refine_steps(const PeriodicSystem& sys, double tol, LevelCounter& counter) {
   const int safe = minimum_magnus_steps(sys);
-  if (safe > max_magnus_steps) {
-    throw NumericalError(fmt::format(
-        "the monodromy needs more than {} Magnus steps per period for this {}-state system (its stiffest rate "
-        "is {:.3g} rad/s); use the automatic reduction (model.reduction = \"auto\")",
-        max_magnus_steps, sys.state_size(), sys.modal_frequencies.maxCoeff()));
-  }
+  if (safe > max_magnus_steps) throw too_many_steps(sys);
   const int first = std::max(8, safe / 64);
   counter.plan(step_levels(first) + 1);  // and the checks after
   Eigen::VectorXcd previous;
