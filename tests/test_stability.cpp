@@ -17,18 +17,11 @@
 using namespace bladestab;
 using reference::MathieuKind;
 using testing_support::paper_scene;
+using testing_support::mathieu_scene;
 
 namespace {
 
-// The one-dof Mathieu scene: y'' + ω0²(1 − F̄/2 + (F̄/2) cos θt) y = 0.
-Scene mathieu_scene(double fbar, std::vector<std::string> more = {}) {
-  std::vector<std::string> o{"model.theory=euler-bernoulli", "model.terms=1", "model.axial=false", "model.basis=sine",
-                             "operation.speed_rad_s=0", "load.approximation=cosine",
-                             "load.fmax_over_fcr=" + std::to_string(fbar)};
-  o.insert(o.end(), more.begin(), more.end());
-  return paper_scene(o);
-}
-
+// A scene's model, its periodic system and its peak load.
 struct Setup {
   BladeModel model;
   PeriodicSystem system;

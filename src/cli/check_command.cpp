@@ -91,8 +91,16 @@ CheckOutcome rub_outcome(const Scene& scene, const RubStabilityResult& r) {
       to_string(scene.load.approximation), to_string(scene.damping.model), r.max_order, r.window_fmax_over_fcr,
       r.speeds_scanned);
   const std::string floquet =
-      fmt::format("Floquet at {:.9g} rad/s, F̄ = {:.6g}: max|ρ| = {:.8g} ({})", r.check_speed_rad_s,
-                  r.check_fmax_over_fcr, r.max_abs_multiplier, r.check_stable ? "stable" : "unstable");
+      fmt::format("Floquet at {:.9g} rad/s, F̄ = {:.6g}: max|ρ| = {:.8g} ({}{})", r.check_speed_rad_s,
+                  r.check_fmax_over_fcr, r.max_abs_multiplier, r.check_stable ? "stable" : "unstable",
+                  r.check_tolerance_unmet.empty() ? "" : "; its " + r.check_tolerance_unmet);
+  const std::string estimate = r.onset_converged ? fmt::format("error estimate {:.1e}", r.onset_error_estimate)
+                                                 : "not converged in the harmonics";
+  const std::string unconverged =
+      r.unconverged_boundaries == 0
+          ? ""
+          : fmt::format("; {} boundaries at the worst speed did not converge in the harmonics (regions end at their "
+                        "last values)", r.unconverged_boundaries);
   if (r.required == 0) {
     o.detail = "max_fmax_over_fcr = 0: only the unloaded blade, which no rub excites";
   } else if (r.tip) {
@@ -105,22 +113,22 @@ CheckOutcome rub_outcome(const Scene& scene, const RubStabilityResult& r) {
                        : "",
         scope);
   } else if (r.onset_fmax_over_fcr && *r.onset_fmax_over_fcr <= r.required) {
-    o.detail = fmt::format("a region of mode {}, order {} (multiplier {}) opens at F̄ = {:.8g} (error estimate {:.1e}) "
-                           "at {:.9g} rad/s, within the required {:g}; {}; {}",
-                           r.mode, r.order, sign_text(r.multiplier), *r.onset_fmax_over_fcr, r.onset_error_estimate,
-                           r.speed_rad_s, r.required, floquet, scope);
+    o.detail = fmt::format("a region of mode {}, order {} (multiplier {}) opens at F̄ = {:.8g} ({}) "
+                           "at {:.9g} rad/s, within the required {:g}; {}; {}{}",
+                           r.mode, r.order, sign_text(r.multiplier), *r.onset_fmax_over_fcr, estimate,
+                           r.speed_rad_s, r.required, floquet, scope, unconverged);
   } else if (!r.check_stable) {
     o.detail = fmt::format("no ±1 region opens below F̄ = {} in the range, but {}: a combination resonance "
-                           "(multipliers leaving the unit circle away from ±1); {}",
-                           onset, floquet, scope);
+                           "(multipliers leaving the unit circle away from ±1); {}{}",
+                           onset, floquet, scope, unconverged);
   } else {
-    o.detail = fmt::format("the lowest onset, F̄ = {}{} at {:.9g} rad/s{}, is above the required {:g}; {}; {}", onset,
-                           r.onset_fmax_over_fcr ? fmt::format(" (error estimate {:.1e})", r.onset_error_estimate) : "",
+    o.detail = fmt::format("the lowest onset, F̄ = {}{} at {:.9g} rad/s{}, is above the required {:g}; {}; {}{}", onset,
+                           r.onset_fmax_over_fcr ? fmt::format(" ({})", estimate) : "",
                            r.speed_rad_s,
                            r.onset_fmax_over_fcr ? fmt::format(" (mode {}, order {}, multiplier {})", r.mode, r.order,
                                                                sign_text(r.multiplier))
                                                  : "",
-                           r.required, floquet, scope);
+                           r.required, floquet, scope, unconverged);
   }
   o.write_worst = [r](JsonWriter& json) {
     json.begin_object("worst").value("speed_rad_s", r.speed_rad_s);
@@ -136,9 +144,12 @@ CheckOutcome rub_outcome(const Scene& scene, const RubStabilityResult& r) {
         .value("check_speed_rad_s", r.check_speed_rad_s)
         .value("check_fmax_over_fcr", r.check_fmax_over_fcr)
         .value("max_abs_multiplier", r.max_abs_multiplier)
+        .value("check_tolerance_met", r.check_tolerance_unmet.empty())
         .end_object()
         .value("required", r.required)
         .value("error_estimate", r.onset_error_estimate)
+        .value("onset_converged", r.onset_converged)
+        .value("unconverged_boundaries", r.unconverged_boundaries)
         .value("window_fmax_over_fcr", r.window_fmax_over_fcr)
         .value("approximation", r.approximation)
         .value("speeds_scanned", r.speeds_scanned);

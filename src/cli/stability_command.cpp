@@ -15,6 +15,7 @@
 #include "error_output.hpp"
 #include "finite_results.hpp"
 #include "json_writer.hpp"
+#include "notes.hpp"
 #include "number_options.hpp"
 #include "options.hpp"
 #include "progress.hpp"
@@ -107,6 +108,7 @@ void print(const SceneOptions& options, const Scene& scene, const StabilityAnswe
           .value("max_real_exponent", r.max_real_exponent)
           .value("stable", a.stable)
           .value("tolerance_met", a.tolerance_met);
+      a.tolerance_met ? json.null_value("tolerance_unmet") : json.value("tolerance_unmet", "--" + a.tolerance_unmet);
       write_error_budget(json, a.budget);
       write_checks(json, r.checks);
       json.begin_array("multipliers");
@@ -145,7 +147,7 @@ void print(const SceneOptions& options, const Scene& scene, const StabilityAnswe
                                   to_string(scene.load.profile), load.relative_tail));
       fmt::print("method     {}, {}\n", to_string(r.method), truncation(r, load.exact_pulse));
       fmt::print("error      {} on max|ρ|{}\n", describe_error_budget(a.budget),
-                 a.tolerance_met ? "" : "  — above the tolerance: terms or reduction could not be raised further");
+                 a.tolerance_met ? "" : "  — --" + a.tolerance_unmet);
       fmt::print("checks     det Φ vs Liouville {}, reciprocal pairs {}, RKF45 on the dominant vector: multiplier {}, "
                  "residual {}\n\n",
                  check_value(r.checks.determinant_error), check_value(r.checks.reciprocal_error),
@@ -264,6 +266,7 @@ Command register_stability(CLI::App& app) {
                 progress_reporter("stability: refinement levels", options->output_format() == OutputFormat::table)});
     if (exporting) export_matrices(*export_path, scene, answer, *tolerance);
     print(*options, scene, answer);
+    if (!answer.tolerance_met) print_note("stability: --" + answer.tolerance_unmet + "; the answer stands with its estimate");
   };
 }
 
