@@ -3,6 +3,7 @@
 // nothing on stdout, one line on stderr naming the key or option, the value and what is allowed.
 //
 // The ctest names carry "(bad_input)" so that `ctest -R bad_input` selects them.
+#include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 
@@ -543,6 +544,66 @@ TEST_CASE("bad input: issue 11, outputs (bad_input)", "[bad_input]") {
     CHECK(std::count(o.err.begin(), o.err.end(), '\n') == 1);
     CHECK(o.err.find("stdout") != std::string::npos);
   }
+}
+
+TEST_CASE("bad input: issue 24, options read as the scene reads them (bad_input)", "[bad_input]") {
+  SECTION("boundaries --max-order 0") {
+    expect_rejected({"boundaries", valid_scene, "--max-order", "0"}, {"--max-order 0", "[1, 77]"});
+  }
+  SECTION("a repeated engine order is refused alike on the command line and in the scene") {
+    const std::string rule = "must be a non-empty list of distinct integers, each in [1, 1000]";
+    expect_rejected(campbell("0:600:10", {"--engine-orders", "1,1"}), {"--engine-orders 1,1", "1 is given twice", rule});
+    expect_rejected(campbell("0:600:10", {"--engine-orders", "2", "--engine-orders", "2"}), {"--engine-orders 2,2", rule});
+    const std::string scene = edited_scene("repeated_orders.toml", "", "",
+                                           "[requirements]\nspeed_range_rad_s = [100.0, 200.0]\n"
+                                           "engine_orders = [1, 1]\nfrequency_margin = 0.1\n");
+    expect_rejected({"check", scene}, {"requirements.engine_orders = [1, 1]", rule});
+  }
+  SECTION("crosscheck --points 1,1") {
+    expect_rejected({"crosscheck", valid_scene, "--points", "1,1"},
+                    {"--points 1,1", "1 is given twice", "distinct numbers, each in [0, 1000]"});
+  }
+  SECTION("a float for an integer key is echoed as a float") {
+    expect_rejected(modes({"--set", "model.terms=16.0"}), {"model.terms = 16.0: must be an integer"});
+    expect_rejected({"modes", edited_scene("terms_16.0.toml", "terms", "terms = 16.0")},
+                    {"model.terms = 16.0: must be an integer"});
+  }
+  SECTION("--out with a component longer than a file name may be") {
+    const std::string long_name(300, 'x');
+    expect_rejected({"campbell", valid_scene, "--speeds", "0:600:3", "--out", (scratch() / long_name).string()},
+                    {"--out", "cannot write into it", "File name too long"});
+    expect_rejected({"map", valid_scene, "--plane", "theta-fmax", "--out", (scratch() / long_name / "m").string()},
+                    {"--out", "cannot write into it", "File name too long"});
+  }
+  SECTION("a modal cut-off below the first mode keeps no mode: refused, with the first mode's frequency") {
+    expect_rejected({"stability", valid_scene, "--cutoff-hz", "0.5"}, {"--cutoff-hz 0.5", "at or below the first mode, ", " Hz at operation.speed_rad_s = 300"});
+    expect_rejected({"boundaries", valid_scene, "--cutoff-hz", "0.5"}, {"--cutoff-hz 0.5", "at or below the first mode, ", " Hz at operation.speed_rad_s = 300"});
+    expect_rejected(modes({"--set", "model.reduction=modal", "--set", "model.cutoff_hz=0.5"}),
+                    {"model.cutoff_hz = 0.5", "at or below the first mode, ", " Hz at operation.speed_rad_s = 300"});
+  }
+}
+
+TEST_CASE("bad input: issue 24, a chart that cannot be written says why in one line (bad_input)", "[bad_input]") {
+  // A full disk while drawing, without a filesystem to fill: a limit on the size of a file (the
+  // interpreter ignores SIGXFSZ and gets EFBIG) lets the small data files through and stops the PNG.
+  const fs::path dir = scratch() / "full";
+  fs::create_directories(dir);
+  rlimit previous{};
+  getrlimit(RLIMIT_FSIZE, &previous);
+  rlimit small = previous;
+  small.rlim_cur = 16 * 1024;
+  setrlimit(RLIMIT_FSIZE, &small);
+  const auto o = testing_support::run_bladestab(
+      {"campbell", valid_scene, "--speeds", "0:600:3", "--set", "model.terms=4", "--count", "2", "--out", dir.string()});
+  setrlimit(RLIMIT_FSIZE, &previous);
+  INFO(o.command << "\n" << describe(o) << "\n" << o.err);
+  CHECK((WIFEXITED(o.wait_status) && WEXITSTATUS(o.wait_status) == 1));
+  CHECK(std::count(o.err.begin(), o.err.end(), '\n') == 1);
+  CHECK(o.err.rfind("bladestab: failed: drawing " + (dir / "campbell.png").string(), 0) == 0);
+  CHECK(o.err.find("File too large") != std::string::npos);
+  CHECK(o.err.find("matplotlib") == std::string::npos);
+  CHECK(o.err.find(".tmp") == std::string::npos);  // the file asked for, not its temporary
+  CHECK(fs::is_empty(dir));
 }
 
 TEST_CASE("bad input: sweep options and the static tip compression (bad_input)", "[bad_input][sweep]") {

@@ -10,12 +10,14 @@
 #include "bladestab/stability/boundaries.hpp"
 #include "bladestab/blade/damping.hpp"
 #include "bladestab/stability/instability_regions.hpp"
+#include "bladestab/modal/basis_error.hpp"
 #include "bladestab/stability/stability_analysis.hpp"
 #include "reference/mathieu.hpp"
 #include "support/scenes.hpp"
 
 using namespace bladestab;
 using reference::MathieuKind;
+using testing_support::mathieu_scene;
 using testing_support::paper_scene;
 
 namespace {
@@ -122,9 +124,7 @@ TEST_CASE("boundaries: with a modal cut-off the reduction part covers the true e
 
 TEST_CASE("boundaries: Mathieu's first two tongues with the automatic k", "[boundaries][mathieu]") {
   for (double fbar : {0.2, 0.6, 1.2}) {
-    const Scene s = paper_scene({"model.theory=euler-bernoulli", "model.terms=1", "model.axial=false",
-                                 "model.basis=sine", "operation.speed_rad_s=0", "load.approximation=cosine",
-                                 "load.fmax_over_fcr=" + std::to_string(fbar)});
+    const Scene s = mathieu_scene(fbar);
     const BladeModel m = assemble_model(s);
     const double w0 = std::sqrt(m.K_S(0, 0) / m.M(0, 0));
     BoundaryRequest r;
@@ -135,10 +135,7 @@ TEST_CASE("boundaries: Mathieu's first two tongues with the automatic k", "[boun
     // test_stability.cpp); the edges are where a equals a characteristic value.
     for (auto [kind, rank, x0, x1] : {std::tuple{MathieuKind::a_odd, 0, 0.01, 60.0}, std::tuple{MathieuKind::b_odd, 0, 0.01, 60.0},
                                       std::tuple{MathieuKind::a_even, 1, 2.0, 80.0}, std::tuple{MathieuKind::b_even, 0, 2.0, 80.0}}) {
-      double lo = x0, hi = x1;
-      const auto g = [&](double x) { return x * (1 - fbar / 2) - reference::mathieu(kind, rank, x * fbar / 4); };
-      for (int i = 0; i < 200; ++i) ((g(0.5 * (lo + hi)) > 0) == (g(lo) > 0) ? lo : hi) = 0.5 * (lo + hi);
-      const double theta = 2 * w0 / std::sqrt(0.5 * (lo + hi));
+      const double theta = reference::mathieu_blade_boundary(kind, rank, fbar, w0, x0, x1);
       const EstimatedBoundary* best = nullptr;
       for (const EstimatedBoundary& e : a.boundaries) {
         if (!best || std::abs(e.boundary.theta_rad_s - theta) < std::abs(best->boundary.theta_rad_s - theta)) best = &e;
@@ -152,6 +149,50 @@ TEST_CASE("boundaries: Mathieu's first two tongues with the automatic k", "[boun
       // basis part is the beam's, against two terms); 5e-12 is the reference's own rounding.
       CHECK(truth <= best->budget.method + 5e-12);
       CHECK(best->budget.method <= r.tolerance);
+    }
+    for (const BoundaryCheck& c : a.checks) CHECK(c.gap <= c.allowed);
+  }
+}
+
+TEST_CASE("boundaries: where the stiffness touches zero (F̄ = 1) the pinched tongues do not sink the first two, "
+          "at every starting k from 2 to 20", "[boundaries][mathieu]") {
+  // F̄ = 1: a = 2q, Mathieu's line where the stiffness vanishes once a period. The tongues of high
+  // order at low θ pinch and converge slowly or not at all in k; the order-1 and order-2 edges
+  // converge at small k and must be reported whatever k the run starts from.
+  const Scene s = mathieu_scene(1.0);
+  const BladeModel m = assemble_model(s);
+  const double w0 = std::sqrt(m.K_S(0, 0) / m.M(0, 0));
+  // The edges a₁ and b₁ (order 1, θ ≈ 199 and 327 rad/s), a₂ and b₂ (order 2, θ ≈ 108 and 138).
+  std::vector<double> edges;
+  for (auto [kind, rank, x0, x1] : {std::tuple{MathieuKind::a_odd, 0, 0.01, 60.0}, std::tuple{MathieuKind::b_odd, 0, 0.01, 60.0},
+                                    std::tuple{MathieuKind::a_even, 1, 2.0, 80.0}, std::tuple{MathieuKind::b_even, 0, 2.0, 80.0}}) {
+    edges.push_back(reference::mathieu_blade_boundary(kind, rank, 1.0, w0, x0, x1));
+  }
+  for (int k = 2; k <= 20; ++k) {
+    BoundaryRequest r;
+    r.first_approximation = k;
+    r.window = std::make_pair(10.0, 400.0);
+    const BoundaryAnalysis a = boundaries_with_error_estimate(s, r);
+    INFO("starting k = " << k << ": chosen k = " << a.approximation << ", " << a.boundaries.size() << " converged, "
+                          << a.unconverged.size() << " not");
+    for (double theta : edges) {
+      const EstimatedBoundary* best = nullptr;
+      for (const EstimatedBoundary& e : a.boundaries) {
+        if (!best || std::abs(e.boundary.theta_rad_s - theta) < std::abs(best->boundary.theta_rad_s - theta)) best = &e;
+      }
+      REQUIRE(best != nullptr);
+      const double truth = std::abs(best->boundary.theta_rad_s / theta - 1);
+      INFO("Mathieu θ = " << theta << ", found " << best->boundary.theta_rad_s << " (order " << best->boundary.order
+                          << "), estimate " << best->budget.method << ", true " << truth);
+      CHECK(truth <= 1e-8);
+      CHECK(truth <= best->budget.method + 5e-12);
+    }
+    // What did not converge is listed with how far it got, never mixed with the answer.
+    for (const UnconvergedBoundary& u : a.unconverged) {
+      CHECK(u.approximation + 4 <= r.max_approximation);
+      if (u.change && !u.check_failed) CHECK(2 * *u.change + eigensolver_rounding > r.tolerance);
+      CHECK(u.boundary.theta_rad_s >= 10.0);
+      CHECK(u.boundary.theta_rad_s <= 400.0);
     }
     for (const BoundaryCheck& c : a.checks) CHECK(c.gap <= c.allowed);
   }

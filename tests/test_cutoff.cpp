@@ -29,8 +29,13 @@ Json run_json(std::vector<std::string> args) {
   args.insert(args.end(), {"--format", "json"});
   const testing_support::Outcome o = testing_support::run_bladestab(args);
   INFO(testing_support::describe(o) << "\n" << o.err);
-  REQUIRE(o.err.empty());
-  return testing_support::parse_json(o.out);
+  // At most a note that the tolerance is not met (the cut-off's own error exceeds it), and it says so
+  // in the JSON too.
+  const Json j = testing_support::parse_json(o.out);
+  const bool noted = o.err.rfind("bladestab: note: ", 0) == 0 && o.err.find('\n') + 1 == o.err.size();
+  REQUIRE((o.err.empty() || noted));
+  CHECK(noted == !j["tolerance_met"].boolean);
+  return j;
 }
 
 // The undamped, non-gyroscopic modes of K(Ω), M of a model, M-orthonormal, ascending.

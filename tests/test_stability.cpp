@@ -18,18 +18,11 @@
 using namespace bladestab;
 using reference::MathieuKind;
 using testing_support::paper_scene;
+using testing_support::mathieu_scene;
 
 namespace {
 
-// The one-dof Mathieu scene: y'' + ω0²(1 − F̄/2 + (F̄/2) cos θt) y = 0.
-Scene mathieu_scene(double fbar, std::vector<std::string> more = {}) {
-  std::vector<std::string> o{"model.theory=euler-bernoulli", "model.terms=1", "model.axial=false", "model.basis=sine",
-                             "operation.speed_rad_s=0", "load.approximation=cosine",
-                             "load.fmax_over_fcr=" + std::to_string(fbar)};
-  o.insert(o.end(), more.begin(), more.end());
-  return paper_scene(o);
-}
-
+// A scene's model, its periodic system and its peak load.
 struct Setup {
   BladeModel model;
   PeriodicSystem system;
@@ -284,4 +277,31 @@ TEST_CASE("boundary frequencies coincide with where the stability verdict change
     INFO("F̄ = " << fbar << ": boundary " << theta_b << ", verdict changes at " << lo);
     CHECK(std::abs(lo / theta_b - 1) < 1e-6);
   }
+}
+
+TEST_CASE("a period too long for the Magnus monodromy: the message says why from the system, not from a setting",
+          "[stability]") {
+  const auto refusal = [](const PeriodicSystem& sys) {
+    try {
+      floquet_multipliers(sys, {FloquetMethod::monodromy, 0, 1e-6, false});
+    } catch (const std::exception& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  // The pulses of a speed range from 0 to 1e-300 rad/s: even the slowest mode turns ~1e302 times a period; no choice of modes helps.
+  const Setup slow = setup(paper_scene({"model.terms=4", "operation.speed_rad_s=0", "load.pulse_frequency_hz=1e-300"}));
+  const std::string too_slow = refusal(slow.system);
+  INFO(too_slow);
+  CHECK(too_slow.find("even for the slowest mode") != std::string::npos);
+  CHECK(too_slow.find("the period is too long") != std::string::npos);
+  CHECK(too_slow.find("model.reduction") == std::string::npos);
+  // All 48 modes of the whole Ritz model (its stiffest ≈ 3e5 rad/s) over a 2 s period: fewer modes would do.
+  const Scene whole = paper_scene({"operation.speed_rad_s=0", "load.pulse_frequency_hz=0.5"});
+  const BladeModel m = assemble_model(whole);
+  const std::string stiff =
+      refusal(periodic_system(m, whole, load_series(whole), {ReductionKind::none, 0, 0}));
+  INFO(stiff);
+  CHECK(stiff.find("the system has 48 modes") != std::string::npos);
+  CHECK(stiff.find("keep fewer") != std::string::npos);
 }

@@ -19,6 +19,7 @@
 #include "error_output.hpp"
 #include "finite_results.hpp"
 #include "json_output.hpp"
+#include "notes.hpp"
 #include "number_options.hpp"
 #include "options.hpp"
 #include "progress.hpp"
@@ -35,14 +36,45 @@ void require_finite(const BoundaryAnalysis& result, const std::vector<Instabilit
         .require("boundary F_max", e.boundary.peak_force_n)
         .require("boundary error estimate", e.budget.total());
   }
+  for (const UnconvergedBoundary& u : result.unconverged) {
+    check.require("unconverged boundary θ", u.boundary.theta_rad_s)
+        .require("unconverged boundary F_max", u.boundary.peak_force_n)
+        .require("unconverged boundary's change", u.change.value_or(0));
+  }
   for (const InstabilityRegion& r : regions) {
     check.require("region edge", r.lower).require("region edge", r.upper)
         .require("max|ρ| in a region", r.middle_max_abs_multiplier);
   }
 }
 
+// Opens a boundary's JSON object with where it is, what it is and the k of its value.
+Json boundary_json(const Boundary& b, int approximation, double fcr) {
+  return Json{{"theta_rad_s", b.theta_rad_s},
+              {"fmax_over_fcr", b.peak_force_n / fcr},
+              {"multiplier", b.multiplier},
+              {"mode", b.mode},
+              {"order", b.order},
+              {"approximation", approximation}};
+}
+
+// The boundaries that did not converge: where each was at the highest k reached and its last change.
+void print_unconverged(const BoundaryAnalysis& result, double fcr) {
+  if (result.unconverged.empty()) return;
+  fmt::print("\nnot converged: the value at k harmonics per family and its relative change to k + 2 (none: no "
+             "counterpart there; check: converged, but its multiplier check failed)\n");
+  fmt::print("{:>16} {:>14} {:>10} {:>5} {:>6} {:>4} {:>9}\n", "θ [rad/s]", "F̄_max", "multiplier", "mode", "order",
+             "k", "change");
+  for (const UnconvergedBoundary& u : result.unconverged) {
+    const Boundary& b = u.boundary;
+    fmt::print("{:>16.6g} {:>14.6g} {:>10} {:>5} {:>6} {:>4} {:>9}\n", b.theta_rad_s, b.peak_force_n / fcr,
+               b.multiplier > 0 ? "+1" : "-1", b.mode, b.order, u.approximation,
+               u.check_failed ? std::string("check") : u.change ? fmt::format("{:.1e}", *u.change) : std::string("none"));
+  }
+}
+
 void print(const SceneOptions& options, const Scene& scene, const BladeModel& model, const BoundaryRequest& request,
-           const BoundaryAnalysis& result, const std::vector<InstabilityRegion>& regions) {
+           const BoundaryAnalysis& result, const std::vector<InstabilityRegion>& regions,
+           const std::optional<std::string>& unmet) {
   require_finite(result, regions);
   const double fcr = model.blade.critical_load();
   const bool in_load = request.theta_rad_s.has_value();
@@ -54,7 +86,11 @@ void print(const SceneOptions& options, const Scene& scene, const BladeModel& mo
       json["speed_rad_s"] = scene.operation.speed_rad_s;
       json["fmax_over_fcr"] = scene.load.fmax_over_fcr;
       json["approximation"] = result.approximation;
+      json["max_approximation"] = request.max_approximation;
       json["tolerance"] = request.tolerance;
+      json["converged"] = result.unconverged.empty();
+      json["tolerance_met"] = result.unconverged.empty() && !unmet;
+      json["tolerance_unmet"] = unmet ? Json(*unmet) : Json(nullptr);
       json["cutoff_hz"] = request.cutoff_hz;
       json["model"] = describe_model(model);
       json["max_order"] = request.max_order;
@@ -73,14 +109,14 @@ void print(const SceneOptions& options, const Scene& scene, const BladeModel& mo
       }
       json["boundaries"] = Json::array();
       for (const EstimatedBoundary& e : result.boundaries) {
-        const Boundary& b = e.boundary;
-        Json& boundary = json["boundaries"].emplace_back(Json{{"theta_rad_s", b.theta_rad_s},
-                                                              {"fmax_over_fcr", b.peak_force_n / fcr},
-                                                              {"multiplier", b.multiplier},
-                                                              {"mode", b.mode},
-                                                              {"order", b.order},
-                                                              {"approximation", e.approximation}});
+        Json& boundary = json["boundaries"].emplace_back(boundary_json(e.boundary, e.approximation, fcr));
         write_error_budget(boundary, e.budget);
+      }
+      json["unconverged"] = Json::array();
+      for (const UnconvergedBoundary& u : result.unconverged) {
+        Json& boundary = json["unconverged"].emplace_back(boundary_json(u.boundary, u.approximation, fcr));
+        boundary["last_change"] = u.change ? Json(*u.change) : Json(nullptr);
+        boundary["check_failed"] = u.check_failed;
       }
       json["regions"] = Json::array();
       for (const InstabilityRegion& r : regions) {
@@ -88,6 +124,8 @@ void print(const SceneOptions& options, const Scene& scene, const BladeModel& mo
                                    {"upper", r.upper / unit},
                                    {"lower_at_window", r.lower_open},
                                    {"upper_at_window", r.upper_open},
+                                   {"lower_unconverged", r.lower_unconverged},
+                                   {"upper_unconverged", r.upper_unconverged},
                                    {"multiplier", r.multiplier},
                                    {"mode", r.mode},
                                    {"order", r.order},
@@ -97,12 +135,20 @@ void print(const SceneOptions& options, const Scene& scene, const BladeModel& mo
       break;
     }
     case OutputFormat::csv:
-      fmt::print("theta_rad_s,fmax_over_fcr,multiplier,mode,order,approximation,error_estimate,basis,reduction,load,method\n");
+      // The unconverged boundaries follow with converged = false, their change from k to k + 2
+      // (empty: no counterpart), whether their multiplier check failed, and no error estimate.
+      fmt::print("theta_rad_s,fmax_over_fcr,multiplier,mode,order,approximation,error_estimate,basis,reduction,load,"
+                 "method,converged,last_change,check_failed\n");
       for (const EstimatedBoundary& e : result.boundaries) {
         const Boundary& b = e.boundary;
-        fmt::print("{},{},{},{},{},{},{},{},{},{},{}\n", b.theta_rad_s, b.peak_force_n / fcr, b.multiplier, b.mode,
-                   b.order, e.approximation, e.budget.total(), e.budget.basis, e.budget.reduction, e.budget.load,
-                   e.budget.method);
+        fmt::print("{},{},{},{},{},{},{},{},{},{},{},true,,false\n", b.theta_rad_s, b.peak_force_n / fcr,
+                   b.multiplier, b.mode, b.order, e.approximation, e.budget.total(), e.budget.basis,
+                   e.budget.reduction, e.budget.load, e.budget.method);
+      }
+      for (const UnconvergedBoundary& u : result.unconverged) {
+        const Boundary& b = u.boundary;
+        fmt::print("{},{},{},{},{},{},,,,,,false,{},{}\n", b.theta_rad_s, b.peak_force_n / fcr, b.multiplier, b.mode,
+                   b.order, u.approximation, u.change ? fmt::format("{}", *u.change) : "", u.check_failed);
       }
       break;
     case OutputFormat::table:
@@ -111,12 +157,18 @@ void print(const SceneOptions& options, const Scene& scene, const BladeModel& mo
       fmt::print("operation      Ω = {:.6g} rad/s{}\n", scene.operation.speed_rad_s,
                  in_load ? fmt::format(", θ = {:.6g} rad/s", *request.theta_rad_s)
                          : fmt::format(", F̄_max = {:.6g}", scene.load.fmax_over_fcr));
-      fmt::print("approximation  k = {} harmonics per family: every boundary of order <= {} with {} in [{:.6g}, {:.6g}] converged to "
+      fmt::print("approximation  k = {} harmonics per family: {} boundary of order <= {} with {} in [{:.6g}, {:.6g}] converged to "
                  "{:.1e} against k + 2\n",
-                 result.approximation, request.max_order, in_load ? "F̄_max" : "θ", result.window.first / unit, result.window.second / unit,
-                 request.tolerance);
-      fmt::print("error          {} relative on {}, largest over the boundaries\n", describe_error_budget(result.total()),
-                 in_load ? "F̄_max" : "θ");
+                 result.approximation, result.unconverged.empty() ? "every" : "each listed", request.max_order,
+                 in_load ? "F̄_max" : "θ", result.window.first / unit, result.window.second / unit, request.tolerance);
+      if (!result.unconverged.empty()) {
+        fmt::print("not converged  {} more did not converge with up to {} harmonics per family (listed after the "
+                   "boundaries)\n",
+                   result.unconverged.size(), request.max_approximation);
+      }
+      fmt::print("error          {} relative on {}, largest over the boundaries{}\n",
+                 describe_error_budget(result.total()), in_load ? "F̄_max" : "θ",
+                 unmet ? fmt::format(" — above --tolerance {:g}", request.tolerance) : "");
       for (const BoundaryCheck& c : result.checks) {
         fmt::print("check          θ = {:.6g} rad/s, F̄_max = {:.6g}: Magnus monodromy{} has a multiplier {:.1e} from {} "
                    "(allowed {:.1e})\n",
@@ -137,12 +189,21 @@ void print(const SceneOptions& options, const Scene& scene, const BladeModel& mo
                    shown(b.peak_force_n / fcr, in_load), b.multiplier > 0 ? "+1" : "-1", b.mode, b.order,
                    e.budget.total());
       }
-      if (result.boundaries.empty()) fmt::print("(none of order <= {} in the window)\n", request.max_order);
+      if (result.boundaries.empty()) {
+        fmt::print("(none {}of order <= {} in the window)\n", result.unconverged.empty() ? "" : "converged ",
+                   request.max_order);
+      }
+      print_unconverged(result, fcr);
       fmt::print("\nregions in {} (each checked unstable at its middle by the Floquet multipliers)\n",
                  in_load ? "F̄_max" : "θ [rad/s]");
       for (const InstabilityRegion& r : regions) {
-        fmt::print("  {}{:.6g} … {:.6g}{}  multiplier {}  mode {}  order {}  (max|ρ| = {:.4g} at the middle)\n",
-                   r.lower_open ? "(window) " : "", r.lower / unit, r.upper / unit, r.upper_open ? " (window)" : "",
+        const auto end = [](bool open, bool unconverged) {
+          return open ? "(window)" : unconverged ? "(not converged)" : "";
+        };
+        fmt::print("  {}{}{:.6g} … {:.6g}{}{}  multiplier {}  mode {}  order {}  (max|ρ| = {:.4g} at the middle)\n",
+                   end(r.lower_open, r.lower_unconverged), r.lower_open || r.lower_unconverged ? " " : "",
+                   r.lower / unit, r.upper / unit, r.upper_open || r.upper_unconverged ? " " : "",
+                   end(r.upper_open, r.upper_unconverged),
                    r.multiplier > 0 ? "+1" : "-1", r.mode, r.order, r.middle_max_abs_multiplier);
       }
       if (regions.empty()) fmt::print("  (none in the window)\n");
@@ -186,6 +247,55 @@ void check_pulse_fits(const Scene& scene, double theta) {
   }
 }
 
+// --tolerance bounds the harmonics' part, which k is raised to meet; the basis, the reduction and
+// the load series are the scene's and the options' and are reported, not raised. Where the whole
+// estimate of the converged boundaries is above the tolerance, one line says which part, and for
+// the basis whether more terms could reach it (basis_can_reach, as `stability` raises them).
+std::optional<std::string> tolerance_unmet(const Scene& scene, const BoundaryRequest& request,
+                                           const BoundaryAnalysis& analysis) {
+  const ErrorBudget total = analysis.total();
+  if (total.total() <= request.tolerance) return std::nullopt;
+  std::string part;
+  if (total.basis >= std::max({total.reduction, total.load, total.method})) {
+    const ModelSpec& spec = scene.model;
+    part = fmt::format("its basis part {:.1e} with model.basis = \"{}\" and {} terms per field: {}", total.basis,
+                       to_string(spec.basis), spec.terms,
+                       basis_can_reach(spec.basis, spec.terms, total.basis, request.tolerance)
+                           ? "raise model.terms"
+                           : "more terms cannot reach it; use model.basis = \"legendre\"");
+  } else if (total.reduction >= std::max(total.load, total.method)) {
+    part = fmt::format("its reduction part {:.1e}: raise --cutoff-hz", total.reduction);
+  } else if (total.load >= total.method) {
+    part = fmt::format("its load part {:.1e}: the pulse's series (load.approximation = \"fourier\")", total.load);
+  } else {
+    part = fmt::format("its method part {:.1e}", total.method);
+  }
+  return fmt::format("the whole estimate {:.1e} is above --tolerance {:g}, which bounds the harmonics' part only; "
+                     "mostly {}", total.total(), request.tolerance, part);
+}
+
+// What the answer lacks, on one stderr line: boundaries that did not converge, and a whole estimate
+// above the tolerance. Boundaries that did not converge do not sink those that did: with some
+// converged the answer stands (exit 0, the line a note); with none converged the answer, which
+// lists them, is a failure (exit 1, the line the failure's).
+void report_shortfalls(const BoundaryAnalysis& analysis, const BoundaryRequest& request,
+                       const std::optional<std::string>& unmet) {
+  std::vector<std::string> parts;
+  if (!analysis.unconverged.empty()) {
+    const bool none = analysis.boundaries.empty();
+    parts.push_back(fmt::format("{} of the {} boundaries in the window {} to --tolerance {:g} with up to {} harmonics "
+                                "per family (listed as not converged)",
+                                none ? "none" : std::to_string(analysis.unconverged.size()),
+                                analysis.unconverged.size() + analysis.boundaries.size(),
+                                none ? "converged" : "did not converge", request.tolerance, request.max_approximation));
+  }
+  if (unmet) parts.push_back(*unmet);
+  if (parts.empty()) return;
+  const std::string line = fmt::format("boundaries: {}", fmt::join(parts, "; "));
+  if (analysis.boundaries.empty() && !analysis.unconverged.empty()) throw AnswerIsNegative{line};
+  print_note(line);
+}
+
 // --range LO:HI: two plain numbers (number_options.hpp) with 0 <= LO < HI.
 std::pair<double, double> parse_window(const std::string& text) {
   const std::size_t colon = text.find(':');
@@ -214,7 +324,7 @@ Command register_boundaries(CLI::App& app) {
                     "instead: all boundary F̄_max at this pulse frequency θ [rad/s]");
   add_number_option(*command, "--cutoff-hz", request->cutoff_hz, AllowedRange::closed(0, scene_limits::cutoff_hz.hi),
                     "keep only the modes below this frequency (default 0: all)");
-  add_integer_option(*command, "--max-order", request->max_order, 0, 2 * request->max_approximation - 3,
+  add_integer_option(*command, "--max-order", request->max_order, 1, 2 * request->max_approximation - 3,
                      "highest order n (θ ≈ 2ω/n) reported and converged (default 4)");
   add_threads_option(*command, request->threads);
   command->add_option("--range", *range,
@@ -227,6 +337,9 @@ Command register_boundaries(CLI::App& app) {
         command->count("--range") > 0 ? std::optional(parse_window(*range)) : std::nullopt;
     const Scene scene = options->load();
     if (in_load) check_pulse_fits(scene, *at_theta);
+    if (request->cutoff_hz > 0) {
+      check_modal_cutoff(scene, request->cutoff_hz, fmt::format("--cutoff-hz {:g}", request->cutoff_hz));
+    }
     const BladeModel model = assemble_model(scene);
     if (window) {
       const double unit = in_load ? model.blade.critical_load() : 1.0;  // F̄_max → N
@@ -235,7 +348,9 @@ Command register_boundaries(CLI::App& app) {
     check_boundary_work(scene, model, *request);
     request->progress = progress_reporter("boundaries: harmonic levels solved", options->output_format() == OutputFormat::table);
     const BoundaryAnalysis analysis = boundaries_with_error_estimate(scene, *request);
-    print(*options, scene, model, *request, analysis, instability_regions(scene, *request, analysis));
+    const std::optional<std::string> unmet = tolerance_unmet(scene, *request, analysis);
+    print(*options, scene, model, *request, analysis, instability_regions(scene, *request, analysis), unmet);
+    report_shortfalls(analysis, *request, unmet);
   };
 }
 

@@ -160,7 +160,7 @@ Command register_campbell(CLI::App& app) {
   auto tolerance = std::make_shared<double>(1e-6);
   add_scene_options(*command, *options);
   command->add_option("--speeds", *speeds, "rotor speeds in rad/s as start:stop:count, e.g. 0:600:61")->required();
-  add_integer_list_option(*command, "--engine-orders", *orders, 1, 1000,
+  add_integer_list_option(*command, "--engine-orders", *orders, 1, scene_limits::max_engine_order,
                           "engine orders k of the lines f = kΩ/2π (default 1,2,3,4)");
   add_integer_option(*command, "--count", *count, 1, max_int, "modes to track, lowest first (default 8)");
   add_number_option(*command, "--tolerance", *tolerance, AllowedRange::open(0, 1),

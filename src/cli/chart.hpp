@@ -8,9 +8,11 @@
 
 namespace bladestab::cli {
 
-// Writes `json` next to `output` (same stem, .json) and renders `kind` to `output` (.png or .svg).
-// Throws std::runtime_error with the interpreter's message when drawing fails.
-void draw_chart(const std::string& kind, const std::string& json_path, const std::string& output_path);
+// Renders `kind` from the JSON at `json_path` to `output_path` (.png or .svg). Throws
+// std::runtime_error with one line when drawing fails: the script's own cause (a full disk, a
+// missing matplotlib), with `shown_path` (the file the user asked for) in place of the paths given.
+void draw_chart(const std::string& kind, const std::string& json_path, const std::string& output_path,
+                const std::string& shown_path);
 
 // --out DIR and --chart png|svg|none, shared by the commands that draw.
 void add_chart_options(CLI::App& command, std::string& out, std::string& chart, const std::string& out_help);

@@ -89,8 +89,16 @@ CheckOutcome rub_outcome(const Scene& scene, const RubStabilityResult& r) {
       to_string(scene.load.approximation), to_string(scene.damping.model), r.max_order, r.window_fmax_over_fcr,
       r.speeds_scanned);
   const std::string floquet =
-      fmt::format("Floquet at {:.9g} rad/s, F̄ = {:.6g}: max|ρ| = {:.8g} ({})", r.check_speed_rad_s,
-                  r.check_fmax_over_fcr, r.max_abs_multiplier, r.check_stable ? "stable" : "unstable");
+      fmt::format("Floquet at {:.9g} rad/s, F̄ = {:.6g}: max|ρ| = {:.8g} ({}{})", r.check_speed_rad_s,
+                  r.check_fmax_over_fcr, r.max_abs_multiplier, r.check_stable ? "stable" : "unstable",
+                  r.check_tolerance_unmet.empty() ? "" : "; its " + r.check_tolerance_unmet);
+  const std::string estimate = r.onset_converged ? fmt::format("error estimate {:.1e}", r.onset_error_estimate)
+                                                 : "not converged in the harmonics";
+  const std::string unconverged =
+      r.unconverged_boundaries == 0
+          ? ""
+          : fmt::format("; {} boundaries at the worst speed did not converge in the harmonics (regions end at their "
+                        "last values)", r.unconverged_boundaries);
   if (r.required == 0) {
     o.detail = "max_fmax_over_fcr = 0: only the unloaded blade, which no rub excites";
   } else if (r.tip) {
@@ -103,22 +111,22 @@ CheckOutcome rub_outcome(const Scene& scene, const RubStabilityResult& r) {
                        : "",
         scope);
   } else if (r.onset_fmax_over_fcr && *r.onset_fmax_over_fcr <= r.required) {
-    o.detail = fmt::format("a region of mode {}, order {} (multiplier {}) opens at F̄ = {:.8g} (error estimate {:.1e}) "
-                           "at {:.9g} rad/s, within the required {:g}; {}; {}",
-                           r.mode, r.order, sign_text(r.multiplier), *r.onset_fmax_over_fcr, r.onset_error_estimate,
-                           r.speed_rad_s, r.required, floquet, scope);
+    o.detail = fmt::format("a region of mode {}, order {} (multiplier {}) opens at F̄ = {:.8g} ({}) "
+                           "at {:.9g} rad/s, within the required {:g}; {}; {}{}",
+                           r.mode, r.order, sign_text(r.multiplier), *r.onset_fmax_over_fcr, estimate,
+                           r.speed_rad_s, r.required, floquet, scope, unconverged);
   } else if (!r.check_stable) {
     o.detail = fmt::format("no ±1 region opens below F̄ = {} in the range, but {}: a combination resonance "
-                           "(multipliers leaving the unit circle away from ±1); {}",
-                           onset, floquet, scope);
+                           "(multipliers leaving the unit circle away from ±1); {}{}",
+                           onset, floquet, scope, unconverged);
   } else {
-    o.detail = fmt::format("the lowest onset, F̄ = {}{} at {:.9g} rad/s{}, is above the required {:g}; {}; {}", onset,
-                           r.onset_fmax_over_fcr ? fmt::format(" (error estimate {:.1e})", r.onset_error_estimate) : "",
+    o.detail = fmt::format("the lowest onset, F̄ = {}{} at {:.9g} rad/s{}, is above the required {:g}; {}; {}{}", onset,
+                           r.onset_fmax_over_fcr ? fmt::format(" ({})", estimate) : "",
                            r.speed_rad_s,
                            r.onset_fmax_over_fcr ? fmt::format(" (mode {}, order {}, multiplier {})", r.mode, r.order,
                                                                sign_text(r.multiplier))
                                                  : "",
-                           r.required, floquet, scope);
+                           r.required, floquet, scope, unconverged);
   }
   o.write_worst = [r](Json& json) {
     json["worst"] = {{"speed_rad_s", r.speed_rad_s},
@@ -129,9 +137,12 @@ CheckOutcome rub_outcome(const Scene& scene, const RubStabilityResult& r) {
                      {"tip", r.tip},
                      {"check_speed_rad_s", r.check_speed_rad_s},
                      {"check_fmax_over_fcr", r.check_fmax_over_fcr},
-                     {"max_abs_multiplier", r.max_abs_multiplier}};
+                     {"max_abs_multiplier", r.max_abs_multiplier},
+                     {"check_tolerance_met", r.check_tolerance_unmet.empty()}};
     json["required"] = r.required;
     json["error_estimate"] = r.onset_error_estimate;
+    json["onset_converged"] = r.onset_converged;
+    json["unconverged_boundaries"] = r.unconverged_boundaries;
     json["window_fmax_over_fcr"] = r.window_fmax_over_fcr;
     json["approximation"] = r.approximation;
     json["speeds_scanned"] = r.speeds_scanned;

@@ -1,6 +1,7 @@
 #pragma once
 // The subcommands. Each registers its options on the app and returns the function that runs it.
 #include <functional>
+#include <string>
 
 #include <CLI/CLI.hpp>
 
@@ -8,9 +9,12 @@ namespace bladestab::cli {
 
 using Command = std::function<void()>;
 
-// Thrown by a command whose answer is printed and complete but negative (`check`: a requirement
-// not met): exit status 1, with no error line.
-struct AnswerIsNegative {};
+// Thrown by a command whose answer is printed and complete but negative: exit status 1, with no
+// error line (`check`: a requirement not met) or with `reason` as the "failed" line
+// (`boundaries`: none converged).
+struct AnswerIsNegative {
+  std::string reason;
+};
 
 Command register_modes(CLI::App& app);
 Command register_campbell(CLI::App& app);

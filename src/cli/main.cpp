@@ -19,6 +19,7 @@
 #include "bladestab/base/input_error.hpp"
 #include "support/message_text.hpp"
 #include "commands.hpp"
+#include "notes.hpp"
 #include "interruption.hpp"
 #include "work_limits.hpp"
 
@@ -31,13 +32,9 @@ std::string command_names(const std::map<std::string, bladestab::cli::Command>& 
 }
 
 // "bladestab: error: …" (kind "error", exit 2) or "bladestab: failed: …" (exit 1), on one line
-// whatever the message holds: values are echoed short where they are put in, and this keeps any
-// message that quotes input (CLI11's among them) on one line.
+// (notes.hpp).
 int report(const char* kind, const std::string& message, int status) {
-  constexpr std::size_t longest = 2000;
-  std::string line = bladestab::one_line(message);
-  if (line.size() > longest) line = line.substr(0, longest) + "…";
-  fmt::print(stderr, "bladestab: {}: {}\n", kind, line);
+  bladestab::cli::print_stderr_line(kind, message);
   return status;
 }
 
@@ -91,9 +88,9 @@ int main(int argc, char** argv) {
   stop_after(work_limits().seconds, fmt::format("--max-seconds {:g}", work_limits().seconds));
   try {
     run.at(app.get_subcommands().front()->get_name())();
-  } catch (const AnswerIsNegative&) {
+  } catch (const AnswerIsNegative& e) {
     finish_stdout();  // a failed write says so; the status is 1 either way
-    return 1;
+    return e.reason.empty() ? 1 : report("failed", e.reason, 1);
   } catch (const bladestab::ParameterError& e) {
     return report("error", as_option(e), 2);
   } catch (const bladestab::InputError& e) {

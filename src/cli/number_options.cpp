@@ -34,11 +34,19 @@ std::string joined(const std::vector<std::string>& values) {
   return text;
 }
 
-// "--points 1,,2: an empty item; each must be …", "--points 1,-2: -2 is not allowed; each must be …".
+// "--points 1,,2: an empty item; must be …", "--points 1,-2: -2 is not allowed; must be …".
 [[noreturn]] void refuse_item(const std::string& name, const std::vector<std::string>& values, const std::string& item,
                               const std::string& rule) {
   const std::string what = item.empty() ? "an empty item" : fmt::format("{} is not allowed", echoed(item));
-  throw InputError(fmt::format("{} {}: {}; each {}", name, echoed(joined(values)), what, rule));
+  throw InputError(fmt::format("{} {}: {}; {}", name, echoed(joined(values)), what, rule));
+}
+
+// A list names a set: each value once, as a scene's list (allowed_range.hpp).
+void refuse_repeat(const std::string& name, const std::vector<std::string>& values, const std::vector<double>& numbers,
+                   const std::string& rule) {
+  if (const std::optional<double> repeated = first_repeat(numbers)) {
+    throw InputError(fmt::format("{} {}: {:g} is given twice; {}", name, echoed(joined(values)), *repeated, rule));
+  }
 }
 
 }  // namespace
@@ -101,12 +109,14 @@ CLI::Option* add_number_list_option(CLI::App& command, const std::string& name, 
   return command.add_option_function<std::vector<std::string>>(
       name,
       [name, &target, allowed](const std::vector<std::string>& values) {
+        const std::string rule = distinct_numbers_rule(allowed);
         std::vector<double> numbers;
         for (const std::string& item : list_items(values)) {
           const std::optional<double> value = read_decimal(item);
-          if (!value || !allowed.contains(*value)) refuse_item(name, values, item, number_rule(allowed));
+          if (!value || !allowed.contains(*value)) refuse_item(name, values, item, rule);
           numbers.push_back(*value);
         }
+        refuse_repeat(name, values, numbers, rule);
         target = numbers;
       },
       help)->type_name("LIST");
@@ -117,13 +127,15 @@ CLI::Option* add_integer_list_option(CLI::App& command, const std::string& name,
   return command.add_option_function<std::vector<std::string>>(
       name,
       [name, &target, lo, hi](const std::vector<std::string>& values) {
-        std::vector<int> numbers;
+        const std::string rule = distinct_integers_rule(lo, hi);
+        std::vector<double> numbers;
         for (const std::string& item : list_items(values)) {
           const std::optional<long> value = read_integer(item);
-          if (!value || *value < lo || *value > hi) refuse_item(name, values, item, integer_rule(lo, hi));
-          numbers.push_back(static_cast<int>(*value));
+          if (!value || *value < lo || *value > hi) refuse_item(name, values, item, rule);
+          numbers.push_back(static_cast<double>(*value));
         }
-        target = numbers;
+        refuse_repeat(name, values, numbers, rule);
+        target = std::vector<int>(numbers.begin(), numbers.end());
       },
       help)->type_name("LIST");
 }

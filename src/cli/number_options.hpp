@@ -30,7 +30,8 @@ CLI::Option* add_number_option(CLI::App& command, const std::string& name, doubl
                                const AllowedRange& allowed, const std::string& help);
 CLI::Option* add_integer_option(CLI::App& command, const std::string& name, int& target, long lo, long hi,
                                 const std::string& help);
-// Comma-separated lists ("1,2,5"); the option may also be repeated.
+// Comma-separated lists ("1,2,5"); the option may also be repeated. A list names a set: not
+// empty, each value once, each allowed — the rule of a scene's list (allowed_range.hpp).
 CLI::Option* add_number_list_option(CLI::App& command, const std::string& name, std::vector<double>& target,
                                     const AllowedRange& allowed, const std::string& help);
 CLI::Option* add_integer_list_option(CLI::App& command, const std::string& name, std::vector<int>& target, long lo,

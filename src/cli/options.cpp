@@ -6,13 +6,36 @@
 
 #include <fmt/format.h>
 
+#include "bladestab/base/constants.hpp"
 #include "bladestab/base/input_error.hpp"
+#include "bladestab/blade/undamped_modes.hpp"
 #include "support/message_text.hpp"
 #include "support/work_pool.hpp"
 #include "number_options.hpp"
 #include "work_limits.hpp"
 
 namespace bladestab::cli {
+
+Scene SceneOptions::load() const {
+  Scene scene = load_scene(path, overrides);
+  const ReductionSpec& reduction = scene.model.reduction;
+  if (reduction.kind == ReductionKind::modal && reduction.cutoff_hz > 0) {
+    check_modal_cutoff(scene, reduction.cutoff_hz, fmt::format("model.cutoff_hz = {:g}", reduction.cutoff_hz));
+  }
+  return scene;
+}
+
+void check_modal_cutoff(const Scene& scene, double cutoff_hz, const std::string& named) {
+  const double speed = scene.operation.speed_rad_s;
+  const UndampedModes first = undamped_modes(assemble_model(scene), speed, 0, 1, false);
+  if (first.omega2(0) <= 0) return;  // statically unstable: the analysis says so itself
+  const double first_hz = std::sqrt(first.omega2(0)) / two_pi;
+  if (cutoff_hz <= first_hz) {
+    throw InputError(fmt::format("{}: at or below the first mode, {:.6g} Hz at operation.speed_rad_s = {:g}; must be "
+                                 "above it to keep any mode (0: all modes)",
+                                 named, first_hz, speed));
+  }
+}
 
 OutputFormat SceneOptions::output_format() const {
   if (format == "json") return OutputFormat::json;

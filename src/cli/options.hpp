@@ -20,7 +20,9 @@ struct SceneOptions {
   std::string format = "table";
   std::string solver = "auto";
 
-  Scene load() const { return load_scene(path, overrides); }
+  // The scene with its overrides; a modal cut-off of its own (model.cutoff_hz) is checked as
+  // check_modal_cutoff says.
+  Scene load() const;
   OutputFormat output_format() const;
   EigenSolverKind eigen_solver() const;
 };
@@ -55,6 +57,11 @@ void add_threads_option(CLI::App& command, int& threads);
 enum class RangeOrder { increasing, either_way };
 std::vector<double> parse_range(const std::string& option, const std::string& text, const AllowedRange& values,
                                 RangeOrder order = RangeOrder::increasing);
+
+// A modal cut-off keeps the unloaded modes below it, and at least the first: InputError naming
+// `named` ("--cutoff-hz 0.5", "model.cutoff_hz = 0.5") where it lies at or below the first mode's
+// frequency at the scene's speed, so the first would be kept alone whatever the cut-off said.
+void check_modal_cutoff(const Scene& scene, double cutoff_hz, const std::string& named);
 
 // Significant digits worth printing for a value with relative error `error` (3 to 12).
 int significant_digits(double error);

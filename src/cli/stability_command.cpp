@@ -15,6 +15,7 @@
 #include "error_output.hpp"
 #include "finite_results.hpp"
 #include "json_output.hpp"
+#include "notes.hpp"
 #include "number_options.hpp"
 #include "options.hpp"
 #include "progress.hpp"
@@ -101,6 +102,7 @@ void print(const SceneOptions& options, const Scene& scene, const StabilityAnswe
       json["max_real_exponent"] = r.max_real_exponent;
       json["stable"] = a.stable;
       json["tolerance_met"] = a.tolerance_met;
+      json["tolerance_unmet"] = a.tolerance_met ? Json(nullptr) : Json("--" + a.tolerance_unmet);
       write_error_budget(json, a.budget);
       json["checks"] = checks_json(r.checks);
       json["multipliers"] = Json::array();
@@ -138,7 +140,7 @@ void print(const SceneOptions& options, const Scene& scene, const StabilityAnswe
                                   to_string(scene.load.profile), load.relative_tail));
       fmt::print("method     {}, {}\n", to_string(r.method), truncation(r, load.exact_pulse));
       fmt::print("error      {} on max|ρ|{}\n", describe_error_budget(a.budget),
-                 a.tolerance_met ? "" : "  — above the tolerance: terms or reduction could not be raised further");
+                 a.tolerance_met ? "" : "  — --" + a.tolerance_unmet);
       fmt::print("checks     det Φ vs Liouville {}, reciprocal pairs {}, RKF45 on the dominant vector: multiplier {}, "
                  "residual {}\n\n",
                  check_value(r.checks.determinant_error), check_value(r.checks.reciprocal_error),
@@ -164,9 +166,11 @@ void print(const SceneOptions& options, const Scene& scene, const StabilityAnswe
 // checked before anything is computed (an input error, exit 2).
 void check_export_path(const std::string& path) {
   const std::filesystem::path p(path);
-  if (p.extension() != ".json" || p.stem().empty()) {
-    throw InputError(fmt::format("--export-matrices {}: must be a FILE.json (the manifest; the matrices go beside it "
-                                 "as FILE.A0.mtx, FILE.B.mtx and FILE.load.mtx)", echoed(path, 240)));
+  // The temporaries beside the files (output_files.hpp) add about 30 bytes to a name of at most 255.
+  if (p.extension() != ".json" || p.stem().empty() || p.filename().string().size() > 200) {
+    throw InputError(fmt::format("--export-matrices {}: must be a FILE.json of at most 200 bytes (the manifest; the "
+                                 "matrices go beside it as FILE.A0.mtx, FILE.B.mtx and FILE.load.mtx)",
+                                 echoed(path, 240)));
   }
   check_output_directory(fmt::format("--export-matrices {}: its directory", echoed(path, 240)),
                          p.has_parent_path() ? p.parent_path().string() : ".");
@@ -239,7 +243,10 @@ Command register_stability(CLI::App& app) {
     const bool exporting = command->count("--export-matrices") > 0;
     if (exporting) check_export_path(*export_path);
     Scene scene = options->load();
-    if (*cutoff > 0) scene.model.reduction = {ReductionKind::modal, 0, *cutoff};
+    if (*cutoff > 0) {
+      check_modal_cutoff(scene, *cutoff, fmt::format("--cutoff-hz {:g}", *cutoff));
+      scene.model.reduction = {ReductionKind::modal, 0, *cutoff};
+    }
     if (exporting && scene.load.approximation == LoadApproximation::exact) {
       throw InputError(fmt::format("--export-matrices {}: load.approximation = \"exact\" is integrated through each "
                                    "pulse and has no series to export; use \"cosine\" or \"fourier\"",
@@ -250,6 +257,7 @@ Command register_stability(CLI::App& app) {
                 progress_reporter("stability: refinement levels", options->output_format() == OutputFormat::table)});
     if (exporting) export_matrices(*export_path, scene, answer, *tolerance);
     print(*options, scene, answer);
+    if (!answer.tolerance_met) print_note("stability: --" + answer.tolerance_unmet + "; the answer stands with its estimate");
   };
 }
 

@@ -79,17 +79,33 @@ bool refine_harmonics(const LinearPeriodicSystem& sys, Method method, int start,
 
 constexpr int max_magnus_steps = 1 << 17;
 
+// Why a period needs more than max_magnus_steps steps (h‖A‖ ≤ 2 asks ‖A‖T/2 of them): in modal
+// form, either the period is too long even for the slowest mode (pulses too slow for a Floquet
+// analysis: a speed range from 0 to 1e-300 rad/s gives θ ≈ 5e-307 rad/s) or the stiffest mode is
+// stiffer than the period takes.
+NumericalError too_many_steps(const LinearPeriodicSystem& sys) {
+  const std::string need = fmt::format("the monodromy needs more than {} Magnus steps per period 2π/θ = {:.3g} s "
+                                       "(θ = {:.3g} rad/s)", max_magnus_steps, sys.period(), sys.angular_frequency);
+  if (!sys.modal) {
+    return NumericalError(fmt::format("{} for this {}-state system: its stiffest rates need a modal reduction", need,
+                                      sys.state_size()));
+  }
+  const Eigen::VectorXd omega = sys.modal->frequencies();
+  if (omega.minCoeff() * sys.period() / 2 > max_magnus_steps) {
+    return NumericalError(fmt::format("{} even for the slowest mode, {:.3g} rad/s: the period is too long for a "
+                                      "Floquet analysis; raise the pulse frequency", need, omega.minCoeff()));
+  }
+  return NumericalError(fmt::format("{}: the system has {} modes, the stiffest at {:.3g} rad/s; keep fewer (a modal "
+                                    "cut-off below it, or fewer reduction vectors)", need, omega.size(), omega.maxCoeff()));
+}
+
 // Doubles the Magnus steps from 1/64 of the count where h‖A‖ ≤ 2 until StepDoubling accepts the
 // multiplier sets (on the paper blade 128 steps are within 1e-8 where that condition asks for
 // 512: the exponential takes A₀'s stiff modes exactly). A level that overflows restarts the
 // ladder's evidence; two overflows in a row from the safe count on are growth, not a too-long step.
 Attempt refine_steps(const LinearPeriodicSystem& sys, double tol, LevelCounter& counter) {
   const int safe = minimum_magnus_steps(sys);
-  if (safe > max_magnus_steps) {
-    throw NumericalError(fmt::format(
-        "the monodromy needs more than {} Magnus steps per period for this {}-state system: its stiffest rates "
-        "need a modal reduction", max_magnus_steps, sys.state_size()));
-  }
+  if (safe > max_magnus_steps) throw too_many_steps(sys);
   StepDoubling ladder(std::max(8, safe / 64), max_magnus_steps, safe);
   counter.plan(ladder.levels() + 1);  // and the checks after
   Eigen::VectorXcd previous;

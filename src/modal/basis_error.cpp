@@ -122,16 +122,18 @@ double basis_tail_factor(BasisKind basis) {
   return basis == BasisKind::legendre ? exponential_margin : 1 / (1 - std::pow(2.0, -max_trusted_rate));
 }
 
-std::optional<int> terms_for_tolerance(BasisKind basis, int terms, double estimate, double tolerance) {
-  if (terms >= max_terms) return std::nullopt;
-  if (basis == BasisKind::sine) {
-    // Algebraic convergence: the estimate falls like N^−p, p ≤ 1 asymptotically (v'(0) = 0 is an
-    // O(1/N) error). If even p = 2 would need more than max_terms, raising is futile.
-    if (terms * std::sqrt(estimate / tolerance) > max_terms) return std::nullopt;
-    return std::min(max_terms, 2 * terms);
-  }
-  return std::min(max_terms, terms + 2);
+bool basis_can_reach(BasisKind basis, int terms, double estimate, double tolerance) {
+  if (terms >= max_terms) return false;
+  // Algebraic convergence: the estimate falls like N^−p, p ≤ 1 asymptotically (v'(0) = 0 is an
+  // O(1/N) error). If even p = 2 would need more than max_terms, raising is futile.
+  return basis != BasisKind::sine || terms * std::sqrt(estimate / tolerance) <= max_terms;
 }
+
+std::optional<int> terms_for_tolerance(BasisKind basis, int terms, double estimate, double tolerance) {
+  if (!basis_can_reach(basis, terms, estimate, tolerance)) return std::nullopt;
+  return std::min(max_terms, basis == BasisKind::sine ? 2 * terms : terms + 2);
+}
+
 
 void check_tolerance(double tolerance) {
   if (!(tolerance > 0 && tolerance < 1)) throw ParameterError("tolerance", fmt::format("{}: must be in (0, 1)", tolerance));

@@ -1,5 +1,6 @@
 #include "bladestab/scene/allowed_range.hpp"
 
+#include <algorithm>
 #include <string>
 
 #include <fmt/format.h>
@@ -34,6 +35,21 @@ std::string limit_text(double x) {
     return plain_has_exponent || exponential.size() + 2 <= plain.size() ? exponential : plain;
   }
   return plain;
+}
+
+std::string distinct_integers_rule(long lo, long hi) {
+  return fmt::format("must be a non-empty list of distinct integers, each in [{}, {}]", lo, hi);
+}
+
+std::string distinct_numbers_rule(const AllowedRange& allowed) {
+  return "must be a non-empty list of distinct numbers, each in " + allowed.text();
+}
+
+std::optional<double> first_repeat(const std::vector<double>& values) {
+  for (auto it = values.begin(); it != values.end(); ++it) {
+    if (std::find(values.begin(), it, *it) != it) return *it;
+  }
+  return std::nullopt;
 }
 
 }  // namespace bladestab

@@ -67,7 +67,9 @@ void append_shown(const toml::node& node, std::string& out, std::size_t limit) {
   if (const auto* text = node.as_string()) {
     out += '"' + text->get() + '"';
   } else if (const auto* number = node.as_floating_point()) {
-    out += fmt::format("{}", number->get());
+    // As TOML writes a float: with its point (16.0), so that it does not read as the integer 16.
+    const std::string text = fmt::format("{}", number->get());
+    out += text.find_first_of(".eEn") == std::string::npos ? text + ".0" : text;
   } else if (const auto* array = node.as_array()) {
     out += '[';
     for (std::size_t i = 0; i < array->size(); ++i) {
@@ -185,22 +187,22 @@ public:
     return values;
   }
 
-  // A non-empty list of distinct integers, each in [lo, hi].
+  // A non-empty list of distinct integers, each in [lo, hi] (allowed_range.hpp).
   std::vector<int> distinct_integer_list(const std::string& key, long lo, long hi, const std::string& meaning) {
     const toml::node& node = require(key);
     const toml::array* array = node.as_array();
-    const std::string what =
-        fmt::format("must be a non-empty list of distinct integers, each in [{}, {}] ({})", lo, hi, meaning);
+    const std::string what = fmt::format("{} ({})", distinct_integers_rule(lo, hi), meaning);
     if (array == nullptr) fail(key, node, what, Reason::not_numeric);
     if (array->empty()) fail(key, node, what);
-    std::vector<int> values;
+    std::vector<double> values;
     for (const toml::node& item : *array) {
       if (!item.is_integer()) fail(key, node, what);
       const long v = static_cast<long>(item.as_integer()->get());
-      if (v < lo || v > hi || std::find(values.begin(), values.end(), v) != values.end()) fail(key, node, what);
-      values.push_back(static_cast<int>(v));
+      if (v < lo || v > hi) fail(key, node, what);
+      values.push_back(static_cast<double>(v));
     }
-    return values;
+    if (first_repeat(values)) fail(key, node, what);
+    return std::vector<int>(values.begin(), values.end());
   }
 
   // Reports keys that were present but never read: unknown ones, and known ones that the other

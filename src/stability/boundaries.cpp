@@ -32,11 +32,45 @@ double relative_change(const Boundary& a, const Boundary& b, bool in_load) {
   return std::abs(value_of(a, in_load) / value_of(b, in_load) - 1);
 }
 
+// Pairs each boundary of `base` without a counterpart with the nearest unpaired boundary of its
+// multiplier sign and mode in `other` where each is the other's nearest unpaired one, whatever their
+// orders. The order is the dominant harmonic of the eigenvector, and where two harmonics weigh
+// the same it flips from one model to the next: on Mathieu's blade at F̄ = 1 (the stiffness
+// touches zero once a period) the +1 sign's constant and second harmonics tie, and the boundary
+// at θ = 107.573 rad/s is named order 2 at k = 6, 12, 24 and order 0 at k = 8, 10, 16, 20, its
+// value the same to 1e-10.
+void pair_nearest(const std::vector<Boundary>& base, const std::vector<Boundary>& other, bool in_load,
+                  std::vector<int>& counterpart) {
+  std::vector<bool> taken(other.size(), false);
+  for (int j : counterpart) {
+    if (j >= 0) taken[j] = true;
+  }
+  const auto kin = [](const Boundary& a, const Boundary& b) { return a.multiplier == b.multiplier && a.mode == b.mode; };
+  for (std::size_t i = 0; i < base.size(); ++i) {
+    if (counterpart[i] >= 0) continue;
+    int j = -1;  // the nearest unpaired boundary of other
+    for (std::size_t c = 0; c < other.size(); ++c) {
+      if (taken[c] || !kin(base[i], other[c])) continue;
+      if (j < 0 || relative_change(base[i], other[c], in_load) < relative_change(base[i], other[j], in_load)) {
+        j = static_cast<int>(c);
+      }
+    }
+    if (j < 0) continue;
+    bool mutual = true;  // and no unpaired boundary of base nearer to it
+    for (std::size_t c = 0; c < base.size() && mutual; ++c) {
+      mutual = c == i || counterpart[c] >= 0 || !kin(base[c], other[j]) ||
+               relative_change(base[c], other[j], in_load) >= relative_change(base[i], other[j], in_load);
+    }
+    if (mutual) counterpart[i] = j, taken[j] = true;
+  }
+}
+
 // For each boundary of `base`, the index of its counterpart in `other`, or −1. Within each
 // multiplier, mode and order both are taken in order of value and the shorter run is laid along the
 // longer at the offset of least total relative distance: the two edges of a region keep their
 // order even when a model change moves them by more than the region is wide (nearest-value
 // matching pairs both edges of the paper blade's order-3 region with one edge under a cut-off).
+// Those left over are paired across a change of name (pair_nearest).
 std::vector<int> match(const std::vector<Boundary>& base, const std::vector<Boundary>& other, bool in_load) {
   std::vector<int> counterpart(base.size(), -1);
   const auto same_kind = [](const Boundary& a, const Boundary& b) {
@@ -75,6 +109,7 @@ std::vector<int> match(const std::vector<Boundary>& base, const std::vector<Boun
       if (j >= 0 && j < static_cast<long>(y.size())) counterpart[x[i]] = static_cast<int>(y[j]);
     }
   }
+  pair_nearest(base, other, in_load, counterpart);
   return counterpart;
 }
 
@@ -124,18 +159,41 @@ private:
 // eigensolver's rounding.
 double harmonics_error(double change) { return 2 * change + eigensolver_rounding; }
 
-std::vector<EstimatedBoundary> sorted(std::vector<EstimatedBoundary> all, bool in_load) {
-  std::sort(all.begin(), all.end(), [in_load](const EstimatedBoundary& a, const EstimatedBoundary& b) {
+// Estimated and unconverged boundaries alike, in order of θ or F_max.
+template <class Entry>
+void sort_by_value(std::vector<Entry>& all, bool in_load) {
+  std::sort(all.begin(), all.end(), [in_load](const Entry& a, const Entry& b) {
     return value_of(a.boundary, in_load) < value_of(b.boundary, in_load);
   });
-  return all;
 }
 
-// The reported boundaries (in `window`, of order ≤ max_order) at k with their method part: those of k against k + 2, and those that
-// appear only at k + 2 against k + 4 (dropped if they have no counterpart there). `worst` is the
-// largest change of a boundary of k, which decides whether k is enough.
-std::vector<EstimatedBoundary> converge_at(BoundarySolver& solver, int k, bool in_load,
-                                           const std::pair<double, double>& window, int max_order, double& worst) {
+// The counterparts of `base` at more harmonics: the nearest of the same multiplier sign and mode
+// (pair_nearest), not by order. The harmonics do not change the model, a boundary that converges
+// moves less than its neighbours are apart, and new boundaries of high order appear between the
+// old ones with every k, which would misalign the runs `match` lays side by side. Where two
+// different boundaries are taken for one, the change reported is still the distance from the one
+// at k to a boundary at k + 2.
+std::vector<int> nearest_counterparts(const std::vector<Boundary>& base, const std::vector<Boundary>& other,
+                                      bool in_load) {
+  std::vector<int> counterpart(base.size(), -1);
+  pair_nearest(base, other, in_load, counterpart);
+  return counterpart;
+}
+
+// A boundary of the window at k compared with k + 2: its relative change, none where k + 2 has no
+// counterpart.
+struct Compared {
+  Boundary boundary;
+  int approximation = 0;
+  std::optional<double> change;
+  bool check_failed = false;  // its multiplier check (check_lowest) failed
+};
+
+// The boundaries of the window (of order ≤ max_order) at k, each compared with k + 2, and those
+// that appear only at k + 2, compared with k + 4 (dropped if they have no counterpart there:
+// a root of one truncation only).
+std::vector<Compared> compare_at(BoundarySolver& solver, int k, bool in_load, const std::pair<double, double>& window,
+                                 int max_order) {
   const auto inside = [&](const Boundary& b) {
     return b.order <= max_order && value_of(b, in_load) >= window.first && value_of(b, in_load) <= window.second;
   };
@@ -145,30 +203,78 @@ std::vector<EstimatedBoundary> converge_at(BoundarySolver& solver, int k, bool i
   }
   // Counterparts are sought in the whole of k + 2 and k + 4: a boundary may step out of the window.
   const std::vector<Boundary>& mid = solver.at(k + 2);
-  std::vector<EstimatedBoundary> out;
-  worst = 0;
-  const std::vector<int> to_mid = match(lo, mid, in_load);
+  std::vector<Compared> out;
+  const std::vector<int> to_mid = nearest_counterparts(lo, mid, in_load);
   std::vector<bool> seen(mid.size(), false);
   for (std::size_t i = 0; i < lo.size(); ++i) {
-    const double c = to_mid[i] < 0 ? 1.0 : harmonics_error(relative_change(lo[i], mid[to_mid[i]], in_load));  // 1: vanished at k + 2
-    if (to_mid[i] >= 0) seen[to_mid[i]] = true;
-    worst = std::max(worst, c);
-    out.push_back({lo[i], k, {}});
-    out.back().budget.method = c;
+    out.push_back({lo[i], k, std::nullopt});
+    if (to_mid[i] < 0) continue;
+    seen[to_mid[i]] = true;
+    out.back().change = relative_change(lo[i], mid[to_mid[i]], in_load);
   }
   std::vector<Boundary> fresh;
   for (std::size_t j = 0; j < mid.size(); ++j) {
     if (!seen[j] && inside(mid[j])) fresh.push_back(mid[j]);
   }
-  if (fresh.empty()) return sorted(std::move(out), in_load);
+  if (fresh.empty()) return out;
   const std::vector<Boundary>& hi = solver.at(k + 4);
-  const std::vector<int> to_hi = match(fresh, hi, in_load);
+  const std::vector<int> to_hi = nearest_counterparts(fresh, hi, in_load);
   for (std::size_t j = 0; j < fresh.size(); ++j) {
-    if (to_hi[j] < 0) continue;
-    out.push_back({fresh[j], k + 2, {}});
-    out.back().budget.method = harmonics_error(relative_change(fresh[j], hi[to_hi[j]], in_load));
+    if (to_hi[j] >= 0) out.push_back({fresh[j], k + 2, relative_change(fresh[j], hi[to_hi[j]], in_load)});
   }
-  return sorted(std::move(out), in_load);
+  return out;
+}
+
+// The method part of a compared boundary; 1 (nothing is known) where it has no counterpart.
+double method_part(const Compared& c) { return c.change ? harmonics_error(*c.change) : 1.0; }
+
+// The compared boundaries whose method part meets the tolerance (and whose check, if any, passed)
+// as the result's boundaries, the others as its unconverged ones.
+void split_by_tolerance(const std::vector<Compared>& compared, double tolerance, bool in_load, BoundaryAnalysis& result) {
+  result.boundaries.clear();
+  result.unconverged.clear();
+  for (const Compared& c : compared) {
+    if (method_part(c) <= tolerance && !c.check_failed) {
+      result.boundaries.push_back({c.boundary, c.approximation, {}});
+      result.boundaries.back().budget.method = method_part(c);
+    } else {
+      result.unconverged.push_back({c.boundary, c.approximation, c.change, c.check_failed});
+    }
+  }
+  sort_by_value(result.boundaries, in_load);
+  sort_by_value(result.unconverged, in_load);
+}
+
+// The check: the multiplier at the lowest-order converged boundaries (one or two) from a monodromy
+// (multiplier_gap) on a system whose fastest mode Magnus steps take cheaply over a period, cut off
+// at check_reach·order·θ/2π (or the request's cut-off, if lower). `checker(cutoff_hz)` is the
+// boundaries' solver on the model cut off there. Marks the boundaries whose check failed.
+std::vector<BoundaryCheck> check_lowest(std::vector<Compared>& compared, double tolerance, double request_cutoff_hz,
+                                        bool in_load, const std::function<BoundarySolver(double)>& checker) {
+  int lowest = std::numeric_limits<int>::max();
+  for (const Compared& c : compared) {
+    if (method_part(c) <= tolerance) lowest = std::min(lowest, c.boundary.order);
+  }
+  std::vector<BoundaryCheck> checks;
+  for (Compared& c : compared) {
+    if (c.boundary.order != lowest || method_part(c) > tolerance || checks.size() == 2) continue;
+    const double reach_hz = check_reach * std::max(1, lowest) * c.boundary.theta_rad_s / two_pi;
+    BoundaryCheck check;
+    check.cutoff_hz = request_cutoff_hz > 0 ? std::min(request_cutoff_hz, reach_hz) : reach_hz;
+    BoundarySolver solver = checker(check.cutoff_hz);
+    if (solver.system().kept_modes == solver.system().all_modes) check.cutoff_hz = 0;
+    const std::vector<Boundary>& there = solver.at(c.approximation);
+    const int j = match({c.boundary}, there, in_load)[0];  // the same boundary in the check's model
+    // Multipliers split like the square root of the distance from the boundary (test_map:
+    // 2e-4 in ρ for 1e-8 in F̄); the check's boundary carries the same harmonics' error.
+    check.allowed = std::max(1e-3, 10 * std::sqrt(method_part(c)));
+    check.boundary = j < 0 ? c.boundary : there[j];
+    check.gap = j < 0 ? std::numeric_limits<double>::infinity()
+                      : multiplier_gap(solver.system(), solver.peak(), check.boundary, check_monodromy_tolerance);
+    c.check_failed = !(check.gap <= check.allowed);
+    checks.push_back(check);
+  }
+  return checks;
 }
 
 }  // namespace
@@ -180,39 +286,6 @@ ErrorBudget BoundaryAnalysis::total() const {
 }
 
 namespace {
-
-// The check of the boundaries converged at result.approximation: the lowest-order ones (one or
-// two), each by the multipliers of a monodromy (multiplier_gap, Magnus steps) on a system cut to the
-// modes below check_reach·order·θ/2π, whose steps over a period stay cheap. Fills result.checks;
-// whether every gap is within its allowance.
-bool check_multipliers(const BladeModel& model, const Scene& scene, const LoadSeries& load, double peak,
-                       const BoundaryRequest& r, BoundaryAnalysis& result) {
-  const bool in_load = r.theta_rad_s.has_value();
-  result.checks.clear();
-  int lowest = std::numeric_limits<int>::max();
-  for (const EstimatedBoundary& e : result.boundaries) lowest = std::min(lowest, e.boundary.order);
-  bool passed = true;
-  for (const EstimatedBoundary& e : result.boundaries) {
-    if (e.boundary.order != lowest || result.checks.size() == 2) continue;
-    const double reach_hz = check_reach * std::max(1, lowest) * e.boundary.theta_rad_s / two_pi;
-    BoundaryCheck check;
-    check.cutoff_hz = r.cutoff_hz > 0 ? std::min(r.cutoff_hz, reach_hz) : reach_hz;
-    BoundarySolver checker(periodic_system(model, scene, load, {ReductionKind::modal, 0, check.cutoff_hz}), peak,
-                           r.theta_rad_s, r.threads, {});
-    if (checker.system().kept_modes == checker.system().all_modes) check.cutoff_hz = 0;
-    const std::vector<Boundary>& there = checker.at(e.approximation);
-    const int j = match({e.boundary}, there, in_load)[0];  // the same boundary in the check's model
-    // Multipliers split like the square root of the distance from the boundary (test_map:
-    // 2e-4 in ρ for 1e-8 in F̄); the check's boundary carries the same harmonics' error.
-    check.allowed = std::max(1e-3, 10 * std::sqrt(e.budget.method));
-    check.boundary = j < 0 ? e.boundary : there[j];
-    check.gap = j < 0 ? std::numeric_limits<double>::infinity()
-                      : multiplier_gap(checker.system(), peak, check.boundary, check_monodromy_tolerance);
-    passed = passed && check.gap <= check.allowed;
-    result.checks.push_back(check);
-  }
-  return passed;
-}
 
 // One part of each reported boundary's budget: `factor` times its change against its counterpart
 // in `other`, at the approximation it comes from; a boundary without one gets 1, and `missing`
@@ -265,6 +338,11 @@ BoundaryAnalysis boundaries_with_error_estimate(const Scene& scene_in, const Bou
     return BoundarySolver(periodic_system(m, scene, series, {ReductionKind::modal, 0, cutoff_hz}), peak, r.theta_rad_s,
                           r.threads, std::move(solved));
   };
+  if (r.first_approximation < 1 || r.first_approximation + 4 > r.max_approximation) {
+    throw std::invalid_argument(fmt::format("boundaries: the first approximation {} must be in [1, {}] (the maximum "
+                                            "{} less the two levels it is compared with)", r.first_approximation,
+                                            r.max_approximation - 4, r.max_approximation));
+  }
   BoundarySolver solver = solver_for(model, load, r.cutoff_hz);
   ladder = &solver;
   comparisons_left = 1 + (solver.system().kept_modes < solver.system().all_modes) + !load.cosine_approximation;
@@ -275,20 +353,18 @@ BoundaryAnalysis boundaries_with_error_estimate(const Scene& scene_in, const Bou
   result.window = window;
   for (int k = r.first_approximation;; k += 2) {
     level = k;
-    if (k + 4 > r.max_approximation) {
-      throw std::runtime_error(fmt::format(
-          "boundaries: not converged to the tolerance {} with up to {} harmonics per family{}", r.tolerance,
-          r.max_approximation,
-          result.checks.empty() ? "" : fmt::format(" (the multiplier check failed: |ρ ∓ 1| = {:.2g} > {:.2g})",
-                                                   result.checks.back().gap, result.checks.back().allowed)));
-    }
+    const bool last = k + 6 > r.max_approximation;  // k + 2 would need k + 6 harmonics
+    std::vector<Compared> compared = compare_at(solver, k, in_load, window, r.max_order);
     double worst = 0;
-    std::vector<EstimatedBoundary> found = converge_at(solver, k, in_load, window, r.max_order, worst);
-    if (worst > r.tolerance) continue;
+    for (const Compared& c : compared) worst = std::max(worst, method_part(c));
+    if (worst > r.tolerance && !last) continue;
     result.approximation = k;
-    result.boundaries = std::move(found);
-    const bool passed = check_multipliers(model, scene, load, peak, r, result);
-    if (passed) break;
+    result.checks = check_lowest(compared, r.tolerance, r.cutoff_hz, in_load,
+                                 [&](double cutoff_hz) { return solver_for(model, load, cutoff_hz, false); });
+    const bool passed = std::none_of(compared.begin(), compared.end(), [](const Compared& c) { return c.check_failed; });
+    if (!passed && !last) continue;
+    split_by_tolerance(compared, r.tolerance, in_load, result);
+    break;
   }
 
   // The other parts of each budget, at the approximation each boundary comes from.

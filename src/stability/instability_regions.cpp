@@ -10,18 +10,16 @@
 #include "bladestab/stability/stability_analysis.hpp"
 
 namespace bladestab {
-namespace {
-
-}  // namespace
 
 std::vector<InstabilityRegion> instability_regions(const Scene& scene, const BoundaryRequest& request,
                                                    const BoundaryAnalysis& analysis, double tolerance) {
   const bool in_load = request.theta_rad_s.has_value();
   const double fcr = BladeProperties(scene.blade).critical_load();
   const auto value = [in_load](const Boundary& b) { return in_load ? b.peak_force_n : b.theta_rad_s; };
-  // The boundaries of each multiplier sign, in order along the line.
-  std::map<int, std::vector<Boundary>> by_sign;
-  for (const EstimatedBoundary& e : analysis.boundaries) by_sign[e.boundary.multiplier].push_back(e.boundary);
+  // The boundaries of each multiplier sign, in order along the line, with whether each converged.
+  std::map<int, std::vector<std::pair<Boundary, bool>>> by_sign;
+  for (const EstimatedBoundary& e : analysis.boundaries) by_sign[e.boundary.multiplier].emplace_back(e.boundary, true);
+  for (const UnconvergedBoundary& u : analysis.unconverged) by_sign[u.boundary.multiplier].emplace_back(u.boundary, false);
   // The scene at a point of the line: θ at the scene's load, or F_max at the given θ.
   // Unstable at x for this sign: the dominant multiplier real, beyond +1 or −1 as the sign
   // (a complex one is a combination resonance; the other sign's is that sign's region).
@@ -40,12 +38,11 @@ std::vector<InstabilityRegion> instability_regions(const Scene& scene, const Bou
   };
   std::vector<InstabilityRegion> regions;
   for (auto& [multiplier, bounds] : by_sign) {
-    std::sort(bounds.begin(), bounds.end(),
-              [&](const Boundary& x, const Boundary& y) { return value(x) < value(y); });
+    std::sort(bounds.begin(), bounds.end(), [&](const auto& x, const auto& y) { return value(x.first) < value(y.first); });
     // Interval k lies between boundary k − 1 and boundary k; the window closes the first and last.
     for (std::size_t k = 0; k <= bounds.size(); ++k) {
-      const Boundary* below = k > 0 ? &bounds[k - 1] : nullptr;
-      const Boundary* above = k < bounds.size() ? &bounds[k] : nullptr;
+      const Boundary* below = k > 0 ? &bounds[k - 1].first : nullptr;
+      const Boundary* above = k < bounds.size() ? &bounds[k].first : nullptr;
       const double lo = below ? value(*below) : analysis.window.first;
       const double hi = above ? value(*above) : analysis.window.second;
       if (!(hi > lo) || (in_load && hi <= 0)) continue;
@@ -55,6 +52,8 @@ std::vector<InstabilityRegion> instability_regions(const Scene& scene, const Bou
       r.upper = hi;
       r.lower_open = below == nullptr;
       r.upper_open = above == nullptr;
+      r.lower_unconverged = below && !bounds[k - 1].second;
+      r.upper_unconverged = above && !bounds[k].second;
       r.multiplier = multiplier;
       // The label of an end; where the two differ, the higher order (the dominant harmonic of a
       // boundary's eigenvector, which names it, drifts to lower orders at high loads).

@@ -161,6 +161,7 @@ void name_onset(RubStabilityResult& r, const std::optional<Tip>& tip, const Inst
     r.mode = lowest->mode;
     r.order = lowest->order;
     r.multiplier = lowest->multiplier;
+    r.onset_converged = !lowest->lower_unconverged;
     for (const EstimatedBoundary& e : analysis.boundaries) {
       if (e.boundary.peak_force_n == lowest->lower) r.onset_error_estimate = e.budget.total();
     }
@@ -258,6 +259,7 @@ RubStabilityResult check_rub_stability(const Scene& scene, const std::function<v
   const BoundaryAnalysis analysis = boundaries_with_error_estimate(worst, request);
   const std::vector<InstabilityRegion> regions = instability_regions(worst, request, analysis, floquet_tolerance);
   r.approximation = analysis.approximation;
+  r.unconverged_boundaries = static_cast<int>(analysis.unconverged.size());
   r.check_speed_rad_s = worst_speed;
   r.speed_rad_s = tip ? tip->speed : worst_speed;
   const InstabilityRegion* lowest = regions.empty() ? nullptr : &regions.front();  // sorted by their lower end
@@ -273,6 +275,7 @@ RubStabilityResult check_rub_stability(const Scene& scene, const std::function<v
                                                    {FloquetMethod::automatic, 0, floquet_tolerance});
   r.max_abs_multiplier = answer.floquet.max_abs_multiplier;
   r.check_stable = answer.stable;
+  r.check_tolerance_unmet = answer.tolerance_unmet;
   // A tip is certain (the region's edges meet F̄ = 0 there); a region from the boundaries must be
   // unstable inside.
   if (onset_within && answer.stable && !tip) {

@@ -30,4 +30,15 @@ inline double mathieu(MathieuKind kind, int r, double q) {
   return Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(T, Eigen::EigenvaluesOnly).eigenvalues()(r);
 }
 
+// The boundary θ of y'' + ω0²(1 − F̄/2 + (F̄/2) cos θt) y = 0 (w0 = ω0) where Mathieu's a equals
+// the characteristic value of `kind` and `rank`: with τ = θt/2 it is y'' + (a − 2q cos 2τ) y = 0,
+// x = 4ω0²/θ², a = x(1 − F̄/2), q = −x F̄/4, taken here as |q| (the sign only swaps a_odd and
+// b_odd); bisected in x on [x0, x1], which must bracket one root.
+inline double mathieu_blade_boundary(MathieuKind kind, int rank, double fbar, double w0, double x0, double x1) {
+  double lo = x0, hi = x1;
+  const auto g = [&](double x) { return x * (1 - fbar / 2) - mathieu(kind, rank, x * fbar / 4); };
+  for (int i = 0; i < 200; ++i) ((g(0.5 * (lo + hi)) > 0) == (g(lo) > 0) ? lo : hi) = 0.5 * (lo + hi);
+  return 2 * w0 / std::sqrt(0.5 * (lo + hi));
+}
+
 }  // namespace reference

@@ -62,9 +62,14 @@ struct BasisTail {
 };
 BasisTail basis_tail(const std::vector<double>& f, const std::vector<int>& n);
 
+// Whether raising the terms from N can bring a basis error `estimate` within `tolerance`: not when
+// N is at the limit of 200, nor for the sine basis when even a convergence like N^−2 (its
+// asymptotic rate is 1) would need more than 200 terms. Every analysis that raises the terms asks
+// this before it does, so a tolerance out of the basis' reach is said at once.
+bool basis_can_reach(BasisKind basis, int terms, double estimate, double tolerance);
+
 // The terms to try next for `tolerance` when an N-term model's estimate is `estimate`: Legendre
-// N + 2, sine 2N (at most 200); none when N is at that limit, or for the sine basis when even a
-// convergence like N^−2 (its asymptotic rate is 1) would need more than 200 terms.
+// N + 2, sine 2N (at most 200); none where basis_can_reach says raising is futile.
 std::optional<int> terms_for_tolerance(BasisKind basis, int terms, double estimate, double tolerance);
 
 // ParameterError on `tolerance` unless 0 < tolerance < 1 and tolerance > 1e-12, the

@@ -30,7 +30,7 @@ struct BoundaryRequest {
   double tolerance = 1e-6;            // on the harmonics' part, relative on θ or F_max
   int first_approximation = 2;        // k to start from
   int max_approximation = 40;
-  int threads = 1;                    // the two families' eigenproblems side by side (0: one per core)
+  int threads = 1;                    // the two multiplier signs' eigenproblems side by side (0: one per core)
   // progress(done, total) after each harmonic level of each model: `total` is what the answer needs
   // if the current k converges (an upper bound), so it grows when k is raised; (done, done) at the end.
   std::function<void(int, int)> progress = {};
@@ -49,18 +49,34 @@ struct BoundaryCheck {
   double allowed = 0;     // the largest gap accepted
 };
 
+// A boundary of the window whose harmonics' part did not meet the tolerance by the largest k, or
+// whose multiplier check failed there: where it was at the highest k it was compared at, and how
+// far it got.
+struct UnconvergedBoundary {
+  Boundary boundary;             // its value at `approximation`
+  int approximation = 0;         // k of that value, compared with k + 2
+  std::optional<double> change;  // relative change from k to k + 2; none: no counterpart at k + 2
+  bool check_failed = false;     // converged in k, but its multiplier check (in `checks`) failed
+};
+
 struct BoundaryAnalysis {
   int approximation = 0;  // the chosen k: boundaries of k (and, those that appear only there, of k + 2)
   std::pair<double, double> window;  // the window used
-  std::vector<EstimatedBoundary> boundaries;  // sorted by θ or F_max
+  std::vector<EstimatedBoundary> boundaries;  // converged to the tolerance; sorted by θ or F_max
+  std::vector<UnconvergedBoundary> unconverged;  // not converged by max_approximation; sorted likewise
   std::vector<BoundaryCheck> checks;
-  ErrorBudget total() const;  // each part the largest over the boundaries
+  ErrorBudget total() const;  // each part the largest over the (converged) boundaries
 };
 
 // Raises k from request.first_approximation in steps of 2 until every boundary found at k in the
-// window, of order ≤ max_order, moves by at most request.tolerance (relative) at k + 2 — boundaries are matched by family, mode, order
-// and nearest value; one that first appears at k + 2 is reported from k + 2 with its change at
-// k + 4. The error budget of each boundary (docs/theory.md §2–§4):
+// window, of order ≤ max_order, moves by at most request.tolerance (relative) at k + 2 — boundaries
+// are matched by multiplier sign, mode, order and nearest value (across a change of order where the
+// dominant harmonic flips); one that first appears at k + 2 is reported from k + 2 with its change
+// at k + 4. Where some do not converge by max_approximation (k + 4 ≤ it), those that did are the
+// answer at the last k and the others are listed in `unconverged`: a tongue that pinches (high
+// orders at low θ, or a load whose stiffness touches zero) does not sink the rest. (The method
+// part is twice the change, so "converged" means 2·change + rounding ≤ tolerance.)
+// The error budget of each boundary (docs/theory.md §2–§4):
 //   basis      change against the richer Ritz basis reference_terms(basis, N) (for the sine basis
 //              times basis_tail_factor)
 //   reduction  change against all modes kept (with a cut-off)
@@ -68,9 +84,11 @@ struct BoundaryAnalysis {
 //              "fourier"); 0 for the cosine approximation (42), which is the scene's load
 //   method     twice the change from k to k + 2 harmonics (or k + 2 to k + 4), plus the
 //              eigensolver's rounding
-// Then the multiplier at the (one or two) lowest-order boundaries is checked by multiplier_gap on
-// a system cut off at 200·order·θ/2π (few Magnus steps a period); a failed check raises k, and at
-// max_approximation it is a std::runtime_error, never a number.
+// Then the multiplier at the (one or two) lowest-order converged boundaries is checked by
+// multiplier_gap on a system cut off at 200·order·θ/2π (few Magnus steps a period); a failed check
+// raises k, and at the last k the boundary whose check failed is listed as unconverged, never
+// reported as a number.
+// std::invalid_argument unless 1 ≤ first_approximation ≤ max_approximation − 4.
 BoundaryAnalysis boundaries_with_error_estimate(const Scene& scene, const BoundaryRequest& request);
 
 }  // namespace bladestab

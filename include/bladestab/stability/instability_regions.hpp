@@ -12,7 +12,8 @@
 // the paper blade at F̄ = 5: the order-3 region from 177.7 to 209.9 rad/s has its lower edge
 // labelled order 1). A region is labelled by its edges, the higher order where they differ. Regions of
 // different kinds may overlap; combination resonances have no ±1 boundaries and are not listed
-// (the map's shading shows them).
+// (the map's shading shows them). The boundaries that did not converge divide the line too, so no
+// interval spans one; a region that ends at one says so.
 #include <vector>
 
 #include "bladestab/stability/boundaries.hpp"
@@ -23,6 +24,9 @@ namespace bladestab {
 struct InstabilityRegion {
   double lower = 0, upper = 0;  // θ [rad/s], or F_max [N] along F̄; a window end where open
   bool lower_open = false, upper_open = false;  // ends at the window, not at a boundary
+  // Ends at a boundary that did not converge (BoundaryAnalysis::unconverged): its value at the
+  // highest k reached, not an estimate.
+  bool lower_unconverged = false, upper_unconverged = false;
   int multiplier = -1, mode = 0, order = 0;  // mode and order 0 where both ends are the window's
   double middle_max_abs_multiplier = 0;  // the check: max|ρ| at the middle, > 1 + its error
 };

@@ -19,6 +19,7 @@
 //     where the requirement fails, at max_fmax_over_fcr where it holds.
 #include <functional>
 #include <optional>
+#include <string>
 
 #include "bladestab/modal/campbell.hpp"
 #include "bladestab/scene/scene.hpp"
@@ -51,7 +52,11 @@ struct RubStabilityResult {
   // The worst speed: where the onset is lowest (a tip's speed where there is one).
   double speed_rad_s = 0;
   std::optional<double> onset_fmax_over_fcr;  // unset: no region opens below the window's top
-  double onset_error_estimate = 0;            // relative on the onset (0 at a tip)
+  double onset_error_estimate = 0;            // relative on the onset (0 at a tip, or not converged)
+  // False where the lowest region opens at a boundary that did not converge in the harmonics
+  // (BoundaryAnalysis::unconverged): the onset is its value at the highest k reached.
+  bool onset_converged = true;
+  int unconverged_boundaries = 0;             // at the worst speed, in the window (they still divide regions)
   int multiplier = 0, mode = 0, order = 0;    // the region that opens there
   bool tip = false;             // undamped: the region's tip θ = 2ω_m/n = kΩ lies in the range
   int approximation = 0;        // harmonics per multiplier sign of the converged boundaries
@@ -60,6 +65,8 @@ struct RubStabilityResult {
   double check_speed_rad_s = 0, check_fmax_over_fcr = 0;
   double max_abs_multiplier = 0;
   bool check_stable = true;
+  // Where the check's estimate stays above its tolerance (StabilityAnswer::tolerance_unmet): why.
+  std::string check_tolerance_unmet;
 };
 
 // `progress(done, total)` counts the speeds scanned.

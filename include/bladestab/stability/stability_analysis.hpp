@@ -16,8 +16,10 @@
 //                  the series itself (the cosine approximation (42)) or the true train ("exact");
 //       method     step or harmonic convergence of the whole multiplier set;
 //  4. fidelity raised where the budget exceeds the tolerance (terms, vectors, steps), as far as the
-//     scene leaves it free; what was chosen is reported.
+//     scene leaves it free and more terms can reach it (basis_can_reach, basis_error.hpp); what
+//     was chosen is reported, and a tolerance not met says why.
 #include <functional>
+#include <string>
 
 #include "bladestab/base/error_budget.hpp"
 #include "bladestab/ltp/floquet.hpp"
@@ -41,6 +43,7 @@ struct StabilityAnswer {
   ErrorBudget budget;           // absolute, on max|ρ|
   bool stable = true;           // max|ρ| ≤ 1 + the total estimate
   bool tolerance_met = true;    // false where a fidelity fixed by the scene keeps the total above it
+  std::string tolerance_unmet;  // why not, in one line ("tolerance 1e-06: not met with 10 terms per field …")
   ModelSpec model;              // the Ritz model used (terms raised to the tolerance)
   int reference_terms = 0;      // the richer basis of the basis part
   ReductionSpec reduction;      // as used (vectors chosen)

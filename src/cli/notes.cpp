@@ -1,0 +1,18 @@
+#include "notes.hpp"
+
+#include <cstdio>
+
+#include <fmt/format.h>
+
+#include "support/message_text.hpp"
+
+namespace bladestab::cli {
+
+void print_stderr_line(const char* kind, const std::string& message) {
+  constexpr std::size_t longest = 2000;
+  std::string line = one_line(message);
+  if (line.size() > longest) line = line.substr(0, longest) + "…";
+  fmt::print(stderr, "bladestab: {}: {}\n", kind, line);
+}
+
+}  // namespace bladestab::cli
