@@ -184,7 +184,7 @@ TEST_CASE("bad input: missing scene file and malformed --set (bad_input)", "[bad
   }
 }
 
-TEST_CASE("bad input: campbell options (bad_input)", "[bad_input]") {
+TEST_CASE("bad input: campbell options (bad_input)", "[bad_input][parallel]") {
   SECTION("reversed speed range") {
     expect_rejected(campbell("600:0:10"), {"--speeds 600:0:10", "start < stop"});
   }
@@ -396,7 +396,7 @@ TEST_CASE("bad input: issue 11, crashes on non-finite numerics (bad_input)", "[b
   }
 }
 
-TEST_CASE("bad input: issue 11, work and memory beyond the limits (bad_input)", "[bad_input]") {
+TEST_CASE("bad input: issue 11, work and memory beyond the limits (bad_input)", "[bad_input][parallel]") {
   const std::string out = (scratch() / "issue11").string();
   const std::vector<std::string> estimate{"would take about", "--max-seconds", "--max-memory"};
   const auto with = [&](std::vector<std::string> args, const std::vector<std::string>& more) {
@@ -457,7 +457,7 @@ TEST_CASE("bad input: issue 11, scene files that never end (bad_input)", "[bad_i
   }
 }
 
-TEST_CASE("bad input: issue 11, messages (bad_input)", "[bad_input]") {
+TEST_CASE("bad input: issue 11, messages (bad_input)", "[bad_input][parallel]") {
   SECTION("a string with a newline is echoed escaped") {
     expect_rejected(modes({"--set", "model.basis=\"a\\nb\""}), {"model.basis = \"a\\nb\""});
   }
@@ -517,7 +517,7 @@ TEST_CASE("bad input: issue 11, options read alike (bad_input)", "[bad_input]") 
   }
 }
 
-TEST_CASE("bad input: issue 11, outputs (bad_input)", "[bad_input]") {
+TEST_CASE("bad input: issue 11, outputs (bad_input)", "[bad_input][parallel]") {
   const std::vector<std::string> tiny{"--set", "model.terms=4", "--count", "2", "--chart", "none"};
   SECTION("--out is checked before computing") {
     std::ofstream(scratch() / "a_file") << "x";
@@ -545,7 +545,7 @@ TEST_CASE("bad input: issue 11, outputs (bad_input)", "[bad_input]") {
   }
 }
 
-TEST_CASE("bad input: sweep options and the static tip compression (bad_input)", "[bad_input][sweep]") {
+TEST_CASE("bad input: sweep options and the static tip compression (bad_input)", "[bad_input][sweep][parallel]") {
   const auto sweep = [](const std::string& key, const std::string& values, std::vector<std::string> extra = {}) {
     std::vector<std::string> args{"sweep", valid_scene, "--key", key, "--values", values, "--out", scratch().string(),
                                   "--chart", "none"};
