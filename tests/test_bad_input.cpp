@@ -524,6 +524,11 @@ TEST_CASE("bad input: issue 11, outputs (bad_input)", "[bad_input][parallel]") {
     expect_rejected({"campbell", valid_scene, "--speeds", "0:600:3", "--out", (scratch() / "a_file").string()},
                     {"--out", "a_file", "not a directory"});
   }
+  SECTION("--out with a name the system refuses (a 300-character component) is refused before computing") {
+    const std::string too_long = (scratch() / std::string(300, 'a') / "out").string();
+    expect_rejected({"campbell", valid_scene, "--speeds", "0:600:3", "--out", too_long},
+                    {"--out", "cannot write into it: File name too long"});
+  }
   SECTION("a set that cannot be completed leaves no file of it") {
     const fs::path dir = scratch() / "blocked";
     fs::create_directories(dir / "campbell.json");  // the set's last file cannot be renamed into place
