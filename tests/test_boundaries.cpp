@@ -199,7 +199,7 @@ TEST_CASE("boundaries: where the stiffness touches zero (F̄ = 1) the pinched to
 }
 
 TEST_CASE("boundaries: the families side by side give the answer of one thread, and progress counts to its end",
-          "[boundaries][slow]") {
+          "[boundaries][slow][parallel]") {
   const Scene s = paper_scene({"model.terms=3"});
   std::vector<BoundaryAnalysis> runs;
   std::vector<std::pair<int, int>> calls;
@@ -251,7 +251,7 @@ TEST_CASE("boundaries: the multiplier check tells a boundary from a point inside
 }
 
 TEST_CASE("boundaries: regions at the scene's load hold the paper point, and the Floquet verdict flips at their ends",
-          "[boundaries][regions][slow]") {
+          "[boundaries][regions][slow][parallel]") {
   const Scene s = paper_scene({"model.terms=8"});  // θ = Ω = 300 rad/s, F̄ = 5
   const BoundaryRequest r;
   const BoundaryAnalysis a = boundaries_with_error_estimate(s, r);
@@ -290,7 +290,7 @@ TEST_CASE("boundaries: regions at the scene's load hold the paper point, and the
   }
 }
 
-TEST_CASE("boundaries --at-theta with a pulse series: the pulses come at the theta asked for", "[boundaries][series][slow]") {
+TEST_CASE("boundaries --at-theta with a pulse series: the pulses come at the theta asked for", "[boundaries][series][slow][parallel]") {
   // A long pulse (t_c = 0.3 rev) as its own Fourier series: the duty t_c/T, so every F_m, depends on θ.
   const Scene s = paper_scene({"model.terms=8", "load.approximation=\"fourier\"", "load.contact_time_rev=0.3"});
   BoundaryRequest r;

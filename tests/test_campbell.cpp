@@ -244,7 +244,7 @@ TEST_CASE("the reduced sweep's frequencies are the whole Ritz model's within the
 }
 
 TEST_CASE("Campbell error estimates cover the error against a converged model, points and crossings",
-          "[campbell][budget][slow]") {
+          "[campbell][budget][slow][parallel]") {
   const std::vector<Variant> variants{
       {"paper blade", {}, 8, 1e-6},
       {"thick blade d = 0.1", {"blade.slenderness=0.1"}, 8, 1e-6},
@@ -304,7 +304,7 @@ TEST_CASE("Campbell error estimates cover the error against a converged model, p
   }
 }
 
-TEST_CASE("damped blades take the dense sweep, and their estimates cover the error too", "[campbell][budget][slow]") {
+TEST_CASE("damped blades take the dense sweep, and their estimates cover the error too", "[campbell][budget][slow][parallel]") {
   const std::vector<Variant> variants{
       {"modal 2 %", {"damping.model=modal", "damping.ratio=0.02"}, 4, 1e-6},
       {"Rayleigh 2 %", {"damping.model=rayleigh", "damping.ratio=0.02", "damping.frequencies_hz=[50, 2000]"}, 4,
@@ -332,7 +332,7 @@ TEST_CASE("damped blades take the dense sweep, and their estimates cover the err
   }
 }
 
-TEST_CASE("campbell --tolerance and modes --tolerance choose the same model and agree", "[campbell][modes]") {
+TEST_CASE("campbell --tolerance and modes --tolerance choose the same model and agree", "[campbell][modes][parallel]") {
   Scene at300 = paper_scene({"operation.speed_rad_s=300"});
   const ConvergedModes m = modes_with_error_estimate(at300, 8, EigenSolverKind::dense, 1e-6);
   const CampbellWithErrors r = campbell_with_error_estimate(at300, {{300, 310}, {}, 8}, 1e-6);
@@ -344,7 +344,7 @@ TEST_CASE("campbell --tolerance and modes --tolerance choose the same model and 
   }
 }
 
-TEST_CASE("an unreachable tolerance is a parameter error naming the tolerance, not a CLI flag", "[campbell]") {
+TEST_CASE("an unreachable tolerance is a parameter error naming the tolerance, not a CLI flag", "[campbell][parallel]") {
   const std::vector<double> speeds = linspace(0, 400, 5);
   const auto message_of = [&](const Scene& scene, double tolerance) -> std::string {
     try {

@@ -76,7 +76,7 @@ TEST_CASE("damped boundaries move up and agree with the damped Floquet multiplie
   }
 }
 
-TEST_CASE("a damped map's principal region is lifted off the F-bar = 0 axis", "[map][damping]") {
+TEST_CASE("a damped map's principal region is lifted off the F-bar = 0 axis", "[map][damping][parallel]") {
   MapOptions o;
   o.plane = MapPlane::theta_fmax;
   o.grid_x = {780, 800, 820, 840, 860, 880};
@@ -99,7 +99,7 @@ TEST_CASE("a damped map's principal region is lifted off the F-bar = 0 axis", "[
 }
 
 TEST_CASE("a damped region's traced boundary is closed through its tip, and the tip is where Floquet says",
-          "[map][damping][fold]") {
+          "[map][damping][fold][parallel]") {
   const Scene s = scene_with("modal:0.01");
   MapOptions o;
   o.plane = MapPlane::theta_fmax;
@@ -170,7 +170,7 @@ double odeint_true_pulse_max_rho(const Scene& s) {
 
 }  // namespace
 
-TEST_CASE("a map of the true pulse train matches an independent integration of the train", "[map][exact]") {
+TEST_CASE("a map of the true pulse train matches an independent integration of the train", "[map][exact][parallel]") {
   // The speed plane of the paper blade's true half-sine train (t̄c = 0.01), N = 4 for a cheap
   // reference; six refined samples against Boost.Odeint on the whole Ritz model.
   const Scene s = paper_scene({"model.terms=4", "load.approximation=exact"});

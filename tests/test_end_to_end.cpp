@@ -175,7 +175,7 @@ TEST_CASE("end to end: modes, json and csv, mode 1 at rest is the Euler-Bernoull
   CHECK(std::abs(lambda1 / exact - 1) <= j["modes"][0]["error_estimate"].number);
 }
 
-TEST_CASE("end to end: campbell, json, csv, crossings and PNG, mode 1 at rest is the cantilever's", "[end_to_end][campbell]") {
+TEST_CASE("end to end: campbell, json, csv, crossings and PNG, mode 1 at rest is the cantilever's", "[end_to_end][campbell][parallel]") {
   const fs::path dir = output_dir("campbell");
   const std::vector<std::string> more{"--speeds", "0:600:4", "--count", "3", "--out", dir.string()};
   const Json j = run_json("campbell", {more.begin(), more.end()});
@@ -204,7 +204,7 @@ TEST_CASE("end to end: campbell, json, csv, crossings and PNG, mode 1 at rest is
   check_png(dir / "campbell.png", 1200, 825);
 }
 
-TEST_CASE("end to end: stability, json and csv, max|rho| against Runge-Kutta 7(8) on the same system", "[end_to_end][stability]") {
+TEST_CASE("end to end: stability, json and csv, max|rho| against Runge-Kutta 7(8) on the same system", "[end_to_end][stability][parallel]") {
   const Json j = run_json("stability", {});
   const Csv c = run_csv("stability", {});
   const std::size_t count = j["multipliers"].size();
@@ -224,7 +224,7 @@ TEST_CASE("end to end: stability, json and csv, max|rho| against Runge-Kutta 7(8
 }
 
 TEST_CASE("end to end: boundaries, json and csv, a multiplier of the reference monodromy at -1 there",
-          "[end_to_end][boundaries]") {
+          "[end_to_end][boundaries][parallel]") {
   const std::vector<std::string> more{"--max-order", "1", "--set", "model.axial=false"};
   // The four-term basis is ~1e-3 from the continuum, above the harmonics' --tolerance: said in one line.
   const std::string note = "bladestab: note: boundaries: the whole estimate ";
@@ -258,7 +258,7 @@ TEST_CASE("end to end: boundaries, json and csv, a multiplier of the reference m
 }
 
 TEST_CASE("end to end: map, json, csv, grid and curve files, PNG and SVG, the scene point's max|rho|",
-          "[end_to_end][map]") {
+          "[end_to_end][map][parallel]") {
   const fs::path dir = output_dir("map");
   const std::vector<std::string> grid{"--plane", "theta-fmax", "--theta", "100:900:5", "--fmax", "0:10:3", "--trace",
                                       "11", "--resolution", "10x6", "--max-order", "1", "--out", dir.string(),
@@ -337,7 +337,7 @@ TEST_CASE("end to end: crosscheck, json and csv, the cosine approximation's Floq
   CHECK(cosine["transient_growth_per_revolution"].number == Approx(reference).epsilon(0.01));
 }
 
-TEST_CASE("end to end: sweep, json, csv and PNG, mode 1 at rest is the cantilever's", "[end_to_end][sweep]") {
+TEST_CASE("end to end: sweep, json, csv and PNG, mode 1 at rest is the cantilever's", "[end_to_end][sweep][parallel]") {
   const fs::path dir = output_dir("sweep");
   const std::vector<std::string> more{"--key", "operation.speed_rad_s", "--values", "0:600:4", "--count", "3", "--out",
                                       dir.string()};
@@ -355,7 +355,7 @@ TEST_CASE("end to end: sweep, json, csv and PNG, mode 1 at rest is the cantileve
 }
 
 TEST_CASE("end to end: check, json and junit, the worst Campbell margin from the test's own eigen-solve",
-          "[end_to_end][check]") {
+          "[end_to_end][check][parallel]") {
   const std::string scene = std::string(BLADESTAB_SOURCE_DIR) + "/stability_maps/ci/passes.toml";
   const auto check_run = [&](const char* format) {
     const testing_support::Outcome o = testing_support::run_bladestab({"check", scene, "--format", format}, {120});

@@ -181,31 +181,31 @@ void check_region(Region region, std::size_t least_scenes) {
 }  // namespace
 
 TEST_CASE("total error estimate covers the true error over the space a user tries: models, bases and methods",
-          "[budget][slow]") {
+          "[budget][slow][parallel]") {
   CHECK(survey().size() >= 25);
   check_region(Region::models_and_methods, 11);
 }
 
 TEST_CASE("total error estimate covers the true error over the space a user tries: loads and pulse frequencies",
-          "[budget][slow]") {
+          "[budget][slow][parallel]") {
   check_region(Region::loads_and_frequencies, 11);
 }
 
 TEST_CASE("total error estimate covers the true error over the space a user tries: the true pulse train",
-          "[budget][slow]") {
+          "[budget][slow][parallel]") {
   check_region(Region::true_pulse, 4);
 }
 
-TEST_CASE("total error estimate covers the true error over the space a user tries: damping", "[budget][slow]") {
+TEST_CASE("total error estimate covers the true error over the space a user tries: damping", "[budget][slow][parallel]") {
   check_region(Region::damping, 3);
 }
 
-TEST_CASE("a blade that diverges beyond the double range within a period is refused, not printed", "[budget][slow]") {
+TEST_CASE("a blade that diverges beyond the double range within a period is refused, not printed", "[budget][slow][parallel]") {
   // d̄ = 0.3 with the scene's F̄ = 5: the mean load is 2.5 F_cr, far past static buckling.
   CHECK_THROWS_AS(analyse_stability(paper_scene({"blade.slenderness=0.3"}), {}), NumericalError);
 }
 
-TEST_CASE("the first release's wrong answers are right now (issue table)", "[budget]") {
+TEST_CASE("the first release's wrong answers are right now (issue table)", "[budget][parallel]") {
   // Each against the value the issue measured with independent integrations.
   CHECK(analyse_stability(paper_scene({"model.terms=40"}), {}).floquet.max_abs_multiplier ==
         Approx(2.1992297).epsilon(2e-7));
@@ -219,7 +219,7 @@ TEST_CASE("the first release's wrong answers are right now (issue table)", "[bud
             .stable);
 }
 
-TEST_CASE("answers do not depend on --threads: stability's budget and campbell's estimate, 1 against 2", "[budget][threads]") {
+TEST_CASE("answers do not depend on --threads: stability's budget and campbell's estimate, 1 against 2", "[budget][threads][parallel]") {
   SECTION("stability: the variants in turn or beside the answer") {
     const Scene scene = paper_scene();
     StabilityAnswer a[2];
@@ -249,7 +249,7 @@ TEST_CASE("answers do not depend on --threads: stability's budget and campbell's
   }
 }
 
-TEST_CASE("stability's progress counts the answer's levels and its variants, and leaves the answer alone", "[budget]") {
+TEST_CASE("stability's progress counts the answer's levels and its variants, and leaves the answer alone", "[budget][parallel]") {
   // The cosine approximation by the automatic method and by Koopman–Hill, and the true pulse train
   // (its contact's step ladder).
   for (const auto& [approximation, method] : {std::pair{"cosine", FloquetMethod::automatic},

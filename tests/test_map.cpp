@@ -48,7 +48,7 @@ double distance_to_multiplier(const Scene& base, double speed, double theta, dou
 }
 }  // namespace
 
-TEST_CASE("speed-plane map: every traced boundary point has a multiplier at +1 or -1", "[map][slow]") {
+TEST_CASE("speed-plane map: every traced boundary point has a multiplier at +1 or -1", "[map][slow][parallel]") {
   const Scene scene = paper_scene({"model.terms=3", "model.axial=false"});
   MapOptions o;
   o.plane = MapPlane::speed_fmax;
@@ -76,7 +76,7 @@ TEST_CASE("speed-plane map: every traced boundary point has a multiplier at +1 o
   CHECK(checked >= 6);
 }
 
-TEST_CASE("theta-plane map of Mathieu's equation: unstable inside the principal tongue, stable outside", "[map][mathieu]") {
+TEST_CASE("theta-plane map of Mathieu's equation: unstable inside the principal tongue, stable outside", "[map][mathieu][parallel]") {
   const Scene scene = paper_scene({"model.theory=euler-bernoulli", "model.terms=1", "model.axial=false",
                                    "model.basis=sine", "operation.speed_rad_s=300"});
   const BladeModel model = assemble_model(scene);
@@ -114,7 +114,7 @@ TEST_CASE("theta-plane map of Mathieu's equation: unstable inside the principal 
 }
 
 TEST_CASE("refined shading: leaves tile the lattice, agree at their corners, and samples match the whole model",
-          "[map][refinement][slow]") {
+          "[map][refinement][slow][parallel]") {
   const Scene scene = paper_scene({"model.terms=4"});
   MapOptions o = theta_plane(linspace(150, 650, 6), linspace(0, 6, 4), linspace(0, 6, 7));
   o.tolerance = 1e-7;
@@ -155,7 +155,7 @@ TEST_CASE("refined shading: leaves tile the lattice, agree at their corners, and
   CHECK(compared >= 20);
 }
 
-TEST_CASE("map marks the scene's point with its max|rho| and the nearest boundary along F-bar", "[map][scene-point][slow]") {
+TEST_CASE("map marks the scene's point with its max|rho| and the nearest boundary along F-bar", "[map][scene-point][slow][parallel]") {
   const Scene s = paper_scene({"model.terms=8"});  // θ = Ω = 300 rad/s, F̄ = 5
   MapOptions o;
   o.plane = MapPlane::theta_fmax;
@@ -229,12 +229,12 @@ void check_random_samples(bool theta_plane) {
 
 // Each plane its own test case, so that ctest runs them side by side.
 TEST_CASE("50 random refined samples of the theta-plane map match the whole model's monodromy to the map's tolerance",
-          "[map][samples][slow]") {
+          "[map][samples][slow][parallel]") {
   check_random_samples(true);
 }
 
 TEST_CASE("50 random refined samples of the speed-plane map match the whole model's monodromy to the map's tolerance",
-          "[map][samples][slow]") {
+          "[map][samples][slow][parallel]") {
   check_random_samples(false);
 }
 
@@ -254,7 +254,7 @@ double distance_to_polyline(double px, double py, const std::vector<double>& xs,
 
 TEST_CASE("theta-plane map of the paper blade: curves followed through their changes of name end on the plot's edge "
           "or at another curve, and their points are boundaries of the whole model",
-          "[map][slow]") {
+          "[map][slow][parallel]") {
   // The main job's θ plane. At high loads a boundary's name (its eigenvector's dominant mode and
   // harmonic) changes along it: the −1 pair of mode 2, order 7 near θ = 307 rad/s is "mode 1,
   // order 3" from F̄ = 9, and the 2ω₁ boundary near θ = 500 rad/s, F̄ = 5.5 becomes "mode 2,

@@ -80,13 +80,13 @@ bool white(const Colour& c) { return c.r > 0.85 && c.g > 0.85 && c.b > 0.85; }  
 
 // The marker's label or a boundary curve may cover one of the four pixels: three must agree. Two
 // test cases, one map each, so that ctest runs them side by side.
-TEST_CASE("the map's PNG shows the paper scene's unstable point in the unstable colour", "[map][chart][slow]") {
+TEST_CASE("the map's PNG shows the paper scene's unstable point in the unstable colour", "[map][chart][slow][parallel]") {
   const std::vector<Colour> unstable = colours_beside_marker(5.0);  // max|ρ| = 2.2: growth ×2.2 a period
   REQUIRE(unstable.size() == 4);
   CHECK(std::count_if(unstable.begin(), unstable.end(), [](const Colour& c) { return !white(c); }) >= 3);
 }
 
-TEST_CASE("the map's PNG shows the paper scene's stable point in white", "[map][chart][slow]") {
+TEST_CASE("the map's PNG shows the paper scene's stable point in white", "[map][chart][slow][parallel]") {
   const std::vector<Colour> stable = colours_beside_marker(0.2);  // below every tongue at θ = 300 rad/s
   REQUIRE(stable.size() == 4);
   CHECK(std::count_if(stable.begin(), stable.end(), white) >= 3);

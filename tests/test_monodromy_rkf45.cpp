@@ -82,7 +82,7 @@ TEST_CASE("monodromy-rkf45: det Phi(T) is Liouville's exp(-T tr(M^-1 C)) on the 
 }
 
 TEST_CASE("stability --method monodromy-rkf45 through the program: the Magnus answer within both estimates",
-          "[stability][rkf45][cli]") {
+          "[stability][rkf45][cli][parallel]") {
   const auto answer = [](const std::string& method) {
     const testing_support::Outcome o = testing_support::run_bladestab(
         {"stability", testing_support::paper_scene_path(), "--set", "model.terms=4", "--method", method, "--tolerance",

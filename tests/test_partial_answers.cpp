@@ -64,7 +64,7 @@ Json answer_with_one_line(const Outcome& o, int status, const std::string& start
 
 TEST_CASE("boundaries --range 10:300 at F̄ = 1: the order-1 and order-2 edges at Mathieu's values from the default k "
           "and from k = 20",
-          "[boundaries][mathieu][slow]") {
+          "[boundaries][mathieu][slow][parallel]") {
   const BladeModel m = assemble_model(testing_support::mathieu_scene(1.0));
   const double w0 = std::sqrt(m.K_S(0, 0) / m.M(0, 0));
   // In [10, 300]: a₁ (order 1, θ ≈ 199 rad/s; b₁ lies at 327), a₂ and b₂ (order 2, θ ≈ 108 and 138).
@@ -93,7 +93,7 @@ TEST_CASE("boundaries --range 10:300 at F̄ = 1: the order-1 and order-2 edges a
 
 TEST_CASE("boundaries: some converged, the others listed with how far they got (exit 0, one note), or none converged "
           "(exit 1, one failure line)",
-          "[boundaries][slow]") {
+          "[boundaries][slow][parallel]") {
   SECTION("some converged") {
     const Outcome o = mathieu_boundaries({"--range", "5.9:6.5", "--approximation", "16", "--format", "json"});
     const Json j = answer_with_one_line(o, 0, "bladestab: note: boundaries: ");

@@ -87,7 +87,7 @@ std::string scratch_dir() {
 }  // namespace
 
 TEST_CASE("sweep: a static tip compression at rest against an independent eigen-solve, and mode 1 to 0 at F_cr",
-          "[sweep]") {
+          "[sweep][parallel]") {
   const std::vector<double> c{0, 0.5, 0.9, 0.99, 0.999};
   const ParameterSweep s = sweep_paper("operation.tip_compression_over_fcr", c, {"operation.speed_rad_s=0"});
   const BladeModel unloaded = assemble_model(paper_scene({"operation.speed_rad_s=0"}));
@@ -142,7 +142,7 @@ TEST_CASE("sweep: static buckling load of the paper blade, at rest and spinning"
   CHECK(refused({"operation.tip_compression_over_fcr=1"}).empty());  // at 300 rad/s it carries F_cr
 }
 
-TEST_CASE("sweep: the slenderness against the paper's Table 5 (300 rad/s)", "[sweep][paper]") {
+TEST_CASE("sweep: the slenderness against the paper's Table 5 (300 rad/s)", "[sweep][paper][parallel]") {
   const ParameterSweep s = sweep_paper("blade.slenderness", {0.005, 0.01, 0.05, 0.1}, {});
   // Table 5, mode 1 (Λ; the paper's Ω̄ = 0.0877898 is its rounding of 300 rad/s). The converged
   // model is within 0.25 % of three entries; at d̄ = 0.01 the paper is 0.41 % below it, where no
@@ -163,7 +163,7 @@ TEST_CASE("sweep: the slenderness against the paper's Table 5 (300 rad/s)", "[sw
   CHECK(first.lambda[1] == Approx(8.3518).epsilon(1e-4));  // docs/theory.md §7
 }
 
-TEST_CASE("sweep: end to end, JSON and every command honouring the static compression", "[sweep]") {
+TEST_CASE("sweep: end to end, JSON and every command honouring the static compression", "[sweep][parallel]") {
   const std::string scene = "'" + testing_support::paper_scene_path() + "'";
   const std::string out = " --out '" + scratch_dir() + "' --chart none";
   SECTION("JSON of a compression sweep") {

@@ -21,7 +21,7 @@ namespace {
 void pause_ms(int ms) { std::this_thread::sleep_for(std::chrono::milliseconds(ms)); }
 }  // namespace
 
-TEST_CASE("work pool: results in index order whatever the thread count and task durations", "[pool]") {
+TEST_CASE("work pool: results in index order whatever the thread count and task durations", "[pool][parallel]") {
   for (int threads : {1, 2, 3, 8}) {
     INFO("threads = " << threads);
     // Early tasks last longest, so the later ones finish first.
@@ -35,7 +35,7 @@ TEST_CASE("work pool: results in index order whatever the thread count and task 
   CHECK(run_indexed(0, 4, [](std::size_t i) { return i; }).empty());
 }
 
-TEST_CASE("work pool: one thread runs every task in turn on the caller", "[pool]") {
+TEST_CASE("work pool: one thread runs every task in turn on the caller", "[pool][parallel]") {
   std::vector<std::thread::id> ran_on;
   std::vector<std::size_t> order;
   run_indexed(10, 1, [&](std::size_t i) {  // no lock needed: nothing else runs
@@ -56,7 +56,7 @@ TEST_CASE("work pool: one thread runs every task in turn on the caller", "[pool]
   CHECK(started == 3);
 }
 
-TEST_CASE("work pool: no more threads at once than asked, the caller's included", "[pool]") {
+TEST_CASE("work pool: no more threads at once than asked, the caller's included", "[pool][parallel]") {
   for (int threads : {2, 3}) {
     std::mutex lock;
     std::set<std::thread::id> ids;
@@ -77,7 +77,7 @@ TEST_CASE("work pool: no more threads at once than asked, the caller's included"
   }
 }
 
-TEST_CASE("work pool: helpers start at once and the caller takes what is left", "[pool]") {
+TEST_CASE("work pool: helpers start at once and the caller takes what is left", "[pool][parallel]") {
   std::atomic<bool> first_ran{false};
   WorkPool<int> pool(2, 2, [&](std::size_t i) {
     if (i == 0) first_ran = true;
@@ -90,7 +90,7 @@ TEST_CASE("work pool: helpers start at once and the caller takes what is left", 
   CHECK(pool.get(0) == 10);
 }
 
-TEST_CASE("work pool: the lowest failing index is rethrown and unstarted tasks are cancelled", "[pool]") {
+TEST_CASE("work pool: the lowest failing index is rethrown and unstarted tasks are cancelled", "[pool][parallel]") {
   for (int threads : {1, 2, 4}) {
     INFO("threads = " << threads);
     std::atomic<int> ran{0};
@@ -117,7 +117,7 @@ TEST_CASE("work pool: the lowest failing index is rethrown and unstarted tasks a
   }
 }
 
-TEST_CASE("work pool: get rethrows a task's exception, and a cancelled task's cause", "[pool]") {
+TEST_CASE("work pool: get rethrows a task's exception, and a cancelled task's cause", "[pool][parallel]") {
   WorkPool<int> pool(1, 4, [](std::size_t i) -> int {
     if (i == 1) throw std::invalid_argument("bad 1");
     return static_cast<int>(i);
@@ -127,7 +127,7 @@ TEST_CASE("work pool: get rethrows a task's exception, and a cancelled task's ca
   CHECK_THROWS_WITH(pool.get(3), "bad 1");  // never ran: the failure before it is the cause
 }
 
-TEST_CASE("work pool: a cancellation from outside stops the unstarted tasks, and the tasks may poll it", "[pool]") {
+TEST_CASE("work pool: a cancellation from outside stops the unstarted tasks, and the tasks may poll it", "[pool][parallel]") {
   Cancellation stop;
   std::atomic<int> ran{0};
   WorkPool<int> pool(2, 1000, [&](std::size_t i) {
@@ -147,7 +147,7 @@ TEST_CASE("work pool: a cancellation from outside stops the unstarted tasks, and
   CHECK(flag.cancelled());
 }
 
-TEST_CASE("work pool: leaving early (the caller's own work failed) waits for the running tasks", "[pool]") {
+TEST_CASE("work pool: leaving early (the caller's own work failed) waits for the running tasks", "[pool][parallel]") {
   std::atomic<int> finished{0};
   {
     WorkPool<int> pool(3, 100, [&](std::size_t i) {

@@ -1,22 +1,25 @@
 #include "chart.hpp"
 
-#include <fcntl.h>
 #include <signal.h>
-#include <spawn.h>
+#include <sys/mman.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cctype>
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
 #include <stdexcept>
-#include <vector>
 
 #include <fmt/format.h>
 
+#include "bladestab/base/input_error.hpp"
 #include "chart_script.hpp"
+#include "interruption.hpp"
 #include "options.hpp"
 #include "output_files.hpp"
+#include "support/message_text.hpp"
 
 namespace bladestab::cli {
 
@@ -24,118 +27,115 @@ namespace {
 // Debian's interpreter: it has python3-matplotlib, whatever python3 comes first on PATH.
 constexpr const char* python = "/usr/bin/python3";
 
-// Writes all of `text` to `fd`; false if the reader went away. SIGPIPE is blocked meanwhile on
-// this thread and a pending one taken, so a reader that died makes a failed write, not our death.
-bool write_all(int fd, const std::string& text) {
-  sigset_t pipe_signal, previous;
-  sigemptyset(&pipe_signal);
-  sigaddset(&pipe_signal, SIGPIPE);
-  pthread_sigmask(SIG_BLOCK, &pipe_signal, &previous);
-  bool written = true;
-  for (std::size_t done = 0; done < text.size() && written;) {
+// An anonymous file in memory: the script the interpreter reads, and what it says. Neither needs
+// a pipe (a drawer that dies early cannot SIGPIPE the program) nor room on any disk.
+int memory_file(const char* name, const std::string& text) {
+  const int fd = ::memfd_create(name, MFD_CLOEXEC);
+  if (fd < 0) throw std::runtime_error(fmt::format("cannot draw the chart: memfd_create: {}", std::strerror(errno)));
+  for (std::size_t done = 0; done < text.size();) {
     const ssize_t n = ::write(fd, text.data() + done, text.size() - done);
-    if (n < 0 && errno == EINTR) continue;
-    written = n > 0;
-    if (written) done += static_cast<std::size_t>(n);
+    if (n <= 0) {
+      ::close(fd);
+      throw std::runtime_error(fmt::format("cannot draw the chart: {}", std::strerror(errno)));
+    }
+    done += static_cast<std::size_t>(n);
   }
-  const timespec now{0, 0};
-  while (sigtimedwait(&pipe_signal, nullptr, &now) == SIGPIPE) {
-  }
-  pthread_sigmask(SIG_SETMASK, &previous, nullptr);
-  return written;
+  ::lseek(fd, 0, SEEK_SET);
+  return fd;
 }
 
 std::string read_all(int fd) {
   std::string text;
+  ::lseek(fd, 0, SEEK_SET);
   char buffer[4096];
-  for (ssize_t n; (n = ::read(fd, buffer, sizeof buffer)) != 0;) {
-    if (n < 0 && errno == EINTR) continue;
-    if (n < 0) break;
-    text.append(buffer, static_cast<std::size_t>(n));
-  }
+  for (ssize_t n; (n = ::read(fd, buffer, sizeof buffer)) > 0;) text.append(buffer, static_cast<std::size_t>(n));
   return text;
 }
 
-// The last non-empty line of the script's stderr, without its "charts.py: " prefix: the script's
-// own one-line error, or the last line of a Python traceback (e.g. a missing matplotlib).
-std::string last_line(const std::string& text) {
-  const std::size_t end = text.find_last_not_of('\n');
-  if (end == std::string::npos) return "";
-  const std::size_t newline = text.rfind('\n', end), start = newline == std::string::npos ? 0 : newline + 1;
-  const std::string line = text.substr(start, end + 1 - start), prefix = "charts.py: ";
-  return line.compare(0, prefix.size(), prefix) == 0 ? line.substr(prefix.size()) : line;
+// The child, between fork and exec (async-signal-safe calls only): SIGINT and SIGTERM ignored, so
+// Ctrl-C on the terminal's process group reaches the program alone, which ends the drawer itself
+// (interruption.hpp); SIGKILL when the program ends by any other means; the script on stdin and
+// everything the interpreter prints into `messages`.
+[[noreturn]] void become_drawer(pid_t program, int script, int messages, char* const argv[]) {
+  struct sigaction ignore {};
+  ignore.sa_handler = SIG_IGN;
+  ::sigaction(SIGINT, &ignore, nullptr);
+  ::sigaction(SIGTERM, &ignore, nullptr);
+  sigset_t none;
+  sigemptyset(&none);
+  ::sigprocmask(SIG_SETMASK, &none, nullptr);
+  ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+  if (::getppid() != program) ::_exit(127);  // the program ended before the line above
+  if (::dup2(script, STDIN_FILENO) < 0 || ::dup2(messages, STDOUT_FILENO) < 0 || ::dup2(messages, STDERR_FILENO) < 0) {
+    ::_exit(127);
+  }
+  ::execv(python, argv);
+  ::_exit(127);
 }
 
-std::string replaced(std::string text, const std::string& from, const std::string& to) {
-  for (std::size_t at = text.find(from); !from.empty() && at != std::string::npos; at = text.find(from, at + to.size())) {
-    text.replace(at, from.size(), to);
-  }
-  return text;
-}
-
-// What the script said on stderr and how it ended.
-struct ScriptRun {
-  int status = 0;  // waitpid's
-  std::string errors;
-};
-
-// Runs the chart script (piped to the interpreter's stdin) with `arguments`, its stderr captured:
-// the interpreter reads the whole script before it runs any of it, so the script is written in
-// full before its stderr is read.
-ScriptRun run_script(const std::vector<std::string>& arguments) {
-  int input[2], errors[2];
-  if (::pipe2(input, O_CLOEXEC) != 0) throw std::runtime_error(fmt::format("cannot start {}: {}", python, std::strerror(errno)));
-  if (::pipe2(errors, O_CLOEXEC) != 0) {
-    ::close(input[0]), ::close(input[1]);
-    throw std::runtime_error(fmt::format("cannot start {}: {}", python, std::strerror(errno)));
-  }
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_adddup2(&actions, input[0], STDIN_FILENO);
-  posix_spawn_file_actions_adddup2(&actions, errors[1], STDERR_FILENO);
-  std::vector<std::string> words{python, "-"};
-  words.insert(words.end(), arguments.begin(), arguments.end());
+// Starts the drawer, known to interruption.hpp before any stop can see it.
+pid_t start_drawer(int script, int messages, std::vector<std::string> words) {
   std::vector<char*> argv;
   for (std::string& w : words) argv.push_back(w.data());
   argv.push_back(nullptr);
-  pid_t pid = 0;
-  const int spawned = posix_spawn(&pid, python, &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  ::close(input[0]), ::close(errors[1]);
-  ScriptRun run;
-  if (spawned == 0) {
-    write_all(input[1], chart_script);  // a script that stops early says why on stderr
-    ::close(input[1]);
-    run.errors = read_all(errors[0]);
-    while (::waitpid(pid, &run.status, 0) < 0 && errno == EINTR) {
-    }
-  } else {
-    ::close(input[1]);
-  }
-  ::close(errors[0]);
-  if (spawned != 0) throw std::runtime_error(fmt::format("cannot start {}: {}", python, std::strerror(spawned)));
-  return run;
+  const pid_t program = ::getpid();
+  const StopDeferral deferral;
+  const pid_t pid = ::fork();
+  if (pid == 0) become_drawer(program, script, messages, argv.data());
+  if (pid < 0) throw std::runtime_error(fmt::format("cannot start {}: {}", python, std::strerror(errno)));
+  remember_child(pid);
+  return pid;
 }
+
+// Waits for the drawer to end, then forgets and reaps it with stops deferred (interruption.hpp).
+int wait_for_drawer(pid_t pid) {
+  siginfo_t info;
+  while (::waitid(P_PID, static_cast<id_t>(pid), &info, WEXITED | WNOWAIT) != 0 && errno == EINTR) {
+  }
+  const StopDeferral deferral;
+  forget_child();
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  return status;
+}
+
+// Why a drawing failed, in one line: the script's own message ("charts: …", without that) or
+// the last line of the interpreter's traceback.
+std::string drawing_failure(int status, std::string said) {
+  while (!said.empty() && std::isspace(static_cast<unsigned char>(said.back()))) said.pop_back();
+  std::string reason = said.substr(said.rfind('\n') + 1);  // from the start when there is one line
+  if (reason.rfind("charts: ", 0) == 0) reason.erase(0, 8);
+  if (WIFSIGNALED(status)) return fmt::format("{} ended by signal {}", python, WTERMSIG(status));
+  if (WEXITSTATUS(status) == 127 || reason.empty()) return fmt::format("cannot run {} (with python3-matplotlib)", python);
+  if (reason.find("No module named") != std::string::npos) {
+    reason += fmt::format(" ({} with python3-matplotlib is needed)", python);
+  }
+  return reason;
+}
+
+// A file descriptor closed when it goes out of scope.
+struct OpenFile {
+  int fd;
+  ~OpenFile() { ::close(fd); }
+};
+
 }  // namespace
 
-void draw_chart(const std::string& kind, const std::string& json_path, const std::string& output_path,
-                const std::string& shown_path) {
-  const ScriptRun run = run_script({kind, json_path, output_path});
-  if (WIFEXITED(run.status) && WEXITSTATUS(run.status) == 0) return;
-  // One line with the cause: the script's (a full disk: "cannot write …: No space left on device"),
-  // naming the file the user asked for, not its temporary.
-  const std::string cause = replaced(replaced(last_line(run.errors), output_path, shown_path), json_path,
-                                     shown_path + " (its data)");
-  if (cause.find("No module named") != std::string::npos) {
-    throw std::runtime_error(fmt::format("drawing {} failed: {} ({} with python3-matplotlib is needed)", shown_path,
-                                         cause, python));
+void draw_chart(const std::string& kind, const std::string& json_path, const std::string& temporary,
+                const std::string& output_path) {
+  const OpenFile script{memory_file("charts.py", chart_script)};
+  const OpenFile messages{memory_file("charts.py messages", "")};
+  const int status = wait_for_drawer(start_drawer(script.fd, messages.fd, {python, "-", kind, json_path, temporary}));
+  if (status == 0) return;
+  std::string reason = drawing_failure(status, read_all(messages.fd));
+  // A chart that cannot be written (a full disk) is refused as every output file is (output_files.hpp).
+  const std::string unwritable = "cannot write '" + temporary + "': ";
+  if (reason.rfind(unwritable, 0) == 0) {
+    throw InputError(fmt::format("{}: cannot write this file: {}", echoed(output_path, 240), reason.substr(unwritable.size())));
   }
-  throw std::runtime_error(fmt::format("drawing {} failed: {}", shown_path,
-                                       !cause.empty()            ? cause
-                                       : WIFSIGNALED(run.status) ? fmt::format("{} ended by signal {}", python,
-                                                                               WTERMSIG(run.status))
-                                                                 : fmt::format("{} exited with status {}", python,
-                                                                               WEXITSTATUS(run.status))));
+  for (std::size_t at; (at = reason.find(temporary)) != std::string::npos;) reason.replace(at, temporary.size(), output_path);
+  throw std::runtime_error(fmt::format("drawing {} failed: {}", output_path, reason));
 }
 
 void add_chart_options(CLI::App& command, std::string& out, std::string& chart, const std::string& out_help) {

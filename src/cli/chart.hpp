@@ -8,11 +8,13 @@
 
 namespace bladestab::cli {
 
-// Renders `kind` from the JSON at `json_path` to `output_path` (.png or .svg). Throws
-// std::runtime_error with one line when drawing fails: the script's own cause (a full disk, a
-// missing matplotlib), with `shown_path` (the file the user asked for) in place of the paths given.
-void draw_chart(const std::string& kind, const std::string& json_path, const std::string& output_path,
-                const std::string& shown_path);
+// Renders `kind` from the JSON file `json_path` into `temporary` (.png or .svg) with the chart
+// script in a child process (interruption.hpp ends it if the run is stopped). Throws InputError
+// when the chart cannot be written (as for every output file: output_files.hpp), else
+// std::runtime_error when drawing fails; either names `output_path` (the file the temporary
+// becomes) and the script's reason in one line.
+void draw_chart(const std::string& kind, const std::string& json_path, const std::string& temporary,
+                const std::string& output_path);
 
 // --out DIR and --chart png|svg|none, shared by the commands that draw.
 void add_chart_options(CLI::App& command, std::string& out, std::string& chart, const std::string& out_help);

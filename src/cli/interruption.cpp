@@ -1,7 +1,10 @@
 #include "interruption.hpp"
 
 #include <signal.h>
+#include <sys/wait.h>
 #include <unistd.h>
+
+#include <cerrno>
 
 #include <array>
 #include <atomic>
@@ -24,7 +27,24 @@ struct Slot {
 };
 std::array<Slot, slots> registry;
 
-void remove_temporaries() {  // async-signal-safe: unlink only
+std::atomic<pid_t> child{0};
+
+// Once a set of output files is in place, a stop says so rather than that none was written.
+std::atomic<bool> files_written{false};
+const char* files_note() {
+  return files_written.load() ? "; its output files were written\n" : "; no output files written\n";
+}
+
+// async-signal-safe: kill, waitid and unlink only. The child is waited for without being reaped
+// (WNOWAIT), so its process id stays its own while the main thread may wait for it too.
+void end_child_and_remove_temporaries() {
+  const pid_t pid = child.load();
+  if (pid > 0) {
+    ::kill(pid, SIGKILL);
+    siginfo_t info;
+    while (::waitid(P_PID, static_cast<id_t>(pid), &info, WEXITED | WNOWAIT) != 0 && errno == EINTR) {
+    }
+  }
   for (Slot& s : registry) {
     if (s.published.load()) ::unlink(s.path);
   }
@@ -46,9 +66,9 @@ std::mutex& commit_lock() {
 }
 
 extern "C" void stop_on_signal(int signal_number) {
-  remove_temporaries();
-  write_line(signal_number == SIGINT ? "bladestab: stopped: interrupted (SIGINT); no output files written\n"
-                                     : "bladestab: stopped: terminated (SIGTERM); no output files written\n");
+  end_child_and_remove_temporaries();
+  write_line(signal_number == SIGINT ? "bladestab: stopped: interrupted (SIGINT)" : "bladestab: stopped: terminated (SIGTERM)");
+  write_line(files_note());
   ::_exit(128 + signal_number);
 }
 
@@ -65,15 +85,14 @@ sigset_t stop_signals() {
 void stop_on_signals() {
   struct sigaction action {};
   action.sa_handler = stop_on_signal;
-  sigemptyset(&action.sa_mask);
+  action.sa_mask = stop_signals();  // a second signal waits for the first's stop
   sigaction(SIGINT, &action, nullptr);
   sigaction(SIGTERM, &action, nullptr);
 }
 
 void stop_after(double seconds, const std::string& limit) {
   const std::string message =
-      fmt::format("bladestab: failed: stopped at the time limit ({}): the run took longer than estimated; no output "
-                  "files written\n", limit);
+      fmt::format("bladestab: failed: stopped at the time limit ({}): the run took longer than estimated", limit);
   // The watchdog starts with SIGINT and SIGTERM blocked, so they never run on it while a set of
   // files is being renamed on the main thread.
   const sigset_t set = stop_signals();
@@ -82,8 +101,9 @@ void stop_after(double seconds, const std::string& limit) {
   std::thread([seconds, message] {
     std::this_thread::sleep_for(std::chrono::duration<double>(seconds));
     commit_lock().lock();  // never released: the process ends here
-    remove_temporaries();
+    end_child_and_remove_temporaries();
     write_line(message.c_str());
+    write_line(files_note());
     ::_exit(1);
   }).detach();
   pthread_sigmask(SIG_SETMASK, &previous, nullptr);
@@ -106,6 +126,12 @@ void forget_temporary(int slot) {
   registry[slot].published.store(false);
   registry[slot].claimed.store(false);
 }
+
+void remember_child(pid_t pid) { child.store(pid); }
+
+void forget_child() { child.store(0); }
+
+void note_files_written() { files_written.store(true); }
 
 // Signals are blocked (they stay pending and stop the run once the set is in place); the deadline
 // waits for the lock.

@@ -44,18 +44,18 @@ void check_file_stem(const std::string& name) {
 void check_output_directory(const std::string& option, const std::string& dir) {
   const std::string shown = fmt::format("{} {}", option, echoed(dir, 240));
   if (dir.empty()) throw InputError(fmt::format("{}: must name a directory", shown));
-  // Every query with an error code: a name the system refuses (a component longer than 255 bytes,
-  // ENAMETOOLONG) is bad input, not a filesystem_error.
-  std::error_code ec, status_ec;
+  // Every query with an error code: a name the system refuses (too long, a loop of links) is bad
+  // input like any other.
+  std::error_code created, found;
   const fs::path folder(dir);
-  fs::create_directories(folder, ec);
-  const fs::file_status status = fs::status(folder, status_ec);
+  fs::create_directories(folder, created);
+  const fs::file_status status = fs::status(folder, found);
   if (!fs::is_directory(status)) {
     throw InputError(fmt::format("{}: cannot write into it: {}", shown,
                                  fs::exists(status) ? "it is not a directory"
-                                 : ec              ? ec.message()
-                                 : status_ec       ? status_ec.message()
-                                                   : "it cannot be created"));
+                                 : created          ? created.message()
+                                 : found            ? found.message()
+                                                    : "it cannot be created"));
   }
   // The only sure test of writing is to write.
   const std::string probe = temporary_for((folder / "probe").string());
@@ -94,8 +94,8 @@ std::vector<std::string> OutputFiles::commit() {
   const StopDeferral deferral;
   // Renaming onto a directory is the one way a rename in place fails: found before any is renamed.
   for (const Entry& e : entries_) {
-    std::error_code ec;
-    if (fs::is_directory(e.path, ec)) {
+    std::error_code unknown;  // a path that cannot be queried fails at its rename below
+    if (fs::is_directory(e.path, unknown)) {
       throw InputError(fmt::format("{}: cannot write this file: it is a directory", echoed(e.path, 240)));
     }
   }
@@ -109,6 +109,7 @@ std::vector<std::string> OutputFiles::commit() {
     written.push_back(e.path);
   }
   entries_.clear();
+  note_files_written();
   return written;
 }
 
