@@ -30,7 +30,8 @@ void forget_child();
 // A set of output files is in place: a stop from now on says so instead of "no output files written".
 void note_files_written();
 
-// While one lives, a stop waits (a set of output files is being renamed into place).
+// While one lives, a stop waits: a set of output files is being renamed into place, or a child
+// started (until remember_child) or reaped (after forget_child).
 class StopDeferral {
 public:
   StopDeferral();
