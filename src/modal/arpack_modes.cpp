@@ -3,10 +3,19 @@
 // B = diag(I, M), A = [[0, I], [−K, −C]]; ARPACK iterates OP = A⁻¹B, whose eigenvalues 1/λ are
 // largest in magnitude for the smallest |λ|. Applying A⁻¹ costs one solve with K:
 //   A [a; b] = [c; d]  ⇔  b = c,  a = −K⁻¹ (d + C c).
+//
+// ARPACK is not reentrant: between its reverse-communication calls dnaupd, dnaup2, dnaitr and
+// dnapps keep the run's state (pointers into workl, iteration counts, norms) in Fortran SAVE
+// variables, and every routine writes the COMMON blocks debug_ and timing_. Two threads inside it
+// at once take each other's offsets, write past their own arrays and corrupt the heap. So one run
+// at a time per process: a lock held from the first dnaupd call to the end of dneupd. The rest of
+// the solve (the factorization, the Ritz vectors' lifting) runs unlocked.
 #include <arpack/arpack.hpp>
 #undef I  // <complex.h>, pulled in by arpack.hpp, defines I as a macro
 
 #include <algorithm>
+#include <mutex>
+#include <random>
 #include <stdexcept>
 #include <vector>
 
@@ -15,6 +24,14 @@
 #include "bladestab/modal/modes.hpp"
 
 namespace bladestab {
+namespace {
+
+std::mutex& arpack_lock() {
+  static std::mutex lock;
+  return lock;
+}
+
+}  // namespace
 
 Eigenpairs arpack_eigenpairs(const SecondOrderSystem& sys, int count) {
   const int n = static_cast<int>(sys.M.rows());
@@ -31,8 +48,14 @@ Eigenpairs arpack_eigenpairs(const SecondOrderSystem& sys, int count) {
   std::vector<double> workl(lworkl);
   a_int iparam[11] = {1, 0, 10 * dim + 1000, 1, 0, 0, 1, 0, 0, 0, 0};  // exact shifts, mode 1 (OP given)
   a_int ipntr[14] = {0};
-  a_int ido = 0, info = 0;
+  a_int ido = 0;
   const double tol = 0;  // machine precision
+  // The starting vector is the solve's own (info = 1): ARPACK's would come from a generator whose
+  // seed it keeps between runs, so an answer would depend on the solves before it, and on threads.
+  std::minstd_rand generator(1);
+  std::uniform_real_distribution<double> uniform(-1, 1);
+  for (double& r : resid) r = uniform(generator);
+  a_int info = 1;
 
   auto apply_op = [&](const double* x, double* y) {
     const Eigen::Map<const Eigen::VectorXd> c(x, n), x2(x + n, n);
@@ -42,6 +65,7 @@ Eigenpairs arpack_eigenpairs(const SecondOrderSystem& sys, int count) {
     b = c;
   };
 
+  std::unique_lock<std::mutex> one_run_at_a_time(arpack_lock());
   while (true) {
     arpack::naupd(ido, arpack::bmat::identity, dim, arpack::which::largest_magnitude, nev, tol, resid.data(), ncv,
                   V.data(), dim, iparam, ipntr, workd.data(), workl.data(), lworkl, info);
@@ -58,6 +82,7 @@ Eigenpairs arpack_eigenpairs(const SecondOrderSystem& sys, int count) {
   arpack::neupd(1, arpack::howmny::ritz_vectors, select.data(), dr.data(), di.data(), Z.data(), dim, 0.0, 0.0,
                 workev.data(), arpack::bmat::identity, dim, arpack::which::largest_magnitude, nev, tol,
                 resid.data(), ncv, V.data(), dim, iparam, ipntr, workd.data(), workl.data(), lworkl, info);
+  one_run_at_a_time.unlock();
   if (info != 0) throw std::runtime_error(fmt::format("ARPACK dneupd failed (info {})", info));
 
   // Ritz pairs of OP: ν = 1/λ. A complex pair occupies columns j, j+1 as real and imaginary parts.

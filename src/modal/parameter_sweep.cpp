@@ -185,15 +185,14 @@ ParameterSweep parameter_sweep(const std::string& text, const std::string& sourc
   parse_scene(text, source, overrides);  // the scene itself, before the key is touched
 
   // The values are independent: solved a batch at a time, one per worker thread (BLAS runs single-threaded;
-  // ARPACK keeps its state in Fortran SAVE variables, so it runs alone), then tracked in order; a
-  // batch bounds the memory held for large models. The first value that fails, in the order
-  // given, is the one reported.
+  // ARPACK runs one solve at a time, arpack_modes.cpp), then tracked in order; a batch bounds the
+  // memory held for large models. The first value that fails, in the order given, is the one reported.
   struct Solved {
     Scene scene;
     ConvergedModes modes;
   };
   const int nv = static_cast<int>(o.values.size());
-  const int workers = o.solver == EigenSolverKind::arpack ? 1 : std::min(nv, worker_threads(o.threads));
+  const int workers = std::min(nv, worker_threads(o.threads));
   SweepTracker tracker(o);
   for (int start = 0; start < nv; start += workers) {
     const int batch = std::min(workers, nv - start);
