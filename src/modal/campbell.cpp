@@ -6,7 +6,10 @@
 #include <memory>
 #include <optional>
 
+#include <fmt/format.h>
+
 #include "bladestab/base/constants.hpp"
+#include "bladestab/base/input_error.hpp"
 #include "bladestab/modal/mode_convergence.hpp"
 #include "bladestab/modal/mode_tracking.hpp"
 #include "support/scalar_search.hpp"
@@ -309,6 +312,21 @@ void take_worst(ErrorBudget& worst, const ErrorBudget& b) {
   }
 }
 
+// The asked-for speeds against the static limits of `model` (at the scene's static compression);
+// ParameterError "speeds" when none is within them.
+PathWithinLimits campbell_speeds(const BladeModel& model, const CampbellOptions& options) {
+  const std::vector<double>& speeds = options.speeds_rad_s;
+  const PathWithinLimits path = speeds_within_limits(model, speeds);
+  if (path.empty()) {
+    const std::string text = options.speeds_text.empty()
+                                 ? fmt::format("{:g}:{:g}:{}", speeds.front(), speeds.back(), speeds.size())
+                                 : options.speeds_text;
+    throw ParameterError("speeds", fmt::format("{}: every speed is past the blade's static limits; at the first, {}",
+                                               text, static_limit_error(model, speeds.front(), "Ω")->what()));
+  }
+  return path;
+}
+
 }  // namespace
 
 CampbellDiagram campbell_diagram(const BladeModel& model, const DampingSpec& damping, const CampbellOptions& options,
@@ -334,8 +352,6 @@ ErrorBudget CampbellWithErrors::worst_at(std::size_t speed) const {
 CampbellWithErrors campbell_with_error_estimate(const Scene& scene, const CampbellOptions& options, double tolerance,
                                                 const std::function<void(int, int)>& progress) {
   check_tolerance(tolerance);
-  const std::vector<double>& speeds = options.speeds_rad_s;
-  const double lo = speeds.front(), hi = speeds.back();
   CampbellOptions wanted = options;
   // The richer models' solves beside the base model's, or in turn where one thread is allowed.
   const std::launch richer_policy = beside_or_deferred(options.threads);
@@ -343,7 +359,13 @@ CampbellWithErrors campbell_with_error_estimate(const Scene& scene, const Campbe
   ModelSpec spec = scene.model;
   bool dense = false;  // set when a reduced sweep could not certify some speed
   while (true) {
-    auto model = std::make_unique<BladeModel>(assemble_model(scene, spec));
+    auto model = std::make_unique<BladeModel>(assemble_model_at_any_speed(scene, spec));
+    // The speeds within the static limits of the model the curves belong to.
+    const PathWithinLimits limits = campbell_speeds(*model, options);
+    const std::vector<double> speeds(options.speeds_rad_s.begin() + limits.first,
+                                     options.speeds_rad_s.begin() + limits.end);
+    const double lo = speeds.front(), hi = speeds.back();
+    wanted.speeds_rad_s = speeds;
     const int count = solve_count(*model, wanted), nt = tracked_count(*model, wanted);
     // The richer models are solved densely where they are solved whole, as `modes` does (ARPACK
     // is for the lowest modes of large models, and some damped pairs defeat it).
@@ -357,7 +379,7 @@ CampbellWithErrors campbell_with_error_estimate(const Scene& scene, const Campbe
       ModelSpec richer = spec;
       richer.terms = reference_terms(spec.basis, terms.back());
       terms.push_back(richer.terms);
-      refs.push_back({std::make_unique<BladeModel>(assemble_model(scene, richer)), nullptr, {}});
+      refs.push_back({std::make_unique<BladeModel>(assemble_model_at_any_speed(scene, richer)), nullptr, {}});
     }
     const auto raise = [&](double estimate) {
       const std::optional<int> next = terms_for_tolerance(spec.basis, spec.terms, estimate, tolerance);
@@ -483,6 +505,7 @@ CampbellWithErrors campbell_with_error_estimate(const Scene& scene, const Campbe
       }
       return CampbellWithErrors{std::move(*model),
                                 std::move(diagram),
+                                limits,
                                 tolerance,
                                 std::vector<int>(terms.begin() + 1, terms.end()),
                                 std::move(budget),

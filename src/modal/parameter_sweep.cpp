@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "bladestab/base/input_error.hpp"
+#include "bladestab/blade/static_limits.hpp"
 #include "bladestab/modal/mode_convergence.hpp"
 #include "bladestab/modal/mode_tracking.hpp"
 #include "bladestab/scene/scene.hpp"
@@ -64,6 +65,33 @@ ConvergedModes modes_at(const Scene& scene, const ParameterSweepOptions& o) {
   }
 }
 
+// The values against the blade's static limits: at each, the scene's operating point on that
+// value's model. model.terms takes integers only, so its limits lie at values, not between them.
+PathWithinLimits values_within_limits(const std::string& text, const std::string& source,
+                                      const std::vector<std::string>& overrides, const ParameterSweepOptions& o) {
+  const auto point = [&](double value) {
+    const Scene scene = scene_at(text, source, overrides, o, value);
+    return std::pair{assemble_model_at_any_speed(scene, scene.model), scene.operation.speed_rad_s};
+  };
+  const PathWithinLimits path = path_within_limits(
+      o.values,
+      [&](double value) {
+        const auto [model, speed] = point(value);
+        return static_margin(model, speed);
+      },
+      [&](double value) {
+        const auto [model, speed] = point(value);
+        return static_limit_at(model, speed);
+      },
+      o.key != "model.terms");
+  if (path.empty()) {
+    const auto [model, speed] = point(o.values.front());
+    throw ParameterError("values", fmt::format("{}: every value is past the blade's static limits; at the first, {}",
+                                               o.values_text, static_limit_error(model, speed)->what()));
+  }
+  return path;
+}
+
 // The shapes of the modes `pick` (all of them when empty), as columns.
 Eigen::MatrixXcd shapes_of(const ModalSolution& solution, const std::vector<int>& pick = {}) {
   const std::size_t count = pick.empty() ? solution.modes.size() : pick.size();
@@ -114,7 +142,9 @@ ParameterSweep parameter_sweep(const std::string& text, const std::string& sourc
   if (o.values.size() < 2) throw ParameterError("values", fmt::format("{}: needs at least 2 values", o.values_text));
   parse_scene(text, source, overrides);  // the scene itself, before the key is touched
 
-  const int nv = static_cast<int>(o.values.size());
+  const PathWithinLimits limits = values_within_limits(text, source, overrides, o);
+  const std::vector<double> values(o.values.begin() + limits.first, o.values.begin() + limits.end);
+  const int nv = static_cast<int>(values.size());
   std::vector<SweptMode> modes;
   std::vector<double> speeds;
   std::vector<int> dofs, reference_terms;
@@ -155,7 +185,7 @@ ParameterSweep parameter_sweep(const std::string& text, const std::string& sourc
     }
     if (std::any_of(pick.begin(), pick.end(), [&](int k) { return k < 0 || k >= available; })) {
       throw ParameterError("count", fmt::format("{}: the model at {} = {} has only {} modes", o.mode_count, o.key,
-                                   scene_value_text(o.values[v]), available));
+                                   scene_value_text(values[v]), available));
     }
     for (std::size_t i = 0; i < pick.size(); ++i) {
       const Mode& m = solution.modes[pick[i]];
@@ -184,7 +214,7 @@ ParameterSweep parameter_sweep(const std::string& text, const std::string& sourc
     std::vector<std::exception_ptr> failed(batch);
     const auto solve = [&](int b) {
       try {
-        scenes[b] = scene_at(text, source, overrides, o, o.values[start + b]);
+        scenes[b] = scene_at(text, source, overrides, o, values[start + b]);
         solved[b] = modes_at(*scenes[b], o);
       } catch (...) {
         failed[b] = std::current_exception();
@@ -200,8 +230,10 @@ ParameterSweep parameter_sweep(const std::string& text, const std::string& sourc
       if (progress) progress(start + b + 1, nv);
     }
   }
-  return ParameterSweep{std::move(*first_model), o.key, o.values, std::move(speeds), std::move(dofs),
-                        std::move(reference_terms), std::move(matched_by), first_solver, std::move(modes)};
+  const bool ascending = o.values.front() < o.values.back();
+  return ParameterSweep{std::move(*first_model), o.key,       values,          limits,
+                        ascending,               std::move(speeds), std::move(dofs), std::move(reference_terms),
+                        std::move(matched_by),   first_solver,      std::move(modes)};
 }
 
 }  // namespace bladestab

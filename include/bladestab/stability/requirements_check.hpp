@@ -20,10 +20,24 @@
 #include <functional>
 #include <optional>
 
+#include "bladestab/blade/static_limits.hpp"
 #include "bladestab/modal/campbell.hpp"
 #include "bladestab/scene/scene.hpp"
 
 namespace bladestab {
+
+// The range against the blade's static limits (static_limits.hpp) at the scene's static tip
+// compression, on the Campbell margin's grid of speeds: a design that buckles or diverges inside
+// its operating range fails. The other requirements are checked over the part within the limits.
+struct StaticLimitsResult {
+  bool passed = true;      // every speed of the range is within the limits
+  PathWithinLimits path;   // over the grid; each limit's `where` in rad/s
+  double speed_lo_rad_s = 0, speed_hi_rad_s = 0;  // the part of the range within the limits
+};
+
+// InputError naming requirements.speed_range_rad_s when fewer than two speeds of the grid are
+// within the limits (nothing to check).
+StaticLimitsResult check_static_limits(const Scene& scene);
 
 struct FrequencyMarginResult {
   double required = 0;            // requirements.frequency_margin
@@ -35,6 +49,7 @@ struct FrequencyMarginResult {
   int terms = 0;                  // shape functions per field of the curves' model
   double tolerance = 0;           // relative on every frequency
   int speeds = 0;                 // of the diagram over the range
+  double speed_lo_rad_s = 0, speed_hi_rad_s = 0;  // the range checked: its part within the static limits
 };
 
 // `progress(done, total)` counts the diagram's speeds.
@@ -60,6 +75,7 @@ struct RubStabilityResult {
   double check_speed_rad_s = 0, check_fmax_over_fcr = 0;
   double max_abs_multiplier = 0;
   bool check_stable = true;
+  double speed_lo_rad_s = 0, speed_hi_rad_s = 0;  // the range checked: its part within the static limits
 };
 
 // `progress(done, total)` counts the speeds scanned.
