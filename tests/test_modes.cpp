@@ -195,7 +195,7 @@ TEST_CASE("ARPACK on two threads at once: every solve as alone on a buckled and 
           "[modes][arpack][threads][slow]") {
   // 40 terms per field (120 dofs, ARPACK's size), Coriolis off so that each reference below is a
   // symmetric eigenproblem. Under 2 F_cr the blade buckles at rest; at 9000 rad/s its axial field
-  // has diverged (past (π/2)·sqrt(E/ρ)/L = 8040 rad/s). Both stiffnesses are indefinite: the
+  // has diverged (past (π/2)·sqrt(E/ρ)/L = 8039.95 rad/s). Both stiffnesses are indefinite: the
   // solves that aborted `campbell --threads 2`.
   const std::vector<std::string> base{"model.terms=40", "model.coriolis=false"};
   std::vector<std::string> compressed = base;

@@ -4,6 +4,7 @@
 
 #include "bladestab/base/constants.hpp"
 #include "bladestab/base/input_error.hpp"
+#include "bladestab/blade/static_limits.hpp"
 #include "bladestab/blade/undamped_modes.hpp"
 
 namespace bladestab {
@@ -24,13 +25,9 @@ Eigen::MatrixXd damping_matrix(const BladeModel& model, const DampingSpec& spec,
       return alpha * model.M + beta * model.elastic_stiffness();
     }
     case DampingModel::modal: {
+      // Modal damping needs the modes of a blade within its static limits (all ω² > 0).
+      if (std::optional<InputError> past = static_limit_error(model, speed)) throw *past;
       const UndampedModes modes = undamped_modes(model, speed);
-      if (modes.omega2(0) <= 0) {
-        throw InputError(fmt::format("damping.model = \"modal\": the stiffness at operation.speed_rad_s = {} is not "
-                                     "positive definite (the blade of blade.length = {:g} m, blade.youngs_modulus = "
-                                     "{:g} Pa is statically unstable there), so modal damping is undefined",
-                                     speed, model.blade.L, model.blade.E));
-      }
       const Eigen::MatrixXd MPhi = model.M * modes.shapes;  // Φ is M-orthonormal
       const Eigen::VectorXd two_zeta_omega = 2 * spec.ratio * modes.omega2.cwiseSqrt();
       Eigen::MatrixXd C = MPhi * two_zeta_omega.asDiagonal() * MPhi.transpose();

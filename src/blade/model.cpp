@@ -10,7 +10,7 @@
 #include "blade/basis.hpp"
 #include "bladestab/base/numerical_error.hpp"
 #include "blade/quadrature.hpp"
-#include "bladestab/blade/static_buckling.hpp"
+#include "bladestab/blade/static_limits.hpp"
 
 namespace bladestab {
 
@@ -167,13 +167,18 @@ BladeModel assemble_blade(const BladeSpec& blade_spec, const ModelSpec& spec) {
 BladeModel assemble_model(const Scene& scene) { return assemble_model(scene, scene.model); }
 
 BladeModel assemble_model(const Scene& scene, const ModelSpec& spec) {
+  BladeModel model = assemble_model_at_any_speed(scene, spec);
+  if (std::optional<InputError> past = static_limit_error(model, scene.operation.speed_rad_s)) throw *past;
+  return model;
+}
+
+BladeModel assemble_model_at_any_speed(const Scene& scene, const ModelSpec& spec) {
   BladeModel model = assemble_blade(scene.blade, spec);
   // A static tip compression F_a = c F_cr is a constant tip tension −F_a: its geometric stiffness
   // −F_a G joins the speed-free stiffness (docs/theory.md (23), (40) with F(t) = −F_a), its axial push the
   // steady load (steady_load()).
   model.static_tip_force_n = -scene.operation.tip_compression_over_fcr * model.blade.critical_load();
   if (model.static_tip_force_n != 0) model.K_S += model.static_tip_force_n * model.G;
-  if (std::optional<InputError> unstable = static_instability(model, scene.operation)) throw *unstable;
   return model;
 }
 

@@ -2,10 +2,9 @@
 
 #include <cmath>
 
-#include <fmt/format.h>
-
 #include "bladestab/base/constants.hpp"
 #include "bladestab/base/input_error.hpp"
+#include "bladestab/blade/static_limits.hpp"
 #include "bladestab/blade/undamped_modes.hpp"
 
 namespace bladestab {
@@ -32,20 +31,7 @@ Eigen::MatrixXd m_orthonormal(Eigen::MatrixXd W, const Eigen::MatrixXd& M) {
 
 ReducedSystem reduce(const BladeModel& model, double speed, const Eigen::MatrixXd& damping, double min_force_n,
                      const ReductionSpec& spec) {
-  const auto statically_unstable = [&model, speed] {
-    if (model.static_tip_force_n != 0) {
-      return InputError(fmt::format("operation.speed_rad_s = {}: the blade is statically unstable at this speed under "
-                                    "its static tip compression (operation.tip_compression_over_fcr = {:.6g})",
-                                    speed, -model.static_tip_force_n / model.blade.critical_load()));
-    }
-    // Spin softening (−ρAΩ² on the axial and lateral fields) beats the blade's own stiffness: a
-    // matter of the speed and of the blade together, so the message names both.
-    return InputError(fmt::format("operation.speed_rad_s = {}: the unloaded blade is statically unstable at this speed "
-                                  "(its spin softening outweighs the stiffness of blade.length = {:g} m, "
-                                  "blade.youngs_modulus = {:g} Pa, blade.density = {:g} kg/m^3); lower the speed or "
-                                  "stiffen the blade",
-                                  speed, model.blade.L, model.blade.E, model.blade.rho));
-  };
+  if (std::optional<InputError> past = static_limit_error(model, speed)) throw *past;
   const Eigen::MatrixXd C = damping + model.gyroscopic(speed);
   const int dofs = model.layout.size();
   Eigen::MatrixXd V;
@@ -55,14 +41,12 @@ ReducedSystem reduce(const BladeModel& model, double speed, const Eigen::MatrixX
     // A few modes of each load level (a subset solve: the whole decomposition at every map point
     // would take a tenth of a map's time).
     const UndampedModes unloaded = undamped_modes(model, speed, 0, m);
-    if (unloaded.omega2(0) <= 0) throw statically_unstable();
     const Eigen::MatrixXd corrections = model.stiffness(speed).ldlt().solve(C * unloaded.shapes);
     Eigen::MatrixXd W(dofs, 3 * m);
     W << unloaded.shapes, undamped_modes(model, speed, min_force_n, m).shapes, corrections;
     V = m_orthonormal(std::move(W), model.M);
   } else {
     const UndampedModes unloaded = undamped_modes(model, speed);
-    if (unloaded.omega2(0) <= 0) throw statically_unstable();
     int kept = dofs;
     if (spec.kind == ReductionKind::modal && spec.cutoff_hz > 0) {  // else every mode
       const Eigen::VectorXd f = unloaded.omega2.cwiseSqrt() / two_pi;

@@ -16,6 +16,7 @@
 #include "options.hpp"
 #include "output_files.hpp"
 #include "progress.hpp"
+#include "static_limits_output.hpp"
 #include "work_limits.hpp"
 
 namespace bladestab::cli {
@@ -40,6 +41,7 @@ std::string campbell_json(const Scene& scene, const CampbellWithErrors& r) {
   json["tolerance"] = r.tolerance;
   json["speeds_rad_s"] = d.speeds_rad_s;
   json["engine_orders"] = d.engine_orders;
+  write_static_limits(json, r.static_limits, speed_parameter(), "diagram");
   write_error_budget(json, r.worst());
   json["error_by_speed"] = Json::array();
   for (std::size_t s = 0; s < d.speeds_rad_s.size(); ++s) {
@@ -99,6 +101,8 @@ void print_table(const Scene& scene, const CampbellWithErrors& r, const std::vec
   fmt::print("scene     {}\nmodel     {}\nspeeds    {} from {:.6g} to {:.6g} rad/s; damping {}; solver {}\n", scene.source,
              describe_model(r.model), d.speeds_rad_s.size(), d.speeds_rad_s.front(), d.speeds_rad_s.back(),
              to_string(scene.damping.model), to_string(d.solver));
+  const std::string limits = limits_line(r.static_limits, speed_parameter(), "diagram");
+  if (!limits.empty()) fmt::print("limits    {}\n", limits);
   if (d.reduced) {
     fmt::print("reduction {} vectors from the modes at {} speeds, each frequency bounded against the whole model\n",
                d.basis_vectors, d.sample_speeds_rad_s.size());
@@ -176,6 +180,7 @@ Command register_campbell(CLI::App& app) {
     check_campbell_work(scene, speed_list.size(), options->eigen_solver());
     CampbellOptions campbell{speed_list, *orders, *count, options->eigen_solver()};
     campbell.threads = *threads;
+    campbell.speeds_text = *speeds;
     const bool for_people = options->output_format() == OutputFormat::table;
     const CampbellWithErrors result =
         campbell_with_error_estimate(scene, campbell, *tolerance, progress_reporter("campbell: speeds", for_people));

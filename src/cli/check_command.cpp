@@ -16,6 +16,7 @@
 #include "number_options.hpp"
 #include "options.hpp"
 #include "progress.hpp"
+#include "static_limits_output.hpp"
 #include "work_limits.hpp"
 
 namespace bladestab::cli {
@@ -45,7 +46,7 @@ CheckOutcome margin_outcome(const Scene& scene, const FrequencyMarginResult& m) 
       "{} mode{} below {:.6g} Hz against engine orders {} over {:g} to {:g} rad/s ({} speeds, {} terms/field, "
       "frequencies to {:g})",
       m.modes_checked, m.modes_checked == 1 ? "" : "s", m.threshold_hz, orders_text(req.engine_orders),
-      req.speed_lo_rad_s, req.speed_hi_rad_s, m.speeds, m.terms, m.tolerance);
+      m.speed_lo_rad_s, m.speed_hi_rad_s, m.speeds, m.terms, m.tolerance);
   if (w.distance == 0) {
     o.detail = fmt::format("mode {} crosses engine order {} at {:.9g} rad/s ({:.9g} Hz) inside the range: margin 0 < "
                            "{:g}; checked {}",
@@ -74,7 +75,6 @@ CheckOutcome margin_outcome(const Scene& scene, const FrequencyMarginResult& m) 
 const char* sign_text(int multiplier) { return multiplier < 0 ? "-1" : "+1"; }
 
 CheckOutcome rub_outcome(const Scene& scene, const RubStabilityResult& r) {
-  const RequirementsSpec& req = *scene.requirements;
   CheckOutcome o;
   o.name = "rub_stability";
   o.passed = r.passed;
@@ -85,7 +85,7 @@ CheckOutcome rub_outcome(const Scene& scene, const RubStabilityResult& r) {
   const std::string scope = fmt::format(
       "θ = {}·Ω over {:g} to {:g} rad/s, load {} ({}), damping {}; regions of order <= {} sought up to F̄ = {:g} "
       "from the boundary equations at {} speeds",
-      r.pulses_per_rev, req.speed_lo_rad_s, req.speed_hi_rad_s, to_string(scene.load.profile),
+      r.pulses_per_rev, r.speed_lo_rad_s, r.speed_hi_rad_s, to_string(scene.load.profile),
       to_string(scene.load.approximation), to_string(scene.damping.model), r.max_order, r.window_fmax_over_fcr,
       r.speeds_scanned);
   const std::string floquet =
@@ -146,6 +146,23 @@ CheckOutcome rub_outcome(const Scene& scene, const RubStabilityResult& r) {
     json["window_fmax_over_fcr"] = r.window_fmax_over_fcr;
     json["approximation"] = r.approximation;
     json["speeds_scanned"] = r.speeds_scanned;
+  };
+  return o;
+}
+
+// Failed only: a range within the limits adds no check.
+CheckOutcome static_limits_outcome(const StaticLimitsResult& l) {
+  CheckOutcome o;
+  o.name = "static_limits";
+  o.passed = l.passed;
+  o.summary = describe_path_limits(l.path, true, speed_parameter().words);
+  o.detail = fmt::format("{}, inside the speed range: the other requirements are checked from {:g} to {:g} rad/s, "
+                         "the part within the blade's static limits",
+                         o.summary, l.speed_lo_rad_s, l.speed_hi_rad_s);
+  o.write_worst = [l](Json& json) {
+    write_static_limits(json, l.path, speed_parameter(), "check");
+    json["speed_lo_rad_s"] = l.speed_lo_rad_s;
+    json["speed_hi_rad_s"] = l.speed_hi_rad_s;
   };
   return o;
 }
@@ -274,6 +291,12 @@ Command register_check(CLI::App& app) {
     check_requirements_work(scene);
     const bool for_people = options->format == "table";
     std::vector<CheckOutcome> checks;
+    double limits_seconds = 0;
+    const StaticLimitsResult limits = timed(limits_seconds, [&] { return check_static_limits(scene); });
+    if (!limits.passed) {
+      checks.push_back(static_limits_outcome(limits));
+      checks.back().seconds = limits_seconds;
+    }
     if (scene.requirements->frequency_margin) {
       double seconds = 0;
       const FrequencyMarginResult m = timed(seconds, [&] {

@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "bladestab/blade/damping.hpp"
+#include "bladestab/blade/static_limits.hpp"
 #include "bladestab/base/input_error.hpp"
 #include "support/message_text.hpp"
 #include "bladestab/scene/scene_limits.hpp"
@@ -22,6 +23,7 @@
 #include "options.hpp"
 #include "output_files.hpp"
 #include "progress.hpp"
+#include "static_limits_output.hpp"
 #include "work_limits.hpp"
 
 namespace bladestab::cli {
@@ -184,6 +186,18 @@ void check_map_work(const BladeModel& model, const MapOptions& o) {
              fmt::format("the map of a {}-dof model on {} threads", model.layout.size(), o.threads), seconds, bytes);
 }
 
+// Every speed of the speed plane within the blade's static limits, before any point is solved:
+// the speeds within form one interval, so its ends suffice, and the refusal does not depend on
+// which point a thread reaches first.
+void check_plane_speeds(const BladeModel& model, const std::vector<double>& speeds, const std::string& text) {
+  const PathWithinLimits limits = speeds_within_limits(model, {speeds.front(), speeds.back()});
+  if (limits.first == 0 && limits.end == 2) return;
+  const std::string where = limits.empty() ? static_limit_error(model, speeds.front(), "Ω")->what()
+                                           : describe_path_limits(limits, true, speed_parameter().words);
+  throw InputError(fmt::format("--speeds {}: {}; the plane's speeds must lie within the blade's static limits",
+                               echoed(text), where));
+}
+
 }  // namespace
 
 Command register_map(CLI::App& app) {
@@ -254,6 +268,7 @@ Command register_map(CLI::App& app) {
       o.grid_x = parse_range("--speeds", *speeds, AllowedRange::above(0, scene_limits::speed_rad_s.hi));
       o.trace = parse_range("--speeds", fmt::format("{}:{}:{}", o.grid_x.front(), o.grid_x.back(), *trace),
                             AllowedRange::above(0, scene_limits::speed_rad_s.hi));
+      check_plane_speeds(model, o.grid_x, *speeds);
     }
     check_map_work(model, o);
     const bool for_people = options->output_format() == OutputFormat::table;

@@ -15,6 +15,7 @@
 #include "options.hpp"
 #include "output_files.hpp"
 #include "progress.hpp"
+#include "static_limits_output.hpp"
 #include "work_limits.hpp"
 
 namespace bladestab::cli {
@@ -30,6 +31,12 @@ std::string sweep_title(const Scene& scene, const ParameterSweep& s) {
   return fmt::format("{} — natural frequencies against {}{}", scene_title(scene), s.key, speed);
 }
 
+// The swept key as the parameter of the static limits' line and JSON.
+RangeParameter key_parameter(const ParameterSweep& s) {
+  const std::string key = s.key;
+  return {s.ascending, [key](double value) { return fmt::format("{} = {:.7g}", key, value); }, "value"};
+}
+
 std::string sweep_json(const Scene& scene, const ParameterSweep& s) {
   Json json;
   json["title"] = sweep_title(scene, s);
@@ -42,6 +49,7 @@ std::string sweep_json(const Scene& scene, const ParameterSweep& s) {
   json["reference_terms"] = s.reference_terms;
   json["damping"] = to_string(scene.damping.model);
   json["solver"] = to_string(s.solver);
+  write_static_limits(json, s.static_limits, key_parameter(s), "sweep");
   json["matched_by"] = Json::array();
   for (ModeMatch m : s.matched_by) json["matched_by"].push_back(to_string(m));
   json["min_correlation"] = s.min_correlation();
@@ -85,6 +93,8 @@ void print_table(const Scene& scene, const ParameterSweep& s, const std::vector<
              s.values.back(),
              constant(s.speeds_rad_s) ? fmt::format("speed {:.6g} rad/s; ", s.speeds_rad_s.front()) : std::string(),
              to_string(scene.damping.model), to_string(s.solver));
+  const std::string limits = limits_line(s.static_limits, key_parameter(s), "sweep");
+  if (!limits.empty()) fmt::print("limits    {}\n", limits);
   fmt::print("tracking  by shape (mass-weighted MAC), lowest {:.3f}{}\n", s.min_correlation(),
              by_order == 0 ? std::string()
                            : fmt::format("; by frequency order at {} values where the dofs change", by_order));

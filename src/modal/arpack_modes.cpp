@@ -15,11 +15,11 @@
 
 #include <algorithm>
 #include <mutex>
-#include <random>
 #include <stdexcept>
 #include <vector>
 
 #include <fmt/format.h>
+#include <lapacke.h>
 
 #include "bladestab/modal/modes.hpp"
 
@@ -50,11 +50,11 @@ Eigenpairs arpack_eigenpairs(const SecondOrderSystem& sys, int count) {
   a_int ipntr[14] = {0};
   a_int ido = 0;
   const double tol = 0;  // machine precision
-  // The starting vector is the solve's own (info = 1): ARPACK's would come from a generator whose
-  // seed it keeps between runs, so an answer would depend on the solves before it, and on threads.
-  std::minstd_rand generator(1);
-  std::uniform_real_distribution<double> uniform(-1, 1);
-  for (double& r : resid) r = uniform(generator);
+  // The starting vector is the solve's own (info = 1): ARPACK draws it with dlarnv from a seed it
+  // keeps between runs, so an answer would depend on the solves before it, and on threads. Here
+  // it is the vector ARPACK draws in its first run: uniform in (−1, 1) from the seed (1, 3, 5, 7).
+  lapack_int seed[4] = {1, 3, 5, 7};
+  LAPACKE_dlarnv(2, seed, dim, resid.data());
   a_int info = 1;
 
   auto apply_op = [&](const double* x, double* y) {

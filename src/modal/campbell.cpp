@@ -5,7 +5,10 @@
 #include <memory>
 #include <optional>
 
+#include <fmt/format.h>
+
 #include "bladestab/base/constants.hpp"
+#include "bladestab/base/input_error.hpp"
 #include "bladestab/modal/basis_error.hpp"
 #include "bladestab/modal/mode_tracking.hpp"
 #include "support/scalar_search.hpp"
@@ -296,6 +299,21 @@ double worst_total(const CampbellDiagram& d, const std::vector<std::vector<Error
   return worst;
 }
 
+// The asked-for speeds against the static limits of `model` (at the scene's static compression);
+// ParameterError "speeds" when none is within them.
+PathWithinLimits campbell_speeds(const BladeModel& model, const CampbellOptions& options) {
+  const std::vector<double>& speeds = options.speeds_rad_s;
+  const PathWithinLimits path = speeds_within_limits(model, speeds);
+  if (path.empty()) {
+    const std::string text = options.speeds_text.empty()
+                                 ? fmt::format("{:g}:{:g}:{}", speeds.front(), speeds.back(), speeds.size())
+                                 : options.speeds_text;
+    throw ParameterError("speeds", fmt::format("{}: every speed is past the blade's static limits; at the first, {}",
+                                               text, static_limit_error(model, speeds.front(), "Ω")->what()));
+  }
+  return path;
+}
+
 // The largest whole estimate and rounding part over the screened points.
 struct Screening {
   double worst = 0, rounding = 0;
@@ -318,19 +336,23 @@ class EstimateRound {
 public:
   EstimateRound(const Scene& scene, const ModelSpec& spec, const CampbellOptions& options, bool dense)
       : scene_(scene), options_(options), dense_(dense),
-        model_(std::make_unique<BladeModel>(assemble_model(scene, spec))),
-        count_(solve_count(*model_, options)), tracked_(tracked_count(*model_, options)), terms_{spec.terms} {
+        model_(std::make_unique<BladeModel>(assemble_model_at_any_speed(scene, spec))),
+        limits_(campbell_speeds(*model_, options)), terms_{spec.terms} {
+    // The speeds within the static limits of the model the curves belong to.
+    options_.speeds_rad_s.assign(options.speeds_rad_s.begin() + limits_.first, options.speeds_rad_s.begin() + limits_.end);
+    count_ = solve_count(*model_, options_);
+    tracked_ = tracked_count(*model_, options_);
     for (int level = 0; level < (spec.basis == BasisKind::sine ? 2 : 1); ++level) {
       ModelSpec richer = spec;
       richer.terms = reference_terms(spec.basis, terms_.back());
       terms_.push_back(richer.terms);
-      refs_.push_back({std::make_unique<BladeModel>(assemble_model(scene, richer)), nullptr, {}});
+      refs_.push_back({std::make_unique<BladeModel>(assemble_model_at_any_speed(scene, richer)), nullptr, {}});
     }
     const EigenSolverKind richer_solver =
-        options.solver == EigenSolverKind::arpack ? EigenSolverKind::dense : options.solver;
-    run_indexed(2, options.threads, [&](std::size_t part) {
+        options_.solver == EigenSolverKind::arpack ? EigenSolverKind::dense : options_.solver;
+    run_indexed(2, options_.threads, [&](std::size_t part) {
       if (part == 0) {
-        base_ = sweep_of(*model_, options.solver);
+        base_ = sweep_of(*model_, options_.solver);
         return;
       }
       for (Reference& r : refs_) {
@@ -413,6 +435,7 @@ public:
     }
     return CampbellWithErrors{std::move(*model_),
                               std::move(diagram),
+                              limits_,
                               tolerance,
                               std::vector<int>(terms_.begin() + 1, terms_.end()),
                               std::move(solved.budget),
@@ -453,14 +476,16 @@ private:
   }
 
   const Scene& scene_;
-  const CampbellOptions& options_;
+  CampbellOptions options_;  // its speeds those within the static limits
   bool dense_;
   std::unique_ptr<BladeModel> model_;
-  int count_, tracked_;
+  PathWithinLimits limits_;
+  int count_ = 0, tracked_ = 0;
   std::vector<int> terms_;  // the base model's and each richer model's
   std::vector<Reference> refs_;
   std::unique_ptr<SpeedSweep> base_;
 };
+
 
 }  // namespace
 

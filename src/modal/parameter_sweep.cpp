@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "bladestab/base/input_error.hpp"
+#include "bladestab/blade/static_limits.hpp"
 #include "bladestab/modal/basis_error.hpp"
 #include "bladestab/modal/mode_tracking.hpp"
 #include "bladestab/scene/scene.hpp"
@@ -62,6 +63,33 @@ ConvergedModes modes_at(const Scene& scene, const ParameterSweepOptions& o) {
   }
 }
 
+// The values against the blade's static limits: at each, the scene's operating point on that
+// value's model. model.terms takes integers only, so its limits lie at values, not between them.
+PathWithinLimits values_within_limits(const std::string& text, const std::string& source,
+                                      const std::vector<std::string>& overrides, const ParameterSweepOptions& o) {
+  const auto point = [&](double value) {
+    const Scene scene = scene_with_value(text, source, overrides, o, value);
+    return std::pair{assemble_model_at_any_speed(scene, scene.model), scene.operation.speed_rad_s};
+  };
+  const PathWithinLimits path = path_within_limits(
+      o.values,
+      [&](double value) {
+        const auto [model, speed] = point(value);
+        return static_margin(model, speed);
+      },
+      [&](double value) {
+        const auto [model, speed] = point(value);
+        return static_limit_at(model, speed);
+      },
+      o.key != "model.terms");
+  if (path.empty()) {
+    const auto [model, speed] = point(o.values.front());
+    throw ParameterError("values", fmt::format("{}: every value is past the blade's static limits; at the first, {}",
+                                               o.values_text, static_limit_error(model, speed)->what()));
+  }
+  return path;
+}
+
 // The shapes of the modes `pick` (all of them when empty), as columns.
 Eigen::MatrixXcd shapes_of(const ModalSolution& solution, const std::vector<int>& pick = {}) {
   const std::size_t count = pick.empty() ? solution.modes.size() : pick.size();
@@ -74,7 +102,8 @@ Eigen::MatrixXcd shapes_of(const ModalSolution& solution, const std::vector<int>
 // their shapes while the dofs stay the same, by frequency order where they change.
 class SweepTracker {
 public:
-  explicit SweepTracker(const ParameterSweepOptions& o) : o_(o) {}
+  // `values`: those solved, the run of the values asked for within the static limits.
+  SweepTracker(const ParameterSweepOptions& o, std::vector<double> values) : o_(o), values_(std::move(values)) {}
 
   // Value v's modes joined to the curves.
   void add(int v, const Scene& scene, const ConvergedModes& here) {
@@ -107,7 +136,7 @@ public:
     }
     if (std::any_of(pick_.begin(), pick_.end(), [&](int k) { return k < 0 || k >= available; })) {
       throw ParameterError("count", fmt::format("{}: the model at {} = {} has only {} modes", o_.mode_count, o_.key,
-                                                scene_value_text(o_.values[v]), available));
+                                                scene_value_text(values_[v]), available));
     }
     for (std::size_t i = 0; i < pick_.size(); ++i) {
       const Mode& m = solution.modes[pick_[i]];
@@ -125,13 +154,19 @@ public:
     reference_terms_.push_back(here.reference_terms);
   }
 
-  ParameterSweep sweep() {
-    return ParameterSweep{std::move(*first_model_),    o_.key,          o_.values, std::move(speeds_), std::move(dofs_),
-                          std::move(reference_terms_), std::move(matched_by_), first_solver_, std::move(modes_)};
+  // The curves, with where the values asked for meet the static limits and whether they ascend.
+  ParameterSweep sweep(const PathWithinLimits& limits, bool ascending) {
+    return ParameterSweep{std::move(*first_model_), o_.key,
+                          std::move(values_),       limits,
+                          ascending,                std::move(speeds_),
+                          std::move(dofs_),         std::move(reference_terms_),
+                          std::move(matched_by_),   first_solver_,
+                          std::move(modes_)};
   }
 
 private:
   const ParameterSweepOptions& o_;
+  std::vector<double> values_;
   std::vector<SweptMode> modes_;
   std::vector<double> speeds_;
   std::vector<int> dofs_, reference_terms_;
@@ -184,6 +219,8 @@ ParameterSweep parameter_sweep(const std::string& text, const std::string& sourc
   if (o.values.size() < 2) throw ParameterError("values", fmt::format("{}: needs at least 2 values", o.values_text));
   parse_scene(text, source, overrides);  // the scene itself, before the key is touched
 
+  const PathWithinLimits limits = values_within_limits(text, source, overrides, o);
+  const std::vector<double> values(o.values.begin() + limits.first, o.values.begin() + limits.end);
   // The values are independent: solved a batch at a time, one per worker thread (BLAS runs single-threaded;
   // ARPACK runs one solve at a time, arpack_modes.cpp), then tracked in order; a batch bounds the
   // memory held for large models. The first value that fails, in the order given, is the one reported.
@@ -191,13 +228,13 @@ ParameterSweep parameter_sweep(const std::string& text, const std::string& sourc
     Scene scene;
     ConvergedModes modes;
   };
-  const int nv = static_cast<int>(o.values.size());
+  const int nv = static_cast<int>(values.size());
   const int workers = std::min(nv, worker_threads(o.threads));
-  SweepTracker tracker(o);
+  SweepTracker tracker(o, values);
   for (int start = 0; start < nv; start += workers) {
     const int batch = std::min(workers, nv - start);
     WorkPool<Solved> solved(workers, batch, [&](std::size_t b) {
-      Scene scene = scene_with_value(text, source, overrides, o, o.values[start + b]);
+      Scene scene = scene_with_value(text, source, overrides, o, values[start + b]);
       ConvergedModes modes = modes_at(scene, o);
       return Solved{std::move(scene), std::move(modes)};
     });
@@ -207,7 +244,7 @@ ParameterSweep parameter_sweep(const std::string& text, const std::string& sourc
       if (progress) progress(start + b + 1, nv);
     }
   }
-  return tracker.sweep();
+  return tracker.sweep(limits, o.values.front() < o.values.back());
 }
 
 }  // namespace bladestab

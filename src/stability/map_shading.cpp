@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "bladestab/blade/reduction.hpp"
+#include "bladestab/blade/static_limits.hpp"
 #include "bladestab/blade/undamped_modes.hpp"
 #include "stability/map_parts.hpp"
 #include "support/work_pool.hpp"
@@ -26,8 +27,9 @@ std::optional<Combination> combination_at(const BladeModel& model, const Scene& 
   const LoadSeries load = load_series(at);
   const double mean = load.coefficients.at(0).real();  // F₀, kept for the exact pulse too
   const int count = std::min(8, static_cast<int>(model.M.rows()));
+  // Buckled under the mean load: no frequencies to name.
+  if (!(static_margin(model, at.operation.speed_rad_s, mean) > 0)) return std::nullopt;
   const UndampedModes modes = undamped_modes(model, at.operation.speed_rad_s, mean, count, false);
-  if (!(modes.omega2(0) > 0)) return std::nullopt;  // buckled under the mean load: no frequencies to name
   return nearest_combination(modes.omega2.head(count).cwiseSqrt(), load.angular_frequency, r.multipliers(0), max_order);
 }
 

@@ -109,6 +109,13 @@ std::vector<Tip> undamped_tips(const Scene& scene, const BladeModel& model, cons
   return tips;
 }
 
+// `count` speeds from lo to hi, the last exactly hi.
+std::vector<double> speed_grid(double lo, double hi, int count) {
+  std::vector<double> speeds(count);
+  for (int s = 0; s < count; ++s) speeds[s] = s + 1 == count ? hi : lo + (hi - lo) * s / (count - 1);
+  return speeds;
+}
+
 // The worst speed of the range for the stability requirement: the least onset along a scan of
 // evenly spaced speeds, or, undamped, the lowest-order tip inside the range (onset 0), refined by a
 // search on the continuous scan around it. `progress` after each scanned speed.
@@ -120,10 +127,9 @@ struct WorstSpeed {
 WorstSpeed worst_speed(const Scene& scene, const BladeModel& model, int vectors, double lo, double hi,
                        double window, const std::function<void(int, int)>& progress) {
   // The scan along the range.
-  std::vector<double> speeds(scan_speeds);
+  const std::vector<double> speeds = speed_grid(lo, hi, scan_speeds);
   std::vector<Onset> onsets(scan_speeds);
   for (int s = 0; s < scan_speeds; ++s) {
-    speeds[s] = s + 1 == scan_speeds ? hi : lo + (hi - lo) * s / (scan_speeds - 1);
     onsets[s] = scanned_onset(scene, model, vectors, speeds[s], window);
     if (progress) progress(s + 1, scan_speeds);
   }
@@ -170,26 +176,46 @@ void name_onset(RubStabilityResult& r, const std::optional<Tip>& tip, const Inst
 
 }  // namespace
 
+StaticLimitsResult check_static_limits(const Scene& scene) {
+  const RequirementsSpec& req = requirements_of(scene);
+  const std::vector<double> speeds = speed_grid(req.speed_lo_rad_s, req.speed_hi_rad_s, margin_speeds);
+  const BladeModel model = assemble_model_at_any_speed(scene, scene.model);
+  StaticLimitsResult r;
+  r.path = speeds_within_limits(model, speeds);
+  if (r.path.end - r.path.first < 2) {
+    // A speed past a limit: the first of the grid, or the one next to the single speed within.
+    const std::size_t next = r.path.empty() || r.path.first == 0 ? r.path.end : r.path.first - 1;
+    const double past = speeds[next == speeds.size() ? 0 : next];
+    throw InputError(fmt::format("requirements.speed_range_rad_s = [{:g}, {:g}]: {} of its {} speeds checked is "
+                                 "within the blade's static limits; {}",
+                                 req.speed_lo_rad_s, req.speed_hi_rad_s, r.path.empty() ? "none" : "only one",
+                                 margin_speeds, static_limit_error(model, past, "Ω")->what()));
+  }
+  r.passed = !r.path.before && !r.path.after;
+  r.speed_lo_rad_s = speeds[r.path.first];
+  r.speed_hi_rad_s = speeds[r.path.end - 1];
+  return r;
+}
+
 FrequencyMarginResult check_frequency_margin(const Scene& scene, double tolerance,
                                              const std::function<void(int, int)>& progress) {
   const RequirementsSpec& req = requirements_of(scene);
   if (!req.frequency_margin) throw InputError(fmt::format("{}: requirements.frequency_margin: missing", scene.source));
+  const StaticLimitsResult within = check_static_limits(scene);
   FrequencyMarginResult result;
   result.required = *req.frequency_margin;
   result.tolerance = tolerance;
   result.speeds = margin_speeds;
+  result.speed_lo_rad_s = within.speed_lo_rad_s;
+  result.speed_hi_rad_s = within.speed_hi_rad_s;
   const int k_max = *std::max_element(req.engine_orders.begin(), req.engine_orders.end());
   // |f − kΩ/2π| < margin·f needs f < kΩ/(2π(1 − margin)).
-  result.threshold_hz = k_max * req.speed_hi_rad_s / (two_pi * (1 - result.required));
+  result.threshold_hz = k_max * result.speed_hi_rad_s / (two_pi * (1 - result.required));
   CampbellOptions options;
-  for (int s = 0; s < margin_speeds; ++s) {
-    options.speeds_rad_s.push_back(req.speed_lo_rad_s +
-                                   (req.speed_hi_rad_s - req.speed_lo_rad_s) * s / (margin_speeds - 1));
-  }
-  options.speeds_rad_s.back() = req.speed_hi_rad_s;
+  options.speeds_rad_s = speed_grid(result.speed_lo_rad_s, result.speed_hi_rad_s, margin_speeds);
   options.engine_orders = req.engine_orders;
   options.closest_approaches = true;
-  const int dofs = assemble_model(scene).layout.size();
+  const int dofs = dof_layout(scene.model).size();
   // Track more modes until the highest one tracked stays above the threshold over the whole range.
   for (int count = std::min(4, dofs);; count = std::min(2 * count, dofs)) {
     options.mode_count = count;
@@ -230,18 +256,21 @@ RubStabilityResult check_rub_stability(const Scene& scene, const std::function<v
     throw InputError(fmt::format("{}: load.approximation = \"exact\": the stability requirement needs the load as a "
                                  "series for its boundary equations; use \"cosine\" or \"fourier\"", scene.source));
   }
+  const StaticLimitsResult within = check_static_limits(scene);
   RubStabilityResult r;
   r.required = *req.max_fmax_over_fcr;
   r.pulses_per_rev = scene.load.pulses_per_rev;
   r.max_order = sought_order;
   r.window_fmax_over_fcr = 2 * r.required;
-  r.speed_rad_s = req.speed_lo_rad_s;
+  r.speed_lo_rad_s = within.speed_lo_rad_s;
+  r.speed_hi_rad_s = within.speed_hi_rad_s;
+  r.speed_rad_s = r.speed_lo_rad_s;
   if (r.required == 0) {  // only the unloaded blade: nothing can open a region
     r.passed = true;
     return r;
   }
-  const double lo = req.speed_lo_rad_s, hi = req.speed_hi_rad_s, window = r.window_fmax_over_fcr;
-  const BladeModel model = assemble_model(scene);
+  const double lo = r.speed_lo_rad_s, hi = r.speed_hi_rad_s, window = r.window_fmax_over_fcr;
+  const BladeModel model = assemble_model_at_any_speed(scene, scene.model);
   const double fcr = model.blade.critical_load();
   const int vectors = tongue_vectors(model, at_speed(scene, lo, 0), r.pulses_per_rev * hi, sought_order);
 

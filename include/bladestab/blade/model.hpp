@@ -59,11 +59,15 @@ struct BladeModel {
 // The Ritz model of a scene: its blade, its model spec (or `spec`, e.g. a richer basis for an
 // error estimate) and its operation's static tip compression F_a, which the model carries in K_S
 // (as −F_a G) and in its steady load. Every analysis builds its model here, so every command
-// honours the compression. An InputError naming operation.tip_compression_over_fcr when the blade
-// buckles under it at the scene's speed (statically_unstable_error in static_buckling.hpp); a
-// NumericalError naming the scene's keys when the matrices come out non-finite or the mass is not
-// positive definite (the model would have no modes).
+// honours the compression. An InputError when the scene's operating point (its speed and F_a) is
+// past the blade's static limits (static_limit_error in static_limits.hpp); a NumericalError
+// naming the scene's keys when the matrices come out non-finite or the mass is not positive
+// definite (the model would have no modes).
 BladeModel assemble_model(const Scene& scene);
 BladeModel assemble_model(const Scene& scene, const ModelSpec& spec);
+
+// The same model without the check of the scene's speed: for the analyses over a range of speeds
+// (a Campbell diagram), which keep to the speeds within the limits themselves (speeds_within_limits).
+BladeModel assemble_model_at_any_speed(const Scene& scene, const ModelSpec& spec);
 
 }  // namespace bladestab

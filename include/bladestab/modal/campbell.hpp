@@ -7,9 +7,11 @@
 // undamped blade one reduced basis for the whole speed range, every frequency bounded against the
 // whole Ritz model; otherwise (damping, or the dense or ARPACK solver asked for) a whole solve per speed.
 #include <functional>
+#include <string>
 #include <vector>
 
 #include "bladestab/base/error_budget.hpp"
+#include "bladestab/blade/static_limits.hpp"
 #include "bladestab/modal/modes.hpp"
 #include "bladestab/scene/scene.hpp"
 
@@ -23,6 +25,7 @@ struct CampbellOptions {
   double reduction_tolerance = 1e-8;  // relative bound wanted on the reduced model's frequencies
   bool closest_approaches = false;    // also find each curve's closest approach to each line
   int threads = 0;                    // the richer models of the estimate beside the base model unless 1 (0: per core)
+  std::string speeds_text{};          // the speeds as the user gave them, for messages (e.g. "0:600:61")
 };
 
 struct CampbellCurve {
@@ -74,14 +77,18 @@ struct CampbellDiagram {
   std::vector<double> sample_speeds_rad_s;  // where its basis was taken
 };
 
-// `progress(done, total)` is called after each speed.
+// `progress(done, total)` is called after each speed. The speeds are the caller's to keep within
+// the model's static limits (speeds_within_limits); campbell_with_error_estimate does.
 CampbellDiagram campbell_diagram(const BladeModel& model, const DampingSpec& damping, const CampbellOptions& options,
                                  const std::function<void(int, int)>& progress = {});
 
 // A Campbell diagram with the whole error of every point and crossing against the continuum model.
 struct CampbellWithErrors {
   BladeModel model;                  // the model the curves belong to (its terms met the tolerance)
-  CampbellDiagram diagram;
+  CampbellDiagram diagram;           // at the speeds within the blade's static limits
+  // The speeds asked for against the static limits (static_limits.hpp): the diagram holds those
+  // in [first, end); `before` and `after` are the limits it meets, `where` in rad/s.
+  PathWithinLimits static_limits;
   double tolerance = 0;
   std::vector<int> reference_terms;  // the richer models of the basis estimate
   // [curve][speed], relative on the frequency: basis (the change against the richer models, as
@@ -98,10 +105,14 @@ struct CampbellWithErrors {
   ErrorBudget worst_at(std::size_t speed) const;   // each part the largest over the curves there
 };
 
-// The diagram of `scene` with its errors. The terms start at the scene's and are raised (Legendre
-// + 2, sine × 2) until every curve's whole estimate is within `tolerance` at every speed; the
-// reduced sweep's part is held to tolerance/20. InputError when the tolerance cannot be met
-// (terms_for_tolerance) or is out of range. Crossings carry their estimate but do not steer the
+// The diagram of `scene` with its errors. Only the speeds within the blade's static limits (at the
+// scene's static tip compression; the scene's own speed plays no part) are solved: the diagram
+// starts after a limit below them and stops before one above (speeds_within_limits, on the
+// model the curves belong to), and says where they lie; ParameterError "speeds" when every speed is past one.
+// The terms start at the scene's and are raised (Legendre + 2, sine × 2) until every curve's
+// whole estimate is within `tolerance` at every speed; the reduced sweep's part is held to
+// tolerance/20. InputError when the tolerance cannot be met (terms_for_tolerance) or is out of
+// range. Crossings carry their estimate but do not steer the
 // terms (near a tangency their amplification is unbounded).
 CampbellWithErrors campbell_with_error_estimate(const Scene& scene, const CampbellOptions& options, double tolerance,
                                                 const std::function<void(int, int)>& progress = {});

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "bladestab/blade/model.hpp"
+#include "bladestab/blade/static_limits.hpp"
 #include "bladestab/modal/modes.hpp"
 
 namespace bladestab {
@@ -46,7 +47,11 @@ struct SweptMode {
 struct ParameterSweep {
   BladeModel model;                     // the first value's model
   std::string key;
-  std::vector<double> values;
+  std::vector<double> values;           // those solved: the run within the blade's static limits
+  // The values asked for against the static limits (static_limits.hpp): `values` are those in
+  // [first, end); `before` and `after` the limits the sweep meets, `where` in the key's units.
+  PathWithinLimits static_limits;
+  bool ascending = true;                // the values asked for ascend
   std::vector<double> speeds_rad_s;     // the scene's speed at each value
   std::vector<int> dofs;                // the model's dofs at each value
   std::vector<int> reference_terms;     // of the richer model of the error estimate, per value
@@ -58,10 +63,13 @@ struct ParameterSweep {
   double min_correlation() const;       // over the points matched by shape (1 if none)
 };
 
-// The sweep of the scene given as TOML text (`source` names it in messages). ParameterError, one
-// line, on `key` for a key the scene does not have, does not use or that takes no number; on
-// `values` for a value the key does not allow (the scene's message, e.g. a blade that buckles
-// under a static compression); on `count` when a value's model has fewer modes.
+// The sweep of the scene given as TOML text (`source` names it in messages). The values are
+// solved from the first one within the blade's static limits (at each value's operating point) up
+// to the next one past them; where the sweep meets a limit is found by root search on the key
+// (path_within_limits). ParameterError, one line, on `key` for a key the scene does not have, does
+// not use or that takes no number; on `values` for a value the key does not allow (the scene's
+// message) or when every value is past the static limits; on `count` when a value's model has
+// fewer modes.
 // `progress(done, total)` after each value.
 ParameterSweep parameter_sweep(const std::string& scene_text, const std::string& source,
                                const std::vector<std::string>& overrides, const ParameterSweepOptions& options,

@@ -21,10 +21,24 @@
 #include <optional>
 #include <string>
 
+#include "bladestab/blade/static_limits.hpp"
 #include "bladestab/modal/campbell.hpp"
 #include "bladestab/scene/scene.hpp"
 
 namespace bladestab {
+
+// The range against the blade's static limits (static_limits.hpp) at the scene's static tip
+// compression, on the Campbell margin's grid of speeds: a design that buckles or diverges inside
+// its operating range fails. The other requirements are checked over the part within the limits.
+struct StaticLimitsResult {
+  bool passed = true;      // every speed of the range is within the limits
+  PathWithinLimits path;   // over the grid; each limit's `where` in rad/s
+  double speed_lo_rad_s = 0, speed_hi_rad_s = 0;  // the part of the range within the limits
+};
+
+// InputError naming requirements.speed_range_rad_s when fewer than two speeds of the grid are
+// within the limits (nothing to check).
+StaticLimitsResult check_static_limits(const Scene& scene);
 
 struct FrequencyMarginResult {
   double required = 0;            // requirements.frequency_margin
@@ -36,6 +50,7 @@ struct FrequencyMarginResult {
   int terms = 0;                  // shape functions per field of the curves' model
   double tolerance = 0;           // relative on every frequency
   int speeds = 0;                 // of the diagram over the range
+  double speed_lo_rad_s = 0, speed_hi_rad_s = 0;  // the range checked: its part within the static limits
 };
 
 // `progress(done, total)` counts the diagram's speeds.
@@ -67,6 +82,7 @@ struct RubStabilityResult {
   bool check_stable = true;
   // Where the check's estimate stays above its tolerance (StabilityAnswer::tolerance_unmet): why.
   std::string check_tolerance_unmet;
+  double speed_lo_rad_s = 0, speed_hi_rad_s = 0;  // the range checked: its part within the static limits
 };
 
 // `progress(done, total)` counts the speeds scanned.
