@@ -20,6 +20,10 @@ OutputFormat SceneOptions::output_format() const {
   return OutputFormat::table;
 }
 
+PrintedDigits SceneOptions::printed_digits() const {
+  return PrintedDigits(digits == "full" ? DigitsRule::full : DigitsRule::estimate);
+}
+
 EigenSolverKind SceneOptions::eigen_solver() const {
   if (solver == "dense") return EigenSolverKind::dense;
   if (solver == "arpack") return EigenSolverKind::arpack;
@@ -39,6 +43,10 @@ void add_scene_options(CLI::App& command, SceneOptions& options, const std::vect
       ->check(CLI::IsMember(formats));
   command.add_option("--solver", options.solver, "eigensolver: auto (default), dense (LAPACK) or arpack")
       ->check(CLI::IsMember({"auto", "dense", "arpack"}));
+  command.add_option("--digits", options.digits,
+                     "digits of the numbers in JSON and CSV: estimate (default: those their error estimates support, "
+                     "docs/outputs.md) or full (every double as it is)")
+      ->check(CLI::IsMember({"estimate", "full"}));
   add_work_limit_options(command);
 }
 

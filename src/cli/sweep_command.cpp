@@ -30,6 +30,21 @@ std::string sweep_title(const Scene& scene, const ParameterSweep& s) {
   return fmt::format("{} — natural frequencies against {}{}", scene_title(scene), s.key, speed);
 }
 
+// The sweep as its files print it (printed_digits.hpp): each frequency and Λ to its estimate, the
+// damping ratio to the same (absolute), the correlations (no estimate of their own) to 6 digits;
+// the estimates themselves to 2.
+ParameterSweep as_printed(ParameterSweep s, const PrintedDigits& digits) {
+  for (SweptMode& m : s.modes) {
+    m.error_estimate = digits.estimate(m.error_estimate);
+    m.frequency_hz = digits.relative(m.frequency_hz, m.error_estimate);
+    m.lambda = digits.relative(m.lambda, m.error_estimate);
+    m.damping_ratio = digits.absolute(m.damping_ratio, m.error_estimate);
+    m.correlation = digits.unestimated(m.correlation);
+  }
+  return s;
+}
+
+// `s` as printed (as_printed).
 std::string sweep_json(const Scene& scene, const ParameterSweep& s) {
   Json json;
   json["title"] = sweep_title(scene, s);
@@ -154,12 +169,13 @@ Command register_sweep(CLI::App& app) {
     const bool for_people = options->output_format() == OutputFormat::table;
     const ParameterSweep sweep = parameter_sweep(read_scene_file(options->path), options->path, options->overrides, o,
                                                  progress_reporter("sweep: values", for_people));
-    const std::string json = sweep_json(scene, sweep);
+    const ParameterSweep printed = as_printed(sweep, options->printed_digits());
+    const std::string json = sweep_json(scene, printed);
     const std::vector<std::string> files =
-        write_outputs(*out, *name, {{*name + ".csv", sweep_csv(sweep)}}, json, "sweep", *chart);
+        write_outputs(*out, *name, {{*name + ".csv", sweep_csv(printed)}}, json, "sweep", *chart);
     switch (options->output_format()) {
       case OutputFormat::json: fmt::print("{}", json); break;
-      case OutputFormat::csv: fmt::print("{}", sweep_csv(sweep)); break;
+      case OutputFormat::csv: fmt::print("{}", sweep_csv(printed)); break;
       case OutputFormat::table: print_table(scene, sweep, files); break;
     }
   };
