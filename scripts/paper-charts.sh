@@ -1,18 +1,19 @@
 #!/usr/bin/env bash
 # The main job: the paper blade's Campbell diagram, stability maps (the speed plane also for the
 # true pulse train) and frequency sweeps, written to
-# stability_maps/sinha2005/. Run from the repository root after building into build/.
+# stability_maps/sinha2005/ (or the directory given: scripts/check-outputs-stable.sh). Run from the
+# repository root after building into build/.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scene=stability_maps/sinha2005/blade.toml
-out=stability_maps/sinha2005
+out=${1:-stability_maps/sinha2005}
 ./build/bladestab campbell "$scene" --speeds 0:600:61 --engine-orders 1,2,3,4,5,6,7,8 --count 6 --out "$out"
 # Stability maps with the Legendre N = 8 model (the SPEC's reference model for stability),
 # the paper's cosine approximation of the one-pulse-per-revolution load.
 ./build/bladestab map "$scene" --set model.terms=8 --plane theta-fmax --theta 100:1000:26 --fmax 0:10:26 --trace 101 --resolution 400x200 --out "$out"
 ./build/bladestab map "$scene" --set model.terms=8 --plane speed-fmax --speeds 50:600:26 --fmax 0:10:26 --trace 111 --resolution 400x200 --engine-order 1 --out "$out"
 # The same speed plane under the true half-sine pulse train, side by side with it (README, `map`).
-bash scripts/paper-true-pulse.sh
+bash scripts/paper-true-pulse.sh "$out/true_pulse"
 # Natural frequencies against the slenderness d̄ (the paper's Figs. 7 and 8, Tables 4 and 5) and
 # against a static compressive tip load F_a / F_cr up to just below buckling (Fig. 9a, 9b: the
 # paper blade buckles at 0.99923 F_cr at rest and at 4.954 F_cr at 300 rad/s), modes tracked by shape.

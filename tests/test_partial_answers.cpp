@@ -75,7 +75,7 @@ TEST_CASE("boundaries --range 10:300 at F̄ = 1: the order-1 and order-2 edges a
     edges.push_back(reference::mathieu_blade_boundary(kind, rank, 1.0, w0, x0, x1));
   }
   for (const std::string k : {"2", "20"}) {
-    const Outcome o = mathieu_boundaries({"--range", "10:300", "--approximation", k, "--format", "json"});
+    const Outcome o = mathieu_boundaries({"--range", "10:300", "--approximation", k, "--format", "json", "--digits", "full"});
     INFO(o.command << "\n" << describe(o) << "\n" << o.err);
     REQUIRE(exit_status(o) == 0);
     for (const std::string& line : lines(o.err)) CHECK(starts_with(line, "bladestab: note: boundaries: "));

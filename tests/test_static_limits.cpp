@@ -239,7 +239,7 @@ TEST_CASE("static limits: a sweep into buckling stops at the buckling load, foun
   const fs::path out = empty_dir("sweep_buckling");
   const auto o = run_bladestab({"sweep", scene_path, "--set", "operation.speed_rad_s=0", "--key",
                                 "operation.tip_compression_over_fcr", "--values", "0:1.2:4", "--count", "2", "--out",
-                                out.string(), "--chart", "none", "--format", "json"});
+                                out.string(), "--chart", "none", "--format", "json", "--digits", "full"});
   INFO(o.err);
   REQUIRE(exit_code(o) == 0);
   const testing_support::Json j = testing_support::parse_json(o.out);

@@ -47,10 +47,11 @@ void require_finite(const BoundaryAnalysis& result, const std::vector<Instabilit
   }
 }
 
-// Opens a boundary's JSON object with where it is, what it is and the k of its value.
-Json boundary_json(const Boundary& b, int approximation, double fcr) {
-  return Json{{"theta_rad_s", b.theta_rad_s},
-              {"fmax_over_fcr", b.peak_force_n / fcr},
+// An unconverged boundary's JSON object: where it was at the highest k reached (no estimate: 6
+// digits, printed_digits.hpp), what it is and that k.
+Json unconverged_json(const Boundary& b, int approximation, double fcr, const PrintedDigits& digits) {
+  return Json{{"theta_rad_s", digits.unestimated(b.theta_rad_s)},
+              {"fmax_over_fcr", digits.unestimated(b.peak_force_n / fcr)},
               {"multiplier", b.multiplier},
               {"mode", b.mode},
               {"order", b.order},
@@ -72,6 +73,18 @@ void print_unconverged(const BoundaryAnalysis& result, double fcr) {
   }
 }
 
+// The Floquet check of each region's middle (instability_regions.hpp), relative above max|ρ| = 1.
+constexpr double region_check_tolerance = 1e-4;
+
+// A boundary's numbers as JSON and CSV print them (printed_digits.hpp): the quantity solved for — θ,
+// or F̄_max with --at-theta — to the estimate (relative), the given one as it is.
+std::pair<double, double> shown_boundary(const Boundary& b, double estimate, double fcr, bool in_load,
+                                         const PrintedDigits& digits) {
+  const double fbar = b.peak_force_n / fcr;
+  return in_load ? std::pair{b.theta_rad_s, digits.relative(fbar, estimate)}
+                 : std::pair{digits.relative(b.theta_rad_s, estimate), fbar};
+}
+
 void print(const SceneOptions& options, const Scene& scene, const BladeModel& model, const BoundaryRequest& request,
            const BoundaryAnalysis& result, const std::vector<InstabilityRegion>& regions,
            const std::optional<std::string>& unmet) {
@@ -79,6 +92,11 @@ void print(const SceneOptions& options, const Scene& scene, const BladeModel& mo
   const double fcr = model.blade.critical_load();
   const bool in_load = request.theta_rad_s.has_value();
   const double unit = in_load ? fcr : 1.0;  // the window in θ [rad/s] or F̄_max
+  const PrintedDigits digits = options.printed_digits();
+  // A region's end: the window's as it is, a boundary's to the largest estimate.
+  const auto region_end = [&](double end, bool at_window) {
+    return at_window ? end / unit : digits.relative(end / unit, result.total().total());
+  };
   switch (options.output_format()) {
     case OutputFormat::json: {
       Json json;
@@ -97,31 +115,39 @@ void print(const SceneOptions& options, const Scene& scene, const BladeModel& mo
       json["window_low"] = result.window.first / unit;
       json["window_high"] = result.window.second / unit;
       json["estimate_measure"] = in_load ? "relative on fmax_over_fcr" : "relative on theta_rad_s";
-      write_error_budget(json, result.total());
+      write_error_budget(json, result.total(), digits);
       json["checks"] = Json::array();
       for (const BoundaryCheck& c : result.checks) {
-        json["checks"].push_back({{"theta_rad_s", c.boundary.theta_rad_s},
-                                  {"fmax_over_fcr", c.boundary.peak_force_n / fcr},
+        const auto [theta, fbar] = shown_boundary(c.boundary, result.total().total(), fcr, in_load, digits);
+        json["checks"].push_back({{"theta_rad_s", theta},
+                                  {"fmax_over_fcr", fbar},
                                   {"multiplier", c.boundary.multiplier},
                                   {"cutoff_hz", c.cutoff_hz},
-                                  {"multiplier_gap", c.gap},
-                                  {"allowed", c.allowed}});
+                                  {"multiplier_gap", digits.estimate(c.gap)},
+                                  {"allowed", digits.estimate(c.allowed)}});
       }
       json["boundaries"] = Json::array();
       for (const EstimatedBoundary& e : result.boundaries) {
-        Json& boundary = json["boundaries"].emplace_back(boundary_json(e.boundary, e.approximation, fcr));
-        write_error_budget(boundary, e.budget);
+        const Boundary& b = e.boundary;
+        const auto [theta, fbar] = shown_boundary(b, e.budget.total(), fcr, in_load, digits);
+        Json& boundary = json["boundaries"].emplace_back(Json{{"theta_rad_s", theta},
+                                                              {"fmax_over_fcr", fbar},
+                                                              {"multiplier", b.multiplier},
+                                                              {"mode", b.mode},
+                                                              {"order", b.order},
+                                                              {"approximation", e.approximation}});
+        write_error_budget(boundary, e.budget, digits);
       }
       json["unconverged"] = Json::array();
       for (const UnconvergedBoundary& u : result.unconverged) {
-        Json& boundary = json["unconverged"].emplace_back(boundary_json(u.boundary, u.approximation, fcr));
-        boundary["last_change"] = u.change ? Json(*u.change) : Json(nullptr);
+        Json& boundary = json["unconverged"].emplace_back(unconverged_json(u.boundary, u.approximation, fcr, digits));
+        boundary["last_change"] = u.change ? Json(digits.estimate(*u.change)) : Json(nullptr);
         boundary["check_failed"] = u.check_failed;
       }
       json["regions"] = Json::array();
       for (const InstabilityRegion& r : regions) {
-        json["regions"].push_back({{"lower", r.lower / unit},
-                                   {"upper", r.upper / unit},
+        json["regions"].push_back({{"lower", region_end(r.lower, r.lower_open)},
+                                   {"upper", region_end(r.upper, r.upper_open)},
                                    {"lower_at_window", r.lower_open},
                                    {"upper_at_window", r.upper_open},
                                    {"lower_unconverged", r.lower_unconverged},
@@ -129,7 +155,8 @@ void print(const SceneOptions& options, const Scene& scene, const BladeModel& mo
                                    {"multiplier", r.multiplier},
                                    {"mode", r.mode},
                                    {"order", r.order},
-                                   {"middle_max_abs_multiplier", r.middle_max_abs_multiplier}});
+                                   {"middle_max_abs_multiplier",
+                                    digits.relative(r.middle_max_abs_multiplier, region_check_tolerance)}});
       }
       fmt::print("{}", json_text(json));
       break;
@@ -141,14 +168,17 @@ void print(const SceneOptions& options, const Scene& scene, const BladeModel& mo
                  "method,converged,last_change,check_failed\n");
       for (const EstimatedBoundary& e : result.boundaries) {
         const Boundary& b = e.boundary;
-        fmt::print("{},{},{},{},{},{},{},{},{},{},{},true,,false\n", b.theta_rad_s, b.peak_force_n / fcr,
-                   b.multiplier, b.mode, b.order, e.approximation, e.budget.total(), e.budget.basis,
-                   e.budget.reduction, e.budget.load, e.budget.method);
+        const auto [theta, fbar] = shown_boundary(b, e.budget.total(), fcr, in_load, digits);
+        const ErrorBudget& budget = e.budget;
+        fmt::print("{},{},{},{},{},{},{},{},{},{},{},true,,false\n", theta, fbar, b.multiplier, b.mode, b.order,
+                   e.approximation, digits.estimate(budget.total()), digits.estimate(budget.basis),
+                   digits.estimate(budget.reduction), digits.estimate(budget.load), digits.estimate(budget.method));
       }
       for (const UnconvergedBoundary& u : result.unconverged) {
         const Boundary& b = u.boundary;
-        fmt::print("{},{},{},{},{},{},,,,,,false,{},{}\n", b.theta_rad_s, b.peak_force_n / fcr, b.multiplier, b.mode,
-                   b.order, u.approximation, u.change ? fmt::format("{}", *u.change) : "", u.check_failed);
+        fmt::print("{},{},{},{},{},{},,,,,,false,{},{}\n", digits.unestimated(b.theta_rad_s),
+                   digits.unestimated(b.peak_force_n / fcr), b.multiplier, b.mode, b.order, u.approximation,
+                   u.change ? fmt::format("{}", digits.estimate(*u.change)) : "", u.check_failed);
       }
       break;
     case OutputFormat::table:
@@ -349,7 +379,8 @@ Command register_boundaries(CLI::App& app) {
     request->progress = progress_reporter("boundaries: harmonic levels solved", options->output_format() == OutputFormat::table);
     const BoundaryAnalysis analysis = boundaries_with_error_estimate(scene, *request);
     const std::optional<std::string> unmet = tolerance_unmet(scene, *request, analysis);
-    print(*options, scene, model, *request, analysis, instability_regions(scene, *request, analysis), unmet);
+    print(*options, scene, model, *request, analysis,
+          instability_regions(scene, *request, analysis, region_check_tolerance), unmet);
     report_shortfalls(analysis, *request, unmet);
   };
 }

@@ -24,7 +24,41 @@ namespace {
 
 constexpr double rpm_per_rad_s = 60 / two_pi;
 
-std::string campbell_json(const Scene& scene, const CampbellWithErrors& r) {
+// The totals of a row of budgets.
+std::vector<double> totals(const std::vector<ErrorBudget>& budgets) {
+  std::vector<double> out;
+  for (const ErrorBudget& b : budgets) out.push_back(b.total());
+  return out;
+}
+
+// The diagram as its files print it (printed_digits.hpp): each frequency to its estimate and its
+// damping ratio to the same (absolute: ζ moves by about the relative error of λ), a crossing's speed
+// and frequency to the crossing's estimate; correlations and amplifications, which have no estimate
+// of their own, to 6 digits. Estimates and speeds in rpm are rounded where they are written.
+CampbellWithErrors as_printed(CampbellWithErrors r, const PrintedDigits& digits) {
+  for (std::size_t i = 0; i < r.diagram.curves.size(); ++i) {
+    CampbellCurve& c = r.diagram.curves[i];
+    const std::vector<double> estimate = digits.estimate(totals(r.budget[i]));
+    c.frequency_hz = digits.relative(c.frequency_hz, estimate);
+    c.damping_ratio = digits.absolute(c.damping_ratio, estimate);
+    c.correlation = digits.unestimated(c.correlation);
+  }
+  for (std::size_t k = 0; k < r.diagram.crossings.size(); ++k) {
+    EngineOrderCrossing& x = r.diagram.crossings[k];
+    x.speed_rad_s = digits.relative(x.speed_rad_s, r.crossing_budget[k].total());
+    x.frequency_hz = digits.relative(x.frequency_hz, r.crossing_budget[k].total());
+    x.amplification = digits.unestimated(x.amplification);
+  }
+  return r;
+}
+
+// Crossing k's speed in rpm, to its estimate.
+double crossing_rpm(const CampbellWithErrors& r, std::size_t k, const PrintedDigits& digits) {
+  return digits.relative(r.diagram.crossings[k].speed_rad_s * rpm_per_rad_s, r.crossing_budget[k].total());
+}
+
+// `r` as printed (as_printed).
+std::string campbell_json(const Scene& scene, const CampbellWithErrors& r, const PrintedDigits& digits) {
   const CampbellDiagram& d = r.diagram;
   Json json;
   json["title"] = fmt::format("{} — Campbell diagram", scene_title(scene));
@@ -41,24 +75,22 @@ std::string campbell_json(const Scene& scene, const CampbellWithErrors& r) {
   json["tolerance"] = r.tolerance;
   json["speeds_rad_s"] = d.speeds_rad_s;
   json["engine_orders"] = d.engine_orders;
-  write_static_limits(json, r.static_limits, speed_parameter(), "diagram");
-  write_error_budget(json, r.worst());
+  write_static_limits(json, r.static_limits, speed_parameter(), "diagram", digits);
+  write_error_budget(json, r.worst(), digits);
   json["error_by_speed"] = Json::array();
   for (std::size_t s = 0; s < d.speeds_rad_s.size(); ++s) {
     Json& at = json["error_by_speed"].emplace_back(Json{{"speed_rad_s", d.speeds_rad_s[s]}});
-    write_error_budget(at, r.worst_at(s));
+    write_error_budget(at, r.worst_at(s), digits);
   }
   json["curves"] = Json::array();
   for (std::size_t i = 0; i < d.curves.size(); ++i) {
     const CampbellCurve& c = d.curves[i];
-    std::vector<double> estimate;
-    for (const ErrorBudget& b : r.budget[i]) estimate.push_back(b.total());
     json["curves"].push_back({{"mode", c.mode},
                               {"family", to_string(c.family)},
                               {"frequency_hz", c.frequency_hz},
                               {"damping_ratio", c.damping_ratio},
                               {"correlation", c.correlation},
-                              {"error_estimate", estimate}});
+                              {"error_estimate", digits.estimate(totals(r.budget[i]))}});
   }
   json["crossings"] = Json::array();
   for (std::size_t k = 0; k < d.crossings.size(); ++k) {
@@ -66,10 +98,10 @@ std::string campbell_json(const Scene& scene, const CampbellWithErrors& r) {
     Json& crossing = json["crossings"].emplace_back(Json{{"engine_order", x.engine_order},
                                                          {"mode", x.mode},
                                                          {"speed_rad_s", x.speed_rad_s},
-                                                         {"speed_rpm", x.speed_rad_s * rpm_per_rad_s},
+                                                         {"speed_rpm", crossing_rpm(r, k, digits)},
                                                          {"frequency_hz", x.frequency_hz},
                                                          {"amplification", x.amplification}});
-    write_error_budget(crossing, r.crossing_budget[k]);
+    write_error_budget(crossing, r.crossing_budget[k], digits);
   }
   return json_text(json);
 }
@@ -86,10 +118,12 @@ std::string curves_csv(const CampbellDiagram& d) {
   return csv;
 }
 
-std::string crossings_csv(const CampbellDiagram& d) {
+// `r` as printed (as_printed).
+std::string crossings_csv(const CampbellWithErrors& r, const PrintedDigits& digits) {
   std::string csv = "engine_order,mode,speed_rad_s,speed_rpm,frequency_hz\n";
-  for (const EngineOrderCrossing& x : d.crossings) {
-    csv += fmt::format("{},{},{},{},{}\n", x.engine_order, x.mode, x.speed_rad_s, x.speed_rad_s * rpm_per_rad_s,
+  for (std::size_t k = 0; k < r.diagram.crossings.size(); ++k) {
+    const EngineOrderCrossing& x = r.diagram.crossings[k];
+    csv += fmt::format("{},{},{},{},{}\n", x.engine_order, x.mode, x.speed_rad_s, crossing_rpm(r, k, digits),
                        x.frequency_hz);
   }
   return csv;
@@ -184,14 +218,16 @@ Command register_campbell(CLI::App& app) {
     const bool for_people = options->output_format() == OutputFormat::table;
     const CampbellWithErrors result =
         campbell_with_error_estimate(scene, campbell, *tolerance, progress_reporter("campbell: speeds", for_people));
-    const CampbellDiagram& diagram = result.diagram;
-    const std::string json = campbell_json(scene, result);
-    const std::vector<std::string> files =
-        write_outputs(*out, "campbell", {{"campbell.csv", curves_csv(diagram)}, {"campbell_crossings.csv", crossings_csv(diagram)}},
-                      json, "campbell", *chart);
+    const PrintedDigits digits = options->printed_digits();
+    const CampbellWithErrors printed = as_printed(result, digits);
+    const std::string json = campbell_json(scene, printed, digits);
+    const std::vector<std::string> files = write_outputs(
+        *out, "campbell",
+        {{"campbell.csv", curves_csv(printed.diagram)}, {"campbell_crossings.csv", crossings_csv(printed, digits)}}, json,
+        "campbell", *chart);
     switch (options->output_format()) {
       case OutputFormat::json: fmt::print("{}", json); break;
-      case OutputFormat::csv: fmt::print("{}", curves_csv(diagram)); break;
+      case OutputFormat::csv: fmt::print("{}", curves_csv(printed.diagram)); break;
       case OutputFormat::table: print_table(scene, result, files); break;
     }
   };

@@ -29,7 +29,7 @@ struct CheckOutcome {
   std::string summary;  // the worst point in one line, for the table
   std::string detail;   // what was found and how, in sentences
   double seconds = 0;
-  std::function<void(Json&)> write_worst;  // the "worst" object and the check's extras
+  std::function<void(Json&, const PrintedDigits&)> write_worst;  // the "worst" object and the check's extras
 };
 
 std::string orders_text(const std::vector<int>& orders) { return fmt::format("{}", fmt::join(orders, ", ")); }
@@ -57,14 +57,16 @@ CheckOutcome margin_outcome(const Scene& scene, const FrequencyMarginResult& m) 
                            w.mode, w.engine_order, w.speed_rad_s, w.frequency_hz, w.distance, m.error_estimate,
                            m.passed ? "at least" : "below", m.required, scope);
   }
-  o.write_worst = [m](Json& json) {
+  // The frequency to its tolerance, the margin to its estimate; the speed found by the search has
+  // no estimate of its own (6 digits, printed_digits.hpp).
+  o.write_worst = [m](Json& json, const PrintedDigits& digits) {
     json["worst"] = {{"mode", m.worst.mode},
                      {"engine_order", m.worst.engine_order},
-                     {"speed_rad_s", m.worst.speed_rad_s},
-                     {"frequency_hz", m.worst.frequency_hz},
-                     {"margin", m.worst.distance}};
+                     {"speed_rad_s", digits.unestimated(m.worst.speed_rad_s)},
+                     {"frequency_hz", digits.relative(m.worst.frequency_hz, m.tolerance)},
+                     {"margin", digits.absolute(m.worst.distance, digits.estimate(m.error_estimate))}};
     json["required"] = m.required;
-    json["error_estimate"] = m.error_estimate;
+    json["error_estimate"] = digits.estimate(m.error_estimate);
     json["modes_checked"] = m.modes_checked;
     json["threshold_hz"] = m.threshold_hz;
     json["terms"] = m.terms;
@@ -128,19 +130,23 @@ CheckOutcome rub_outcome(const Scene& scene, const RubStabilityResult& r) {
                                                  : "",
                            r.required, floquet, scope, unconverged);
   }
-  o.write_worst = [r](Json& json) {
-    json["worst"] = {{"speed_rad_s", r.speed_rad_s},
-                     {"onset_fmax_over_fcr", r.onset_fmax_over_fcr ? Json(*r.onset_fmax_over_fcr) : Json(nullptr)},
+  // The onset to its estimate; the speeds found by the scan and the search, the Floquet check's
+  // point and its max|ρ| have no estimate of their own (6 digits, printed_digits.hpp).
+  o.write_worst = [r](Json& json, const PrintedDigits& digits) {
+    const std::optional<double> onset = r.onset_fmax_over_fcr;
+    const Json shown_onset = onset ? Json(digits.relative(*onset, r.onset_error_estimate)) : Json(nullptr);
+    json["worst"] = {{"speed_rad_s", digits.unestimated(r.speed_rad_s)},
+                     {"onset_fmax_over_fcr", shown_onset},
                      {"mode", r.mode},
                      {"order", r.order},
                      {"multiplier", r.multiplier},
                      {"tip", r.tip},
-                     {"check_speed_rad_s", r.check_speed_rad_s},
-                     {"check_fmax_over_fcr", r.check_fmax_over_fcr},
-                     {"max_abs_multiplier", r.max_abs_multiplier},
+                     {"check_speed_rad_s", digits.unestimated(r.check_speed_rad_s)},
+                     {"check_fmax_over_fcr", digits.unestimated(r.check_fmax_over_fcr)},
+                     {"max_abs_multiplier", digits.unestimated(r.max_abs_multiplier)},
                      {"check_tolerance_met", r.check_tolerance_unmet.empty()}};
     json["required"] = r.required;
-    json["error_estimate"] = r.onset_error_estimate;
+    json["error_estimate"] = digits.estimate(r.onset_error_estimate);
     json["onset_converged"] = r.onset_converged;
     json["unconverged_boundaries"] = r.unconverged_boundaries;
     json["window_fmax_over_fcr"] = r.window_fmax_over_fcr;
@@ -159,8 +165,8 @@ CheckOutcome static_limits_outcome(const StaticLimitsResult& l) {
   o.detail = fmt::format("{}, inside the speed range: the other requirements are checked from {:g} to {:g} rad/s, "
                          "the part within the blade's static limits",
                          o.summary, l.speed_lo_rad_s, l.speed_hi_rad_s);
-  o.write_worst = [l](Json& json) {
-    write_static_limits(json, l.path, speed_parameter(), "check");
+  o.write_worst = [l](Json& json, const PrintedDigits& digits) {
+    write_static_limits(json, l.path, speed_parameter(), "check", digits);
     json["speed_lo_rad_s"] = l.speed_lo_rad_s;
     json["speed_hi_rad_s"] = l.speed_hi_rad_s;
   };
@@ -171,13 +177,14 @@ bool all_passed(const std::vector<CheckOutcome>& checks) {
   return std::all_of(checks.begin(), checks.end(), [](const CheckOutcome& c) { return c.passed; });
 }
 
-std::string check_json(const Scene& scene, double tolerance, const std::vector<CheckOutcome>& checks) {
+std::string check_json(const Scene& scene, double tolerance, const std::vector<CheckOutcome>& checks,
+                       const PrintedDigits& digits) {
   Json json = {{"passed", all_passed(checks)}, {"scene", scene.source}, {"tolerance", tolerance}, {"checks", Json::array()}};
   for (const CheckOutcome& c : checks) {
     Json& check = json["checks"].emplace_back(Json{{"name", c.name}, {"passed", c.passed}});
-    c.write_worst(check);
+    c.write_worst(check, digits);
     check["detail"] = c.detail;
-    check["seconds"] = c.seconds;
+    check["seconds"] = digits.unestimated(c.seconds);
   }
   return json_text(json);
 }
@@ -313,7 +320,7 @@ Command register_check(CLI::App& app) {
       checks.back().seconds = seconds;
     }
     if (options->format == "json") {
-      fmt::print("{}", check_json(scene, *tolerance, checks));
+      fmt::print("{}", check_json(scene, *tolerance, checks, options->printed_digits()));
     } else if (options->format == "junit") {
       fmt::print("{}", check_junit(scene, checks));
     } else {

@@ -30,6 +30,24 @@ void check_crosscheck_work(const Scene& scene, std::size_t points, double revolu
              rkf45_seconds(steps, model.layout.size()), transient_history_bytes(revolutions, o.samples_per_revolution));
 }
 
+// The points as JSON and CSV print them (printed_digits.hpp): each Floquet max|ρ| to its estimate,
+// the estimates, the series' tail and the monodromies' difference (a check) to 2 digits; the transients'
+// growth and the RKF45 monodromy's max|ρ|, which have no estimate of their own, to 6.
+std::vector<CrosscheckPoint> as_printed(std::vector<CrosscheckPoint> points, const PrintedDigits& digits) {
+  for (CrosscheckPoint& p : points) {
+    p.floquet_cosine_error = digits.estimate(p.floquet_cosine_error);
+    p.floquet_pulse_error = digits.estimate(p.floquet_pulse_error);
+    p.floquet_cosine = digits.absolute(p.floquet_cosine, p.floquet_cosine_error);
+    p.floquet_pulse = digits.absolute(p.floquet_pulse, p.floquet_pulse_error);
+    p.pulse_series_tail = digits.estimate(p.pulse_series_tail);
+    p.monodromy_difference = digits.measure(p.monodromy_difference);
+    p.transient_cosine_growth = digits.unestimated(p.transient_cosine_growth);
+    p.transient_pulse_growth = digits.unestimated(p.transient_pulse_growth);
+    p.rkf45_max_abs_multiplier = digits.unestimated(p.rkf45_max_abs_multiplier);
+  }
+  return points;
+}
+
 }  // namespace
 
 Command register_crosscheck(CLI::App& app) {
@@ -61,11 +79,12 @@ Command register_crosscheck(CLI::App& app) {
           .require("pulse Floquet max|ρ|", p.floquet_pulse)
           .require("pulse transient growth", p.transient_pulse_growth);
     }
+    const std::vector<CrosscheckPoint> printed = as_printed(result, options->printed_digits());
     switch (options->output_format()) {
       case OutputFormat::json: {
         Json json = {{"scene", scene.source}, {"speed_rad_s", scene.operation.speed_rad_s},
                      {"revolutions", *revolutions}, {"points", Json::array()}};
-        for (const CrosscheckPoint& p : result) {
+        for (const CrosscheckPoint& p : printed) {
           json["points"].push_back(
               {{"fmax_over_fcr", p.fmax_over_fcr},
                {"cosine_approximation",
@@ -87,7 +106,7 @@ Command register_crosscheck(CLI::App& app) {
       case OutputFormat::csv:
         fmt::print("fmax_over_fcr,cosine_floquet,cosine_transient_growth,cosine_rkf45_monodromy,monodromy_relative_difference,"
                    "pulse_floquet,pulse_transient_growth,pulse_harmonics\n");
-        for (const CrosscheckPoint& p : result) {
+        for (const CrosscheckPoint& p : printed) {
           fmt::print("{},{},{},{},{},{},{},{}\n", p.fmax_over_fcr, p.floquet_cosine, p.transient_cosine_growth,
                      p.rkf45_max_abs_multiplier, p.monodromy_difference, p.floquet_pulse, p.transient_pulse_growth,
                      p.pulse_harmonics);

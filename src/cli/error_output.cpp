@@ -4,13 +4,13 @@
 
 namespace bladestab::cli {
 
-void write_error_budget(Json& json, const ErrorBudget& b) {
-  json["error_estimate"] = b.total();
+void write_error_budget(Json& json, const ErrorBudget& b, const PrintedDigits& digits) {
+  json["error_estimate"] = digits.estimate(b.total());
   Json& parts = json["error_budget"];
-  parts["basis"] = b.basis;
-  parts["reduction"] = b.reduction;
-  parts["load"] = b.load;
-  parts["method"] = b.method;
+  parts["basis"] = digits.estimate(b.basis);
+  parts["reduction"] = digits.estimate(b.reduction);
+  parts["load"] = digits.estimate(b.load);
+  parts["method"] = digits.estimate(b.method);
   parts["unbounded"] = b.unbounded;
 }
 

@@ -5,11 +5,12 @@
 
 #include "bladestab/base/error_budget.hpp"
 #include "json_output.hpp"
+#include "printed_digits.hpp"
 
 namespace bladestab::cli {
 
-// Sets `error_estimate` and `error_budget` in the JSON object `json`.
-void write_error_budget(Json& json, const ErrorBudget& budget);
+// Sets `error_estimate` and `error_budget` in the JSON object `json`, each to 2 digits (rounded up).
+void write_error_budget(Json& json, const ErrorBudget& budget, const PrintedDigits& digits);
 
 // "3.1e-07 (basis 2.0e-07, reduction 1.0e-07, load 0, method 1.0e-08)", plus "; not bounded: …".
 std::string describe_error_budget(const ErrorBudget& budget);

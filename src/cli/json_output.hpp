@@ -1,8 +1,9 @@
 #pragma once
 // The program's JSON documents are nlohmann::ordered_json values, their keys in the order they are
 // set. json_text() lays a document out — two-space indentation, each list of numbers on one line
-// (data columns, not structure), a newline at the end — and leaves every token to nlohmann:
-// strings with their escapes, numbers in the shortest form that reads back as the same double.
+// (data columns, not structure), a newline at the end — and leaves the tokens to nlohmann: strings
+// with their escapes, integers, booleans and null; doubles are fmt's shortest form that reads back
+// as the same double, as in the CSV files.
 #include <string>
 #include <vector>
 

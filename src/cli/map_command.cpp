@@ -29,6 +29,39 @@
 namespace bladestab::cli {
 namespace {
 
+// The map as its files print it (printed_digits.hpp): max|ρ| to the shading's accuracy, the larger
+// of the tolerance and its estimate (method and reduction), and so a combination's detuning (a
+// fraction of θ read from the angles of multipliers that carry that error); each curve's points to
+// the curves' estimate, a fraction of the window's span, in both coordinates. The shading's
+// estimates get their 2 digits here, the curves' budget where it is written.
+StabilityMap as_printed(StabilityMap m, double tolerance, const PrintedDigits& digits) {
+  const double shading = digits.estimate(std::max(tolerance, m.max_error_estimate + m.shading_fidelity.reduction_error));
+  const auto rho = [&](double& v) { v = digits.relative(v, shading); };
+  for (Eigen::Index k = 0; k < m.max_abs_multiplier.size(); ++k) rho(m.max_abs_multiplier.data()[k]);
+  for (MapSample& p : m.samples) rho(p.max_abs_multiplier);
+  for (MapCell& c : m.cells) rho(c.max_abs_multiplier);
+  for (CombinationRegion& r : m.combinations) {
+    rho(r.max_abs_multiplier);
+    r.combination.detuning = digits.absolute(r.combination.detuning, shading);
+  }
+  const double curves = digits.estimate(m.curve_fidelity.budget.total());
+  const double x_error = curves * (m.grid_x.back() - m.grid_x.front());
+  const double y_error = curves * (m.grid_fbar.back() - m.grid_fbar.front());
+  for (BoundaryCurve& c : m.curves) {
+    c.x = digits.absolute(c.x, x_error);
+    c.fbar = digits.absolute(c.fbar, y_error);
+  }
+  if (m.scene_point) {
+    rho(m.scene_point->max_abs_multiplier);
+    if (m.scene_point->nearest_boundary) {
+      m.scene_point->nearest_boundary->fbar = digits.absolute(m.scene_point->nearest_boundary->fbar, y_error);
+    }
+  }
+  m.max_error_estimate = digits.estimate(m.max_error_estimate);
+  m.shading_fidelity.reduction_error = digits.estimate(m.shading_fidelity.reduction_error);
+  return m;
+}
+
 // The refined shading: the leaves of the refinement on the fine lattice ([i, j, width, height,
 // max|ρ| of the corners]; lattice point i lies in grid cell i >> k, linearly between its points).
 Json refinement_json(const StabilityMap& m) {
@@ -40,7 +73,7 @@ Json refinement_json(const StabilityMap& m) {
           {"y_lo", m.grid_fbar.front()}, {"y_hi", m.grid_fbar.back()}, {"cells", cells}};
 }
 
-Json curve_fidelity_json(const StabilityMap& m) {
+Json curve_fidelity_json(const StabilityMap& m, const PrintedDigits& digits) {
   const CurveFidelity& f = m.curve_fidelity;
   Json json = {{"reduction", to_string(f.reduction.kind)},
                {"reduction_vectors", f.reduction.vectors},
@@ -50,7 +83,7 @@ Json curve_fidelity_json(const StabilityMap& m) {
                {"drawn", f.drawn},
                {"error_measure", m.plane == MapPlane::theta_fmax ? "distance in θ over the window's θ span"
                                                                   : "distance in F̄ over the window's F̄ span"}};
-  write_error_budget(json, f.budget);
+  write_error_budget(json, f.budget, digits);
   return json;
 }
 
@@ -74,7 +107,9 @@ void write_scene_point(Json& json, const MapPoint& p) {
   json["scene_point"] = point;
 }
 
-std::string map_json(const Scene& scene, const BladeModel& model, const MapOptions& o, const StabilityMap& m) {
+// `m` as printed (as_printed).
+std::string map_json(const Scene& scene, const BladeModel& model, const MapOptions& o, const StabilityMap& m,
+                     const PrintedDigits& digits) {
   const bool theta = m.plane == MapPlane::theta_fmax;
   const std::string stem = scene_title(scene);
   Json json;
@@ -104,7 +139,7 @@ std::string map_json(const Scene& scene, const BladeModel& model, const MapOptio
   for (const MapSample& p : m.samples) {
     json["samples"].push_back({{"x", p.x}, {"y", p.fbar}, {"max_abs_multiplier", number_or_null(p.max_abs_multiplier)}});
   }
-  json["curve_fidelity"] = curve_fidelity_json(m);
+  json["curve_fidelity"] = curve_fidelity_json(m, digits);
   json["curves"] = Json::array();
   for (const BoundaryCurve& c : m.curves) {
     json["curves"].push_back(
@@ -274,13 +309,16 @@ Command register_map(CLI::App& app) {
     const bool for_people = options->output_format() == OutputFormat::table;
     const StabilityMap m = stability_map(scene, o, progress_reporter("map: points", for_people));
 
-    const std::string json = map_json(scene, model, o, m);
+    const PrintedDigits digits = options->printed_digits();
+    const StabilityMap printed = as_printed(m, o.tolerance, digits);
+    const std::string json = map_json(scene, model, o, printed, digits);
     const std::string base = theta_plane ? "map_theta_fmax" : "map_speed_fmax";
-    const std::vector<std::string> files = write_outputs(
-        *out, base, {{base + "_curves.csv", curves_csv(m)}, {base + "_grid.csv", grid_csv(m)}}, json, "map", *chart);
+    const std::vector<std::string> files =
+        write_outputs(*out, base, {{base + "_curves.csv", curves_csv(printed)}, {base + "_grid.csv", grid_csv(printed)}},
+                      json, "map", *chart);
     switch (options->output_format()) {
       case OutputFormat::json: fmt::print("{}", json); break;
-      case OutputFormat::csv: fmt::print("{}", curves_csv(m)); break;
+      case OutputFormat::csv: fmt::print("{}", curves_csv(printed)); break;
       case OutputFormat::table: {
         int unstable = 0, points = 0;
         for (Eigen::Index k = 0; k < m.max_abs_multiplier.size(); ++k) {

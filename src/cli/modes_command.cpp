@@ -34,8 +34,26 @@ void require_finite(const Scene& scene, const ConvergedModes& result) {
   }
 }
 
-void print_modes(const SceneOptions& options, const Scene& scene, const ConvergedModes& result) {
-  require_finite(scene, result);
+// The modes as JSON and CSV print them (printed_digits.hpp): frequency and Λ to the mode's estimate,
+// the damping ratio to the same (absolute), the energy shares (no estimate of their own) to 6
+// digits. The estimates are rounded where they are written.
+ConvergedModes as_printed(ConvergedModes r, const PrintedDigits& digits) {
+  for (std::size_t k = 0; k < r.solution.modes.size(); ++k) {
+    Mode& m = r.solution.modes[k];
+    const double estimate = digits.estimate(r.budget(k).total());
+    m.frequency_hz = digits.relative(m.frequency_hz, estimate);
+    m.lambda = digits.relative(m.lambda, estimate);
+    m.damping_ratio = digits.absolute(m.damping_ratio, estimate);
+    for (int f = 0; f < 3; ++f) m.energy_share(f) = digits.unestimated(m.energy_share(f));
+  }
+  return r;
+}
+
+void print_modes(const SceneOptions& options, const Scene& scene, const ConvergedModes& converged) {
+  require_finite(scene, converged);
+  const PrintedDigits digits = options.printed_digits();
+  const bool for_people = options.output_format() == OutputFormat::table;
+  const ConvergedModes result = for_people ? converged : as_printed(converged, digits);
   const ModalSolution& sol = result.solution;
   const double speed = scene.operation.speed_rad_s;
   switch (options.output_format()) {
@@ -58,8 +76,8 @@ void print_modes(const SceneOptions& options, const Scene& scene, const Converge
                                          ? "tail of algebraic convergence from models with N, 2N and 4N terms"
                                          : "relative change against a richer model"},
                           {"reference_terms", result.reference_terms},
-                          {"max_relative_error", result.max_relative_error()}};
-      write_error_budget(json, result.worst_budget());
+                          {"max_relative_error", digits.estimate(result.max_relative_error())}};
+      write_error_budget(json, result.worst_budget(), digits);
       json["modes"] = Json::array();
       for (std::size_t k = 0; k < sol.modes.size(); ++k) {
         const Mode& m = sol.modes[k];
@@ -68,8 +86,8 @@ void print_modes(const SceneOptions& options, const Scene& scene, const Converge
                                                      {"frequency_hz", m.frequency_hz},
                                                      {"lambda", m.lambda},
                                                      {"damping_ratio", m.damping_ratio},
-                                                     {"relative_error", result.relative_error[k]}});
-        write_error_budget(mode, result.budget(k));
+                                                     {"relative_error", digits.estimate(result.relative_error[k])}});
+        write_error_budget(mode, result.budget(k), digits);
         mode["energy_share"] = {
             {"rotation", m.energy_share(0)}, {"lateral", m.energy_share(1)}, {"axial", m.energy_share(2)}};
       }
@@ -81,7 +99,7 @@ void print_modes(const SceneOptions& options, const Scene& scene, const Converge
       for (std::size_t k = 0; k < sol.modes.size(); ++k) {
         const Mode& m = sol.modes[k];
         fmt::print("{},{},{},{},{},{}\n", m.index, to_string(m.family), m.frequency_hz, m.lambda, m.damping_ratio,
-                   result.relative_error[k]);
+                   digits.estimate(result.relative_error[k]));
       }
       break;
     case OutputFormat::table: {
@@ -101,11 +119,11 @@ void print_modes(const SceneOptions& options, const Scene& scene, const Converge
       for (std::size_t k = 0; k < sol.modes.size(); ++k) {
         const Mode& m = sol.modes[k];
         const ErrorBudget budget = result.budget(k);
-        const int digits = significant_digits(budget.total());
+        const int figures = significant_digits(budget.total());
         // ζ below 1e-12 is rounding in an undamped model's eigenvalues, not damping.
         const double zeta = std::abs(m.damping_ratio) < 1e-12 ? 0.0 : m.damping_ratio;
         fmt::print("{:>4}  {:<9} {:>#16.{}g} {:>#16.{}g} {:>10.3g} {:>10.1e}\n", m.index, to_string(m.family),
-                   m.frequency_hz, digits, m.lambda, digits, zeta, budget.total());
+                   m.frequency_hz, figures, m.lambda, figures, zeta, budget.total());
       }
       break;
     }

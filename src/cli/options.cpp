@@ -50,6 +50,10 @@ constexpr std::initializer_list<EigenSolverKind> solvers{EigenSolverKind::automa
 
 EigenSolverKind SceneOptions::eigen_solver() const { return named(solver, solvers); }
 
+PrintedDigits SceneOptions::printed_digits() const {
+  return PrintedDigits(digits == "full" ? DigitsRule::full : DigitsRule::estimate);
+}
+
 void add_scene_options(CLI::App& command, SceneOptions& options, const std::vector<std::string>& formats) {
   command.add_option("scene", options.path, "scene file (TOML)")->required();
   command.add_option("--set", options.overrides, "override a scene key: section.key=value (repeatable)")
@@ -63,6 +67,10 @@ void add_scene_options(CLI::App& command, SceneOptions& options, const std::vect
       ->check(CLI::IsMember(formats));
   command.add_option("--solver", options.solver, "eigensolver: auto (default), dense (LAPACK) or arpack")
       ->check(CLI::IsMember(names_of(solvers)));
+  command.add_option("--digits", options.digits,
+                     "digits of the numbers in JSON and CSV: estimate (default: those their error estimates support, "
+                     "docs/outputs.md) or full (every double as it is)")
+      ->check(CLI::IsMember({"estimate", "full"}));
   add_work_limit_options(command);
 }
 

@@ -9,6 +9,7 @@
 #include "bladestab/blade/model.hpp"
 #include "bladestab/modal/modes.hpp"
 #include "bladestab/scene/scene.hpp"
+#include "printed_digits.hpp"
 
 namespace bladestab::cli {
 
@@ -19,12 +20,14 @@ struct SceneOptions {
   std::vector<std::string> overrides;  // --set section.key=value
   std::string format = "table";
   std::string solver = "auto";
+  std::string digits = "estimate";  // --digits
 
   // The scene with its overrides; a modal cut-off of its own (model.cutoff_hz) is checked as
   // check_modal_cutoff says.
   Scene load() const;
   OutputFormat output_format() const;
   EigenSolverKind eigen_solver() const;
+  PrintedDigits printed_digits() const;
 };
 
 // The value of an enumeration named `name` by the library's to_string, among `values`; the first
@@ -44,7 +47,7 @@ std::vector<std::string> names_of(std::initializer_list<Enum> values) {
   return names;
 }
 
-// Adds SCENE, --set, --format and --solver to a subcommand; --format takes one of `formats`, the
+// Adds SCENE, --set, --format, --solver and --digits to a subcommand; --format takes one of `formats`, the
 // first the default (a command with outputs of its own, like `check`, lists them).
 void add_scene_options(CLI::App& command, SceneOptions& options,
                        const std::vector<std::string>& formats = {"table", "json", "csv"});

@@ -1,10 +1,13 @@
 // bladestab stability SCENE: Floquet multipliers at the scene's operating point.
 #include <algorithm>
 #include <cmath>
+#include <complex>
 #include <filesystem>
+#include <optional>
 
 #include <fmt/format.h>
 
+#include "bladestab/base/constants.hpp"
 #include "bladestab/stability/stability_analysis.hpp"
 #include "bladestab/base/input_error.hpp"
 #include "bladestab/stability/matrix_export.hpp"
@@ -53,12 +56,36 @@ std::string describe_reduction(const StabilityAnswer& a) {
 // "2.1e-13", or "not informative" for NaN.
 std::string check_value(double v) { return std::isnan(v) ? "n/a" : fmt::format("{:.1e}", v); }
 
-Json checks_json(const FloquetChecks& c) {
-  return {{"determinant_error", number_or_null(c.determinant_error)},
-          {"reciprocal_error", number_or_null(c.reciprocal_error)},
-          {"rkf45_residual", number_or_null(c.residual)},
-          {"rkf45_multiplier_error", number_or_null(c.multiplier_error)},
-          {"monodromy_max_abs_multiplier", c.monodromy_max_abs_multiplier}};
+// The answer's numbers as JSON and CSV print them (printed_digits.hpp): every multiplier, max|ρ| and
+// the monodromy's max|ρ| to the total estimate E as printed (absolute on ρ), max Re λ = ln max|ρ| / T
+// to E / (max|ρ| T), the log decrement −ln|ρ| of a multiplier to E / |ρ|; the checks to 2 digits.
+class PrintedAnswer {
+public:
+  PrintedAnswer(const StabilityAnswer& a, const PrintedDigits& digits)
+      : a_(a), digits_(digits), error_(digits.estimate(a.budget.total())) {}
+  double rho(double value) const { return digits_.absolute(value, error_); }
+  double real_exponent() const {
+    const double period = two_pi / a_.theta_rad_s;
+    return digits_.absolute(a_.floquet.max_real_exponent, error_ / (a_.floquet.max_abs_multiplier * period));
+  }
+  Json log_decrement(Eigen::Index k) const {
+    const std::optional<double>& d = a_.floquet.log_decrements[k];
+    return d ? Json(digits_.absolute(*d, error_ / std::abs(a_.floquet.multipliers(k)))) : Json(nullptr);
+  }
+  Json check(double value) const { return number_or_null(digits_.measure(value)); }
+
+private:
+  const StabilityAnswer& a_;
+  const PrintedDigits& digits_;
+  double error_;
+};
+
+Json checks_json(const FloquetChecks& c, const PrintedAnswer& shown) {
+  return {{"determinant_error", shown.check(c.determinant_error)},
+          {"reciprocal_error", shown.check(c.reciprocal_error)},
+          {"rkf45_residual", shown.check(c.residual)},
+          {"rkf45_multiplier_error", shown.check(c.multiplier_error)},
+          {"monodromy_max_abs_multiplier", shown.rho(c.monodromy_max_abs_multiplier)}};
 }
 
 void require_finite(const StabilityAnswer& a) {
@@ -78,6 +105,8 @@ void print(const SceneOptions& options, const Scene& scene, const StabilityAnswe
   const double fbar = scene.load.fmax_over_fcr;
   const double error = a.budget.total();
   const LoadSeries& load = a.load;
+  const PrintedDigits digits = options.printed_digits();
+  const PrintedAnswer shown(a, digits);
   switch (options.output_format()) {
     case OutputFormat::json: {
       Json json;
@@ -88,7 +117,7 @@ void print(const SceneOptions& options, const Scene& scene, const StabilityAnswe
       json["theta_rad_s"] = a.theta_rad_s;
       json["load_approximation"] = to_string(scene.load.approximation);
       json["load_harmonics"] = load.harmonics();
-      json["load_relative_tail"] = load.relative_tail;
+      json["load_relative_tail"] = digits.estimate(load.relative_tail);
       json["terms"] = a.model.terms;
       json["reference_terms"] = a.reference_terms;
       json["reduction"] = to_string(a.reduction.kind);
@@ -98,28 +127,29 @@ void print(const SceneOptions& options, const Scene& scene, const StabilityAnswe
       json["method"] = to_string(r.method);
       json["harmonics"] = r.harmonics;
       json["steps"] = r.steps;
-      json["max_abs_multiplier"] = r.max_abs_multiplier;
-      json["max_real_exponent"] = r.max_real_exponent;
+      json["max_abs_multiplier"] = shown.rho(r.max_abs_multiplier);
+      json["max_real_exponent"] = shown.real_exponent();
       json["stable"] = a.stable;
       json["tolerance_met"] = a.tolerance_met;
       json["tolerance_unmet"] = a.tolerance_met ? Json(nullptr) : Json("--" + a.tolerance_unmet);
-      write_error_budget(json, a.budget);
-      json["checks"] = checks_json(r.checks);
+      write_error_budget(json, a.budget, digits);
+      json["checks"] = checks_json(r.checks, shown);
       json["multipliers"] = Json::array();
       for (Eigen::Index k = 0; k < r.multipliers.size(); ++k) {
-        json["multipliers"].push_back({{"re", r.multipliers(k).real()}, {"im", r.multipliers(k).imag()}});
+        const std::complex<double> rho = r.multipliers(k);
+        json["multipliers"].push_back({{"re", shown.rho(rho.real())}, {"im", shown.rho(rho.imag())}});
       }
       json["log_decrements"] = Json::array();
-      for (const auto& d : r.log_decrements) json["log_decrements"].push_back(d ? Json(*d) : Json(nullptr));
+      for (Eigen::Index k = 0; k < r.multipliers.size(); ++k) json["log_decrements"].push_back(shown.log_decrement(k));
       fmt::print("{}", json_text(json));
       break;
     }
     case OutputFormat::csv:
       fmt::print("index,re,im,abs,log_decrement\n");
       for (Eigen::Index k = 0; k < r.multipliers.size(); ++k) {
-        const auto& d = r.log_decrements[k];
-        fmt::print("{},{},{},{},{}\n", k + 1, r.multipliers(k).real(), r.multipliers(k).imag(),
-                   std::abs(r.multipliers(k)), d ? fmt::format("{}", *d) : "");
+        const Json d = shown.log_decrement(k);
+        fmt::print("{},{},{},{},{}\n", k + 1, shown.rho(r.multipliers(k).real()), shown.rho(r.multipliers(k).imag()),
+                   shown.rho(std::abs(r.multipliers(k))), d.is_null() ? "" : fmt::format("{}", d.get<double>()));
       }
       break;
     case OutputFormat::table: {
@@ -178,7 +208,8 @@ void check_export_path(const std::string& path) {
 
 // The system the answer's Floquet analysis integrated (its basis, reduction and load series), in
 // Matrix Market files, and a manifest with everything else a reader needs; all four or none.
-void export_matrices(const std::string& path, const Scene& scene, const StabilityAnswer& a, double tolerance) {
+void export_matrices(const std::string& path, const Scene& scene, const StabilityAnswer& a, double tolerance,
+                     const PrintedDigits& digits) {
   const PeriodicSystem sys = periodic_system(assemble_model(scene, a.model), scene, a.load, a.reduction);
   const ExportedArrays files = matrix_market_files(std::filesystem::path(path).replace_extension().string());
   OutputFiles output;
@@ -207,9 +238,9 @@ void export_matrices(const std::string& path, const Scene& scene, const Stabilit
   json["full_dofs"] = sys.all_modes;
   json["method"] = to_string(a.floquet.method);
   json["tolerance"] = tolerance;
-  json["max_abs_multiplier"] = a.floquet.max_abs_multiplier;
+  json["max_abs_multiplier"] = PrintedAnswer(a, digits).rho(a.floquet.max_abs_multiplier);
   json["stable"] = a.stable;
-  write_error_budget(json, a.budget);
+  write_error_budget(json, a.budget, digits);
   output.write(path, json_text(json));
   output.commit();
 }
@@ -255,7 +286,7 @@ Command register_stability(CLI::App& app) {
     const StabilityAnswer answer = analyse_stability(
         scene, {named(*method, methods), *harmonics, *tolerance, *threads,
                 progress_reporter("stability: refinement levels", options->output_format() == OutputFormat::table)});
-    if (exporting) export_matrices(*export_path, scene, answer, *tolerance);
+    if (exporting) export_matrices(*export_path, scene, answer, *tolerance, options->printed_digits());
     print(*options, scene, answer);
     if (!answer.tolerance_met) print_note("stability: --" + answer.tolerance_unmet + "; the answer stands with its estimate");
   };

@@ -18,7 +18,7 @@ std::string limits_line(const PathWithinLimits& limits, const RangeParameter& pa
 }
 
 void write_static_limits(Json& json, const PathWithinLimits& limits, const RangeParameter& parameter,
-                         const std::string& what) {
+                         const std::string& what, const PrintedDigits& digits) {
   // The limit before the range's first value is below it when the values ascend.
   const auto& below = parameter.ascending ? limits.before : limits.after;
   const auto& above = parameter.ascending ? limits.after : limits.before;
@@ -26,7 +26,7 @@ void write_static_limits(Json& json, const PathWithinLimits& limits, const Range
   for (const auto& [name, limit] : {std::pair{"below", &below}, std::pair{"above", &above}}) {
     out[name] = *limit ? Json{{"kind", to_string((*limit)->kind)},
                               {"field", (*limit)->field},
-                              {parameter.json_field, (*limit)->where}}
+                              {parameter.json_field, digits.relative((*limit)->where, 1e-12)}}
                        : Json(nullptr);
   }
   out["text"] = limits_line(limits, parameter, what);

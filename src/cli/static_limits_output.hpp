@@ -7,6 +7,7 @@
 
 #include "bladestab/blade/static_limits.hpp"
 #include "json_output.hpp"
+#include "printed_digits.hpp"
 
 namespace bladestab::cli {
 
@@ -25,8 +26,9 @@ RangeParameter speed_parameter();
 // there", with `what` the output ("diagram", "sweep"); empty when the range meets no limit.
 std::string limits_line(const PathWithinLimits& limits, const RangeParameter& parameter, const std::string& what);
 
-// "static_limits": {"below": {"kind", "field", <json_field>} or null, "above": …, "text": the line}.
+// "static_limits": {"below": {"kind", "field", <json_field>} or null, "above": …, "text": the line};
+// where a limit lies is found to 1e-12 relative and printed to that estimate (`digits`).
 void write_static_limits(Json& json, const PathWithinLimits& limits, const RangeParameter& parameter,
-                         const std::string& what);
+                         const std::string& what, const PrintedDigits& digits);
 
 }  // namespace bladestab::cli

@@ -1,5 +1,9 @@
 // bladestab transient SCENE: time response to the rub, CSV of the history, JSON summary, chart.
 
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
 #include <fmt/format.h>
 
 #include "bladestab/base/constants.hpp"
@@ -50,6 +54,71 @@ Summary summarize(const TransientResult& r, double sample_rate) {
     s.mean_axial_m += ax[k] / ax.size();
   }
   s.checks = check_transient(r);
+  return s;
+}
+
+// The run's numbers as its files print them (printed_digits.hpp). An adaptive run holds each step's
+// error to --tolerance of the state: a series is printed to that fraction of its largest value, any
+// other number of the response to that fraction of itself. A fixed-step run states no error: its
+// numbers get 6 digits.
+class PrintedRun {
+public:
+  PrintedRun(const PrintedDigits& digits, std::optional<double> tolerance) : digits(digits), tolerance_(tolerance) {}
+  double value(double v) const { return tolerance_ ? digits.relative(v, *tolerance_) : digits.unestimated(v); }
+  std::vector<double> series(const std::vector<double>& values) const {
+    double peak = 0;
+    for (const double v : values) peak = std::max(peak, std::abs(v));
+    return tolerance_ ? digits.absolute(values, digits.estimate(*tolerance_) * peak) : digits.unestimated(values);
+  }
+  const PrintedDigits& digits;
+
+private:
+  std::optional<double> tolerance_;
+};
+
+// The samples' times and revolutions are the output grid's, as they are; the energy balance's error
+// is a check (2 digits); the step sizes (no estimate of their own) get 6 digits.
+TransientResult as_printed(TransientResult r, const PrintedRun& shown) {
+  using Field = double TransientSample::*;
+  for (const Field f : {&TransientSample::tip_lateral_m, &TransientSample::tip_axial_m,
+                        &TransientSample::tip_lateral_velocity_m_s, &TransientSample::tip_axial_velocity_m_s,
+                        &TransientSample::axial_force_n, &TransientSample::friction_force_n,
+                        &TransientSample::casing_overlap_m, &TransientSample::strain_energy_j,
+                        &TransientSample::kinetic_energy_j, &TransientSample::total_energy_j, &TransientSample::work_j}) {
+    const std::vector<double> printed = shown.series(column(r, f));
+    for (std::size_t k = 0; k < r.samples.size(); ++k) r.samples[k].*f = printed[k];
+  }
+  for (TransientSample& s : r.samples) s.energy_balance_error_j = shown.digits.measure(s.energy_balance_error_j);
+  r.static_tip_axial_m = shown.value(r.static_tip_axial_m);
+  if (r.growth.omitted.empty()) {
+    r.growth.standard_error = shown.digits.estimate(r.growth.standard_error);
+    r.growth.growth = shown.digits.absolute(r.growth.growth, r.growth.growth * r.growth.standard_error);
+  }
+  if (r.contact) {
+    r.contact->stiffness_n_m = shown.digits.unestimated(r.contact->stiffness_n_m);
+    r.contact->contact_time_s = shown.value(r.contact->contact_time_s);
+    r.contact->peak_force_n = shown.value(r.contact->peak_force_n);
+    r.contact->max_overlap_m = shown.value(r.contact->max_overlap_m);
+  }
+  r.steps.smallest_step = shown.digits.unestimated(r.steps.smallest_step);
+  r.steps.largest_step = shown.digits.unestimated(r.steps.largest_step);
+  r.fixed.step_s = shown.digits.unestimated(r.fixed.step_s);
+  r.fixed.parasitic_growth = shown.digits.unestimated(r.fixed.parasitic_growth);
+  return r;
+}
+
+// The spectra and peaks like the series they come from; the dominant frequencies, interpolated
+// between the spectrum's bins, to 6 digits.
+Summary as_printed(Summary s, const PrintedRun& shown) {
+  s.lateral.amplitude = shown.series(s.lateral.amplitude);
+  s.axial.amplitude = shown.series(s.axial.amplitude);
+  s.lateral_hz = shown.digits.unestimated(s.lateral_hz);
+  s.axial_hz = shown.digits.unestimated(s.axial_hz);
+  s.peak_lateral_m = shown.value(s.peak_lateral_m);
+  s.peak_axial_m = shown.value(s.peak_axial_m);
+  s.mean_axial_m = shown.value(s.mean_axial_m);
+  s.checks.energy_error_j = shown.digits.measure(s.checks.energy_error_j);
+  s.checks.vibration_energy_j = shown.value(s.checks.vibration_energy_j);
   return s;
 }
 
@@ -216,11 +285,18 @@ Command register_transient(CLI::App& app) {
               : "the response outgrows the model: run fewer --revolutions or a smaller load"));
     }
 
-    const std::vector<std::string> files = write_outputs(
-        *out, *name, {{*name + ".csv", history_csv(r)}}, summary_json(scene, model, r, s, o.adaptive, true), "transient", *chart);
+    const PrintedDigits digits = options->printed_digits();
+    const PrintedRun shown(digits, o.adaptive ? std::optional(*tolerance) : std::nullopt);
+    const TransientResult printed = as_printed(r, shown);
+    const Summary printed_summary = as_printed(s, shown);
+    const std::vector<std::string> files =
+        write_outputs(*out, *name, {{*name + ".csv", history_csv(printed)}},
+                      summary_json(scene, model, printed, printed_summary, o.adaptive, true), "transient", *chart);
     switch (options->output_format()) {
-      case OutputFormat::json: fmt::print("{}", summary_json(scene, model, r, s, o.adaptive, false)); break;
-      case OutputFormat::csv: fmt::print("{}", history_csv(r)); break;
+      case OutputFormat::json:
+        fmt::print("{}", summary_json(scene, model, printed, printed_summary, o.adaptive, false));
+        break;
+      case OutputFormat::csv: fmt::print("{}", history_csv(printed)); break;
       case OutputFormat::table:
         fmt::print("scene      {}\nmodel      {}\n", scene.source, describe_model(model));
         fmt::print("load       {}\n", load_description(scene));

@@ -1,6 +1,7 @@
 #pragma once
 // The program's --format json output as the tests read it: parsed by nlohmann::json (which throws
 // nlohmann::json::parse_error on malformed input) into a plain tree of values.
+#include <cmath>
 #include <map>
 #include <stdexcept>
 #include <string>
@@ -56,5 +57,10 @@ inline Json from_parsed(const nlohmann::json& value) {
 }
 
 inline Json parse_json(const std::string& text) { return from_parsed(nlohmann::json::parse(text)); }
+
+// Half the unit of the last digit of a value printed with absolute error `error` by default: the
+// unit is the largest power of ten ≤ the error (docs/outputs.md), so the printing moves the value
+// by at most this.
+inline double half_printed_unit(double error) { return 0.5 * std::pow(10.0, std::floor(std::log10(error))); }
 
 }  // namespace testing_support

@@ -1,0 +1,98 @@
+#include "printed_digits.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <string>
+
+#include <fmt/format.h>
+
+namespace bladestab::cli {
+namespace {
+
+// The decade of x > 0: the exponent of the largest power of ten ≤ x, read from its 17 digits.
+int decade(double x) {
+  const std::string text = fmt::format("{:.16e}", x);
+  return std::atoi(text.c_str() + text.find('e') + 1);
+}
+
+// The double nearest `units`·10^k, which prints back as that decimal.
+double decimal(long units, int k) { return std::strtod(fmt::format("{}e{}", units, k).c_str(), nullptr); }
+
+// `value` rounded to `digits` significant digits.
+double significant(double value, int digits) {
+  return std::strtod(fmt::format("{:.{}e}", value, digits - 1).c_str(), nullptr);
+}
+
+bool usable(double x) { return std::isfinite(x) && x > 0; }
+
+// f(value, index) of every value.
+template <class F>
+std::vector<double> each(const std::vector<double>& values, F f) {
+  std::vector<double> out(values.size());
+  for (std::size_t k = 0; k < values.size(); ++k) out[k] = f(values[k], k);
+  return out;
+}
+
+}  // namespace
+
+double PrintedDigits::absolute(double value, double error) const {
+  if (full_ || !std::isfinite(value) || !usable(error)) return value;
+  if (value == 0) return 0.0;  // never −0
+  const int last = decade(std::max(measure(error), finest_resolution * std::abs(value)));
+  const int first = decade(std::abs(value));
+  if (first < last) {  // below its error: 0 or ±1 unit of the error's decade
+    const long units = std::lround(value / decimal(1, last));
+    return units == 0 ? 0.0 : decimal(units, last);
+  }
+  return significant(value, first - last + 1);
+}
+
+double PrintedDigits::relative(double value, double error) const {
+  if (full_ || !std::isfinite(value) || !usable(error)) return value;
+  if (value == 0) return 0.0;
+  const int first = decade(std::abs(value));
+  const int last = std::min(decade(estimate(error) * std::abs(value)), first - 2);
+  return significant(value, first - last + 1);
+}
+
+double PrintedDigits::estimate(double error) const {
+  if (full_ || !usable(error)) return error;
+  return std::max(measure(error), finest_resolution);
+}
+
+double PrintedDigits::measure(double error) const {
+  if (error < 0) return -measure(-error);
+  if (full_ || !usable(error)) return error;
+  const int second = decade(error) - 1;  // the decade of its second digit
+  const long units = std::lround(error / decimal(1, second));
+  const double shown = decimal(units, second);
+  return shown < error ? decimal(units + 1, second) : shown;
+}
+
+double PrintedDigits::unestimated(double value) const {
+  if (full_ || !std::isfinite(value)) return value;
+  return value == 0 ? 0.0 : significant(value, 6);
+}
+
+std::vector<double> PrintedDigits::relative(const std::vector<double>& values, const std::vector<double>& errors) const {
+  return each(values, [&](double v, std::size_t k) { return relative(v, errors.at(k)); });
+}
+
+std::vector<double> PrintedDigits::absolute(const std::vector<double>& values, const std::vector<double>& errors) const {
+  return each(values, [&](double v, std::size_t k) { return absolute(v, errors.at(k)); });
+}
+
+std::vector<double> PrintedDigits::absolute(const std::vector<double>& values, double error) const {
+  return each(values, [&](double v, std::size_t) { return absolute(v, error); });
+}
+
+std::vector<double> PrintedDigits::estimate(const std::vector<double>& errors) const {
+  return each(errors, [&](double e, std::size_t) { return estimate(e); });
+}
+
+std::vector<double> PrintedDigits::unestimated(const std::vector<double>& values) const {
+  return each(values, [&](double v, std::size_t) { return unestimated(v); });
+}
+
+}  // namespace bladestab::cli

@@ -1,0 +1,119 @@
+// The digits of the JSON and CSV outputs (src/cli/printed_digits.hpp, docs/outputs.md): values
+// rounded to the decade of their error, worked by hand; a BLAS-level change of a value leaves its
+// printed text alone; the rounding never moves a value by more than half its error; and the
+// documents' text (src/cli/json_output.hpp) prints the rounded doubles as the short decimals they
+// were rounded to.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <random>
+#include <stdexcept>
+#include <string>
+
+#include <fmt/format.h>
+
+#include "cli/json_output.hpp"
+#include "cli/printed_digits.hpp"
+
+using bladestab::cli::DigitsRule;
+using bladestab::cli::Json;
+using bladestab::cli::PrintedDigits;
+
+namespace {
+
+std::string text(double v) { return fmt::format("{}", v); }
+
+}  // namespace
+
+TEST_CASE("printed digits: a value to the decade of its error, worked by hand", "[printed_digits]") {
+  const PrintedDigits digits;
+  // 68.0354375847 Hz ± 3.2e-7 relative: E = 2.18e-5, printed 2.2e-5, its decade 1e-5.
+  CHECK(text(digits.relative(68.03543758474244, 3.2e-7)) == "68.03544");
+  // The same frequency from another BLAS kernel (measured: Prescott against Zen, 7.5e-14 apart).
+  CHECK(text(digits.relative(68.03543758473735, 3.2e-7)) == "68.03544");
+  // max|ρ| = 2.199229657 ± 1e-7 absolute: to 1e-7.
+  CHECK(text(digits.absolute(2.1992296566, 1e-7)) == "2.1992297");
+  // An undamped multiplier on the unit circle, to the map's tolerance 1e-3: 1 (not 1.0000000000008).
+  CHECK(text(digits.relative(1.0000000000007996, 1e-3)) == "1");
+  // Below its error: 0 or one unit of the error's decade, never rounding noise.
+  CHECK(digits.absolute(-3.3e-17, 1e-7) == 0);
+  CHECK(text(digits.absolute(7e-4, 1e-3)) == "0.001");
+  CHECK(digits.absolute(4e-4, 1e-3) == 0);
+  // A relative estimate keeps 3 significant digits however large it is.
+  CHECK(text(digits.relative(1234.5678, 0.5)) == "1230");
+  CHECK(text(digits.relative(-0.0123456, 2.0)) == "-0.0123");
+  // An estimate: 2 digits, rounded away from zero.
+  CHECK(text(digits.estimate(2.1e-4 * (1 + 1e-12))) == "0.00022");
+  CHECK(text(digits.estimate(2.19e-4)) == "0.00022");
+  CHECK(text(digits.estimate(1e-3)) == "0.001");
+  CHECK(text(digits.estimate(9.96e-4)) == "0.001");
+  CHECK(digits.estimate(0) == 0);
+  // ... and no finer than finest_resolution (1e-7): below it, digits are rounding that BLAS kernels
+  // do differently. A frequency's 2.9e-12 (its eigensolver's rounding) prints as 1e-7, and the
+  // frequency with 8 digits.
+  CHECK(text(digits.estimate(2.9e-12)) == "1e-07");
+  CHECK(text(digits.relative(68.03543758474244, 2.9e-12)) == "68.035438");
+  CHECK(text(digits.absolute(68.03543758474244, 1e-12)) == "68.035438");
+  // A check's measure of an error: 2 digits away from zero, no floor (it measures the rounding).
+  CHECK(text(digits.measure(-3.41e-13)) == "-3.5e-13");
+  // Without an estimate: 6 significant digits.
+  CHECK(text(digits.unestimated(0.123456789)) == "0.123457");
+  // NaN ("no value") passes through, to be written as null.
+  CHECK(std::isnan(digits.relative(std::numeric_limits<double>::quiet_NaN(), 1e-3)));
+  // --digits full: every double as it is.
+  const PrintedDigits full(DigitsRule::full);
+  CHECK(full.relative(68.03543758474244, 3.2e-7) == 68.03543758474244);
+  CHECK(full.estimate(2.1e-4 * (1 + 1e-12)) == 2.1e-4 * (1 + 1e-12));
+}
+
+TEST_CASE("printed digits: the rounding moves a value by at most half its error", "[printed_digits]") {
+  const PrintedDigits digits;
+  std::mt19937_64 random(20240523);
+  std::uniform_real_distribution<double> mantissa(1, 10);
+  std::uniform_int_distribution<int> exponent(-12, 6), relative_exponent(-12, -1);
+  for (int n = 0; n < 20000; ++n) {
+    const double value = (n % 2 ? -1 : 1) * mantissa(random) * std::pow(10.0, exponent(random));
+    const double error = mantissa(random) * std::pow(10.0, relative_exponent(random));
+    const double absolute = digits.absolute(value, error * std::abs(value));
+    const double relative = digits.relative(value, error);
+    INFO("value " << text(value) << ", relative error " << text(error));
+    // The unit of the last digit is at most the printed error, or finest_resolution of the value:
+    // the rounding is at most half of it.
+    const double finest = bladestab::cli::finest_resolution * std::abs(value);
+    CHECK(std::abs(absolute - value) <= 0.5 * std::max(digits.measure(error * std::abs(value)), finest) * (1 + 1e-9));
+    CHECK(std::abs(relative - value) <= 0.5 * digits.estimate(error) * std::abs(value) * (1 + 1e-9));
+  }
+}
+
+TEST_CASE("JSON documents: lists of numbers on one line, two-space indentation, no NaN", "[printed_digits]") {
+  Json document;
+  document["title"] = "map — \"θ\"";
+  document["x"] = std::vector<double>{100, 136.5};
+  document["max"] = bladestab::cli::numbers_or_null({1.5, std::numeric_limits<double>::quiet_NaN()});
+  document["names"] = std::vector<std::string>{"a"};
+  document["empty"] = Json::array();
+  document["point"] = {{"y", 0.25}, {"label", nullptr}};
+  // The decimal a value was rounded to, as the CSV files print it (fmt): nlohmann's own shortest
+  // form gives 75.00712300000001 for this one.
+  document["f"] = 75.007123;
+  CHECK(bladestab::cli::json_text(document) ==
+        "{\n"
+        "  \"title\": \"map — \\\"θ\\\"\",\n"
+        "  \"x\": [100, 136.5],\n"
+        "  \"max\": [1.5, null],\n"
+        "  \"names\": [\n"
+        "    \"a\"\n"
+        "  ],\n"
+        "  \"empty\": [],\n"
+        "  \"point\": {\n"
+        "    \"y\": 0.25,\n"
+        "    \"label\": null\n"
+        "  },\n"
+        "  \"f\": 75.007123\n"
+        "}\n");
+  // JSON has no NaN: an unflagged one is a bug upstream, refused rather than printed as null.
+  document["point"]["y"] = std::numeric_limits<double>::infinity();
+  CHECK_THROWS_AS(bladestab::cli::json_text(document), std::logic_error);
+}
