@@ -85,160 +85,180 @@ std::pair<double, double> shown_boundary(const Boundary& b, double estimate, dou
                  : std::pair{digits.relative(b.theta_rad_s, estimate), fbar};
 }
 
+// What the three formats print from: the answer and how it is shown.
+struct BoundaryOutput {
+  const Scene& scene;
+  const BladeModel& model;
+  const BoundaryRequest& request;
+  const BoundaryAnalysis& result;
+  const std::vector<InstabilityRegion>& regions;
+  const std::optional<std::string>& unmet;  // why the whole estimate is above --tolerance
+  double fcr = 0;
+  bool in_load = false;  // boundaries in F̄_max at a given θ, else in θ
+  double unit = 1;       // the window in θ [rad/s] or F̄_max
+  PrintedDigits digits;
+
+  // A region's end: the window's as it is, a boundary's to the largest estimate.
+  double region_end(double end, bool at_window) const {
+    return at_window ? end / unit : digits.relative(end / unit, result.total().total());
+  }
+};
+
+void print_json(const BoundaryOutput& o) {
+  Json json;
+  json["scene"] = o.scene.source;
+  json["speed_rad_s"] = o.scene.operation.speed_rad_s;
+  json["fmax_over_fcr"] = o.scene.load.fmax_over_fcr;
+  json["approximation"] = o.result.approximation;
+  json["max_approximation"] = o.request.max_approximation;
+  json["tolerance"] = o.request.tolerance;
+  json["converged"] = o.result.unconverged.empty();
+  json["tolerance_met"] = o.result.unconverged.empty() && !o.unmet;
+  json["tolerance_unmet"] = o.unmet ? Json(*o.unmet) : Json(nullptr);
+  json["cutoff_hz"] = o.request.cutoff_hz;
+  json["model"] = describe_model(o.model);
+  json["max_order"] = o.request.max_order;
+  json["window_low"] = o.result.window.first / o.unit;
+  json["window_high"] = o.result.window.second / o.unit;
+  json["estimate_measure"] = o.in_load ? "relative on fmax_over_fcr" : "relative on theta_rad_s";
+  write_error_budget(json, o.result.total(), o.digits);
+  json["checks"] = Json::array();
+  for (const BoundaryCheck& c : o.result.checks) {
+    const auto [theta, fbar] = shown_boundary(c.boundary, o.result.total().total(), o.fcr, o.in_load, o.digits);
+    json["checks"].push_back({{"theta_rad_s", theta},
+                              {"fmax_over_fcr", fbar},
+                              {"multiplier", c.boundary.multiplier},
+                              {"cutoff_hz", c.cutoff_hz},
+                              {"multiplier_gap", o.digits.estimate(c.gap)},
+                              {"allowed", o.digits.estimate(c.allowed)}});
+  }
+  json["boundaries"] = Json::array();
+  for (const EstimatedBoundary& e : o.result.boundaries) {
+    const Boundary& b = e.boundary;
+    const auto [theta, fbar] = shown_boundary(b, e.budget.total(), o.fcr, o.in_load, o.digits);
+    Json& boundary = json["boundaries"].emplace_back(Json{{"theta_rad_s", theta},
+                                                          {"fmax_over_fcr", fbar},
+                                                          {"multiplier", b.multiplier},
+                                                          {"mode", b.mode},
+                                                          {"order", b.order},
+                                                          {"approximation", e.approximation}});
+    write_error_budget(boundary, e.budget, o.digits);
+  }
+  json["unconverged"] = Json::array();
+  for (const UnconvergedBoundary& u : o.result.unconverged) {
+    Json& boundary = json["unconverged"].emplace_back(unconverged_json(u.boundary, u.approximation, o.fcr, o.digits));
+    boundary["last_change"] = u.change ? Json(o.digits.estimate(*u.change)) : Json(nullptr);
+    boundary["check_failed"] = u.check_failed;
+  }
+  json["regions"] = Json::array();
+  for (const InstabilityRegion& r : o.regions) {
+    json["regions"].push_back({{"lower", o.region_end(r.lower, r.lower_open)},
+                               {"upper", o.region_end(r.upper, r.upper_open)},
+                               {"lower_at_window", r.lower_open},
+                               {"upper_at_window", r.upper_open},
+                               {"lower_unconverged", r.lower_unconverged},
+                               {"upper_unconverged", r.upper_unconverged},
+                               {"multiplier", r.multiplier},
+                               {"mode", r.mode},
+                               {"order", r.order},
+                               {"middle_max_abs_multiplier",
+                                o.digits.relative(r.middle_max_abs_multiplier, region_check_tolerance)}});
+  }
+  fmt::print("{}", json_text(json));
+}
+
+void print_csv(const BoundaryOutput& o) {
+  // The unconverged boundaries follow with converged = false, their change from k to k + 2
+  // (empty: no counterpart), whether their multiplier check failed, and no error estimate.
+  fmt::print("theta_rad_s,fmax_over_fcr,multiplier,mode,order,approximation,error_estimate,basis,reduction,load,"
+             "method,converged,last_change,check_failed\n");
+  for (const EstimatedBoundary& e : o.result.boundaries) {
+    const Boundary& b = e.boundary;
+    const auto [theta, fbar] = shown_boundary(b, e.budget.total(), o.fcr, o.in_load, o.digits);
+    const ErrorBudget& budget = e.budget;
+    fmt::print("{},{},{},{},{},{},{},{},{},{},{},true,,false\n", theta, fbar, b.multiplier, b.mode, b.order,
+               e.approximation, o.digits.estimate(budget.total()), o.digits.estimate(budget.basis),
+               o.digits.estimate(budget.reduction), o.digits.estimate(budget.load), o.digits.estimate(budget.method));
+  }
+  for (const UnconvergedBoundary& u : o.result.unconverged) {
+    const Boundary& b = u.boundary;
+    fmt::print("{},{},{},{},{},{},,,,,,false,{},{}\n", o.digits.unestimated(b.theta_rad_s),
+               o.digits.unestimated(b.peak_force_n / o.fcr), b.multiplier, b.mode, b.order, u.approximation,
+               u.change ? fmt::format("{}", o.digits.estimate(*u.change)) : "", u.check_failed);
+  }
+}
+
+void print_table(const BoundaryOutput& o) {
+  fmt::print("scene          {}\nmodel          {}{}\n", o.scene.source, describe_model(o.model),
+             o.request.cutoff_hz > 0 ? fmt::format(", modes below {:g} Hz", o.request.cutoff_hz) : "");
+  fmt::print("operation      Ω = {:.6g} rad/s{}\n", o.scene.operation.speed_rad_s,
+             o.in_load ? fmt::format(", θ = {:.6g} rad/s", *o.request.theta_rad_s)
+                       : fmt::format(", F̄_max = {:.6g}", o.scene.load.fmax_over_fcr));
+  fmt::print("approximation  k = {} harmonics per family: {} boundary of order <= {} with {} in [{:.6g}, {:.6g}] converged to "
+             "{:.1e} against k + 2\n",
+             o.result.approximation, o.result.unconverged.empty() ? "every" : "each listed", o.request.max_order,
+             o.in_load ? "F̄_max" : "θ", o.result.window.first / o.unit, o.result.window.second / o.unit, o.request.tolerance);
+  if (!o.result.unconverged.empty()) {
+    fmt::print("not converged  {} more did not converge with up to {} harmonics per family (listed after the "
+               "boundaries)\n",
+               o.result.unconverged.size(), o.request.max_approximation);
+  }
+  fmt::print("error          {} relative on {}, largest over the boundaries{}\n",
+             describe_error_budget(o.result.total()), o.in_load ? "F̄_max" : "θ",
+             o.unmet ? fmt::format(" — above --tolerance {:g}", o.request.tolerance) : "");
+  for (const BoundaryCheck& c : o.result.checks) {
+    fmt::print("check          θ = {:.6g} rad/s, F̄_max = {:.6g}: Magnus monodromy{} has a multiplier {:.1e} from {} "
+               "(allowed {:.1e})\n",
+               c.boundary.theta_rad_s, c.boundary.peak_force_n / o.fcr,
+               c.cutoff_hz > 0 ? fmt::format(" (modes below {:.0f} Hz)", c.cutoff_hz) : "", c.gap,
+               c.boundary.multiplier > 0 ? "+1" : "-1", c.allowed);
+  }
+  fmt::print("\n{:>16} {:>14} {:>10} {:>5} {:>6} {:>9}\n", "θ [rad/s]", "F̄_max", "multiplier", "mode", "order",
+             "error");
+  for (const EstimatedBoundary& e : o.result.boundaries) {
+    const Boundary& b = e.boundary;
+    // Only the digits the estimate supports, on the quantity it is relative to; the other is given.
+    const int digits = significant_digits(e.budget.total());
+    const auto shown = [digits](double value, bool estimated) {
+      return estimated ? fmt::format("{:#.{}g}", value, digits) : fmt::format("{:.6g}", value);
+    };
+    fmt::print("{:>16} {:>14} {:>10} {:>5} {:>6} {:>9.1e}\n", shown(b.theta_rad_s, !o.in_load),
+               shown(b.peak_force_n / o.fcr, o.in_load), b.multiplier > 0 ? "+1" : "-1", b.mode, b.order,
+               e.budget.total());
+  }
+  if (o.result.boundaries.empty()) {
+    fmt::print("(none {}of order <= {} in the window)\n", o.result.unconverged.empty() ? "" : "converged ",
+               o.request.max_order);
+  }
+  print_unconverged(o.result, o.fcr);
+  fmt::print("\nregions in {} (each checked unstable at its middle by the Floquet multipliers)\n",
+             o.in_load ? "F̄_max" : "θ [rad/s]");
+  for (const InstabilityRegion& r : o.regions) {
+    const auto end = [](bool open, bool unconverged) {
+      return open ? "(window)" : unconverged ? "(not converged)" : "";
+    };
+    fmt::print("  {}{}{:.6g} … {:.6g}{}{}  multiplier {}  mode {}  order {}  (max|ρ| = {:.4g} at the middle)\n",
+               end(r.lower_open, r.lower_unconverged), r.lower_open || r.lower_unconverged ? " " : "",
+               r.lower / o.unit, r.upper / o.unit, r.upper_open || r.upper_unconverged ? " " : "",
+               end(r.upper_open, r.upper_unconverged),
+               r.multiplier > 0 ? "+1" : "-1", r.mode, r.order, r.middle_max_abs_multiplier);
+  }
+  if (o.regions.empty()) fmt::print("  (none in the window)\n");
+  fmt::print("\nCombination resonances are not boundaries of this kind: check them with `bladestab stability` or `map`.\n");
+}
+
 void print(const SceneOptions& options, const Scene& scene, const BladeModel& model, const BoundaryRequest& request,
            const BoundaryAnalysis& result, const std::vector<InstabilityRegion>& regions,
            const std::optional<std::string>& unmet) {
   require_finite(result, regions);
   const double fcr = model.blade.critical_load();
   const bool in_load = request.theta_rad_s.has_value();
-  const double unit = in_load ? fcr : 1.0;  // the window in θ [rad/s] or F̄_max
-  const PrintedDigits digits = options.printed_digits();
-  // A region's end: the window's as it is, a boundary's to the largest estimate.
-  const auto region_end = [&](double end, bool at_window) {
-    return at_window ? end / unit : digits.relative(end / unit, result.total().total());
-  };
+  const BoundaryOutput output{scene, model, request, result, regions, unmet, fcr, in_load, in_load ? fcr : 1.0,
+                              options.printed_digits()};
   switch (options.output_format()) {
-    case OutputFormat::json: {
-      Json json;
-      json["scene"] = scene.source;
-      json["speed_rad_s"] = scene.operation.speed_rad_s;
-      json["fmax_over_fcr"] = scene.load.fmax_over_fcr;
-      json["approximation"] = result.approximation;
-      json["max_approximation"] = request.max_approximation;
-      json["tolerance"] = request.tolerance;
-      json["converged"] = result.unconverged.empty();
-      json["tolerance_met"] = result.unconverged.empty() && !unmet;
-      json["tolerance_unmet"] = unmet ? Json(*unmet) : Json(nullptr);
-      json["cutoff_hz"] = request.cutoff_hz;
-      json["model"] = describe_model(model);
-      json["max_order"] = request.max_order;
-      json["window_low"] = result.window.first / unit;
-      json["window_high"] = result.window.second / unit;
-      json["estimate_measure"] = in_load ? "relative on fmax_over_fcr" : "relative on theta_rad_s";
-      write_error_budget(json, result.total(), digits);
-      json["checks"] = Json::array();
-      for (const BoundaryCheck& c : result.checks) {
-        const auto [theta, fbar] = shown_boundary(c.boundary, result.total().total(), fcr, in_load, digits);
-        json["checks"].push_back({{"theta_rad_s", theta},
-                                  {"fmax_over_fcr", fbar},
-                                  {"multiplier", c.boundary.multiplier},
-                                  {"cutoff_hz", c.cutoff_hz},
-                                  {"multiplier_gap", digits.estimate(c.gap)},
-                                  {"allowed", digits.estimate(c.allowed)}});
-      }
-      json["boundaries"] = Json::array();
-      for (const EstimatedBoundary& e : result.boundaries) {
-        const Boundary& b = e.boundary;
-        const auto [theta, fbar] = shown_boundary(b, e.budget.total(), fcr, in_load, digits);
-        Json& boundary = json["boundaries"].emplace_back(Json{{"theta_rad_s", theta},
-                                                              {"fmax_over_fcr", fbar},
-                                                              {"multiplier", b.multiplier},
-                                                              {"mode", b.mode},
-                                                              {"order", b.order},
-                                                              {"approximation", e.approximation}});
-        write_error_budget(boundary, e.budget, digits);
-      }
-      json["unconverged"] = Json::array();
-      for (const UnconvergedBoundary& u : result.unconverged) {
-        Json& boundary = json["unconverged"].emplace_back(unconverged_json(u.boundary, u.approximation, fcr, digits));
-        boundary["last_change"] = u.change ? Json(digits.estimate(*u.change)) : Json(nullptr);
-        boundary["check_failed"] = u.check_failed;
-      }
-      json["regions"] = Json::array();
-      for (const InstabilityRegion& r : regions) {
-        json["regions"].push_back({{"lower", region_end(r.lower, r.lower_open)},
-                                   {"upper", region_end(r.upper, r.upper_open)},
-                                   {"lower_at_window", r.lower_open},
-                                   {"upper_at_window", r.upper_open},
-                                   {"lower_unconverged", r.lower_unconverged},
-                                   {"upper_unconverged", r.upper_unconverged},
-                                   {"multiplier", r.multiplier},
-                                   {"mode", r.mode},
-                                   {"order", r.order},
-                                   {"middle_max_abs_multiplier",
-                                    digits.relative(r.middle_max_abs_multiplier, region_check_tolerance)}});
-      }
-      fmt::print("{}", json_text(json));
-      break;
-    }
-    case OutputFormat::csv:
-      // The unconverged boundaries follow with converged = false, their change from k to k + 2
-      // (empty: no counterpart), whether their multiplier check failed, and no error estimate.
-      fmt::print("theta_rad_s,fmax_over_fcr,multiplier,mode,order,approximation,error_estimate,basis,reduction,load,"
-                 "method,converged,last_change,check_failed\n");
-      for (const EstimatedBoundary& e : result.boundaries) {
-        const Boundary& b = e.boundary;
-        const auto [theta, fbar] = shown_boundary(b, e.budget.total(), fcr, in_load, digits);
-        const ErrorBudget& budget = e.budget;
-        fmt::print("{},{},{},{},{},{},{},{},{},{},{},true,,false\n", theta, fbar, b.multiplier, b.mode, b.order,
-                   e.approximation, digits.estimate(budget.total()), digits.estimate(budget.basis),
-                   digits.estimate(budget.reduction), digits.estimate(budget.load), digits.estimate(budget.method));
-      }
-      for (const UnconvergedBoundary& u : result.unconverged) {
-        const Boundary& b = u.boundary;
-        fmt::print("{},{},{},{},{},{},,,,,,false,{},{}\n", digits.unestimated(b.theta_rad_s),
-                   digits.unestimated(b.peak_force_n / fcr), b.multiplier, b.mode, b.order, u.approximation,
-                   u.change ? fmt::format("{}", digits.estimate(*u.change)) : "", u.check_failed);
-      }
-      break;
-    case OutputFormat::table:
-      fmt::print("scene          {}\nmodel          {}{}\n", scene.source, describe_model(model),
-                 request.cutoff_hz > 0 ? fmt::format(", modes below {:g} Hz", request.cutoff_hz) : "");
-      fmt::print("operation      Ω = {:.6g} rad/s{}\n", scene.operation.speed_rad_s,
-                 in_load ? fmt::format(", θ = {:.6g} rad/s", *request.theta_rad_s)
-                         : fmt::format(", F̄_max = {:.6g}", scene.load.fmax_over_fcr));
-      fmt::print("approximation  k = {} harmonics per family: {} boundary of order <= {} with {} in [{:.6g}, {:.6g}] converged to "
-                 "{:.1e} against k + 2\n",
-                 result.approximation, result.unconverged.empty() ? "every" : "each listed", request.max_order,
-                 in_load ? "F̄_max" : "θ", result.window.first / unit, result.window.second / unit, request.tolerance);
-      if (!result.unconverged.empty()) {
-        fmt::print("not converged  {} more did not converge with up to {} harmonics per family (listed after the "
-                   "boundaries)\n",
-                   result.unconverged.size(), request.max_approximation);
-      }
-      fmt::print("error          {} relative on {}, largest over the boundaries{}\n",
-                 describe_error_budget(result.total()), in_load ? "F̄_max" : "θ",
-                 unmet ? fmt::format(" — above --tolerance {:g}", request.tolerance) : "");
-      for (const BoundaryCheck& c : result.checks) {
-        fmt::print("check          θ = {:.6g} rad/s, F̄_max = {:.6g}: Magnus monodromy{} has a multiplier {:.1e} from {} "
-                   "(allowed {:.1e})\n",
-                   c.boundary.theta_rad_s, c.boundary.peak_force_n / fcr,
-                   c.cutoff_hz > 0 ? fmt::format(" (modes below {:.0f} Hz)", c.cutoff_hz) : "", c.gap,
-                   c.boundary.multiplier > 0 ? "+1" : "-1", c.allowed);
-      }
-      fmt::print("\n{:>16} {:>14} {:>10} {:>5} {:>6} {:>9}\n", "θ [rad/s]", "F̄_max", "multiplier", "mode", "order",
-                 "error");
-      for (const EstimatedBoundary& e : result.boundaries) {
-        const Boundary& b = e.boundary;
-        // Only the digits the estimate supports, on the quantity it is relative to; the other is given.
-        const int digits = significant_digits(e.budget.total());
-        const auto shown = [digits](double value, bool estimated) {
-          return estimated ? fmt::format("{:#.{}g}", value, digits) : fmt::format("{:.6g}", value);
-        };
-        fmt::print("{:>16} {:>14} {:>10} {:>5} {:>6} {:>9.1e}\n", shown(b.theta_rad_s, !in_load),
-                   shown(b.peak_force_n / fcr, in_load), b.multiplier > 0 ? "+1" : "-1", b.mode, b.order,
-                   e.budget.total());
-      }
-      if (result.boundaries.empty()) {
-        fmt::print("(none {}of order <= {} in the window)\n", result.unconverged.empty() ? "" : "converged ",
-                   request.max_order);
-      }
-      print_unconverged(result, fcr);
-      fmt::print("\nregions in {} (each checked unstable at its middle by the Floquet multipliers)\n",
-                 in_load ? "F̄_max" : "θ [rad/s]");
-      for (const InstabilityRegion& r : regions) {
-        const auto end = [](bool open, bool unconverged) {
-          return open ? "(window)" : unconverged ? "(not converged)" : "";
-        };
-        fmt::print("  {}{}{:.6g} … {:.6g}{}{}  multiplier {}  mode {}  order {}  (max|ρ| = {:.4g} at the middle)\n",
-                   end(r.lower_open, r.lower_unconverged), r.lower_open || r.lower_unconverged ? " " : "",
-                   r.lower / unit, r.upper / unit, r.upper_open || r.upper_unconverged ? " " : "",
-                   end(r.upper_open, r.upper_unconverged),
-                   r.multiplier > 0 ? "+1" : "-1", r.mode, r.order, r.middle_max_abs_multiplier);
-      }
-      if (regions.empty()) fmt::print("  (none in the window)\n");
-      fmt::print("\nCombination resonances are not boundaries of this kind: check them with `bladestab stability` or `map`.\n");
-      break;
+    case OutputFormat::json: print_json(output); break;
+    case OutputFormat::csv: print_csv(output); break;
+    case OutputFormat::table: print_table(output); break;
   }
 }
 

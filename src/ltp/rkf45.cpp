@@ -89,16 +89,58 @@ std::complex<double> rkf45_stability_function(std::complex<double> z) {
   return 1.0 + z * (b1 * g1 + b3 * g3 + b4 * g4 + b5 * g5 + b6 * g6);
 }
 
-StepStatistics rkf45_integrate(const OdeFunction& f, Eigen::VectorXd& x, double t0, double t1,
-                               const StepControl& control, std::vector<double> breakpoints,
-                               const std::vector<double>& outputs, const OdeObserver& observer,
-                               const std::vector<OdeEvent>& events) {
-  StepStatistics stats;
+namespace {
+
+// The breakpoints in (t0, t1], sorted, ending with t1.
+std::vector<double> breakpoints_within(std::vector<double> breakpoints, double t0, double t1) {
   breakpoints.push_back(t1);
   std::sort(breakpoints.begin(), breakpoints.end());
   breakpoints.erase(std::remove_if(breakpoints.begin(), breakpoints.end(),
                                    [&](double b) { return b <= t0 || b > t1; }),
                     breakpoints.end());
+  return breakpoints;
+}
+
+// The first step: the fixed one, the one given, or from the initial slope k1 a step over which x
+// changes by about rtol·|x| + atol.
+double first_step(const StepControl& control, const Eigen::VectorXd& x, const Eigen::VectorXd& k1, double span) {
+  double h = control.adaptive ? control.first_step : control.fixed_step;
+  if (control.adaptive && h <= 0) {
+    const Eigen::ArrayXd scale = control.atol + control.rtol * x.array().abs();
+    const double slope = (k1.array() / scale).abs().maxCoeff();
+    h = slope > 0 ? std::pow(1 / slope, 1.0 / 5) * 1e-2 : span * 1e-3;
+    h = std::min(h, span);
+  }
+  return h;
+}
+
+// The adaptive control of a step `step` from (t, x) to s: whether it is accepted (its embedded
+// error within atol + rtol·|x|), and the next step h either way.
+bool step_accepted(const StepControl& control, const Eigen::VectorXd& x, const Step& s, double step, double t,
+                   double span, double& h, StepStatistics& stats) {
+  const Eigen::ArrayXd scale = control.atol + control.rtol * x.array().abs().max(s.x.array().abs());
+  const double err = (s.error.array() / scale).abs().maxCoeff();
+  const double factor = err > 0 ? std::clamp(0.9 * std::pow(err, -0.2), 0.2, 5.0) : 5.0;
+  if (err <= 1) {
+    h = step * factor;
+    return true;
+  }
+  ++stats.rejected;  // also for a NaN error
+  h = step * std::min(factor, 0.9);
+  if (h < 1e-14 * std::max(std::abs(t), span)) {
+    throw std::runtime_error(fmt::format("RKF45 step size underflow at t = {:.9g} s", t));
+  }
+  return false;
+}
+
+}  // namespace
+
+StepStatistics rkf45_integrate(const OdeFunction& f, Eigen::VectorXd& x, double t0, double t1,
+                               const StepControl& control, std::vector<double> breakpoints,
+                               const std::vector<double>& outputs, const OdeObserver& observer,
+                               const std::vector<OdeEvent>& events) {
+  StepStatistics stats;
+  breakpoints = breakpoints_within(std::move(breakpoints), t0, t1);
   auto next_break = breakpoints.begin();
   auto next_output = std::lower_bound(outputs.begin(), outputs.end(), t0);
 
@@ -114,14 +156,7 @@ StepStatistics rkf45_integrate(const OdeFunction& f, Eigen::VectorXd& x, double 
   while (next_output != outputs.end() && *next_output <= t0) observer(*next_output++, x);
 
   const double span = t1 - t0;
-  double h = control.adaptive ? control.first_step : control.fixed_step;
-  if (control.adaptive && h <= 0) {
-    // From the initial slope: a step over which x changes by about rtol·|x| + atol.
-    const Eigen::ArrayXd scale = control.atol + control.rtol * x.array().abs();
-    const double slope = (k1.array() / scale).abs().maxCoeff();
-    h = slope > 0 ? std::pow(1 / slope, 1.0 / 5) * 1e-2 : span * 1e-3;
-    h = std::min(h, span);
-  }
+  double h = first_step(control, x, k1, span);
   double t = t0;
   stats.smallest_step = span;
   while (t < t1) {
@@ -131,20 +166,7 @@ StepStatistics rkf45_integrate(const OdeFunction& f, Eigen::VectorXd& x, double 
     if (control.adaptive && control.max_step > 0) step = std::min(step, control.max_step);
     if (step >= to_break * (1 - 1e-12)) step = to_break, lands = true;
     Step s = fehlberg_step(f, t, x, k1, step, stats);
-    if (control.adaptive) {
-      const Eigen::ArrayXd scale = control.atol + control.rtol * x.array().abs().max(s.x.array().abs());
-      const double err = (s.error.array() / scale).abs().maxCoeff();
-      const double factor = err > 0 ? std::clamp(0.9 * std::pow(err, -0.2), 0.2, 5.0) : 5.0;
-      if (!(err <= 1)) {  // also rejects NaN
-        ++stats.rejected;
-        h = step * std::min(factor, 0.9);
-        if (h < 1e-14 * std::max(std::abs(t), span)) {
-          throw std::runtime_error(fmt::format("RKF45 step size underflow at t = {:.9g} s", t));
-        }
-        continue;
-      }
-      h = step * factor;
-    }
+    if (control.adaptive && !step_accepted(control, x, s, step, t, span, h, stats)) continue;
     double t_new = lands ? *next_break : t + step;
     Eigen::VectorXd k_new;
     f(t_new, s.x, k_new);
