@@ -67,7 +67,29 @@ std::string history_csv(const TransientResult& r) {
   return csv;
 }
 
+// How the run was integrated, and whether it stopped.
+void method_fields(Json& json, const TransientResult& r) {
+  json["method"] = r.method == TransientMethod::fast ? "fast" : "rkf45";
+  if (!r.fallback.empty()) json["method_fallback"] = r.fallback;
+  if (r.method == TransientMethod::fast) {
+    json["exact_stepping"] = {{"contact_pieces", r.exact.contact_pieces},
+                              {"magnus_steps", r.exact.magnus_steps},
+                              {"free_flight_exponentials", r.exact.free_exponentials},
+                              {"intervals", r.exact.intervals},
+                              {"contact_propagator_error", r.exact.contact_error}};
+  }
+  if (r.self_check) {
+    json["self_check"] = {{"until_revolution", r.self_check->until_revolutions},
+                          {"rkf45_tolerance", r.self_check->rkf45_tolerance},
+                          {"relative_difference", r.self_check->difference},
+                          {"allowed", r.self_check->allowed},
+                          {"seconds", r.self_check->seconds}};
+  }
+  if (r.stopped) json["stopped"] = {{"revolution", r.stopped->revolution}, {"reason", r.stopped->reason}};
+}
+
 void summary_fields(Json& json, const TransientResult& r, const Summary& s, bool adaptive) {
+  method_fields(json, r);
   json["dominant_frequency_hz"] = {{"tip_lateral", s.lateral_hz}, {"tip_axial", s.axial_hz}};
   json["peak_tip_lateral_m"] = s.peak_lateral_m;
   json["peak_tip_axial_m"] = s.peak_axial_m;
@@ -76,6 +98,8 @@ void summary_fields(Json& json, const TransientResult& r, const Summary& s, bool
   if (r.growth.omitted.empty()) {
     json["growth_per_revolution"] = r.growth.growth;
     json["growth_per_revolution_ln_standard_error"] = r.growth.standard_error;
+    json["growth_per_revolution_error_estimate"] = r.growth.error_estimate;
+    if (!r.continued_change.empty()) json["growth_continued_revolutions"] = r.continued_change.size();
   } else {
     json["growth_per_revolution"] = nullptr;
     json["growth_per_revolution_omitted"] = r.growth.omitted;
@@ -83,7 +107,7 @@ void summary_fields(Json& json, const TransientResult& r, const Summary& s, bool
   json["energy_balance"] = {{"max_error_j", s.checks.energy_error_j},
                             {"vibration_energy_j", s.checks.vibration_energy_j},
                             {"allowed_fraction", TransientChecks::max_energy_error}};
-  json["steps"] = {{"mode", adaptive ? "adaptive" : "fixed"},
+  if (r.method == TransientMethod::rkf45) json["steps"] = {{"mode", adaptive ? "adaptive" : "fixed"},
                    {"accepted", r.steps.accepted},
                    {"rejected", r.steps.rejected},
                    {"rhs_evaluations", r.steps.evaluations},
@@ -151,6 +175,65 @@ void check_transient_work(const BladeModel& model, const Scene& scene, const Tra
              seconds, bytes);
 }
 
+// The method line(s) of the table: the fast method's pieces and its check, or why RKF45 ran.
+void print_method(const TransientOptions& o, const TransientResult& r) {
+  if (r.method == TransientMethod::fast) {
+    fmt::print("method     fast: free flight exact (one exponential per distinct interval, {} in all), {} contact "
+               "piece(s) by Magnus ({} steps in all, propagators within {:.2g} of tolerance {:g})\n",
+               r.exact.free_exponentials, r.exact.contact_pieces, r.exact.magnus_steps, r.exact.contact_error, o.tolerance);
+  } else if (!r.fallback.empty()) {
+    fmt::print("method     rkf45, not fast: {}\n", r.fallback);
+  }
+  if (r.self_check) {
+    fmt::print("check      against RKF45 (rtol {:g}) to revolution {:.4g}: states differ by {:.2g} of the vibration "
+               "(allowed {:.2g}), {:.3g} s\n",
+               r.self_check->rkf45_tolerance, r.self_check->until_revolutions, r.self_check->difference,
+               r.self_check->allowed, r.self_check->seconds);
+  }
+  if (r.stopped) fmt::print("stopped    at revolution {:.4g}: {}\n", r.stopped->revolution, r.stopped->reason);
+}
+
+void print_table(const Scene& scene, const BladeModel& model, const TransientOptions& o, const TransientResult& r,
+                 const Summary& s) {
+    fmt::print("scene      {}\nmodel      {}\n", scene.source, describe_model(model));
+    fmt::print("load       {}\n", load_description(scene));
+    print_method(o, r);
+    if (r.method == TransientMethod::rkf45) fmt::print("steps      {}: {} accepted, {} rejected, {} RHS evaluations, step {:.3g} … {:.3g} s\n",
+               o.adaptive ? fmt::format("adaptive RKF45, rtol {:g}, steps ≤ {:.4g} s (1/{} of the stiffest period: "
+                                        "its parasitic growth ≤ ×{:.4g})",
+                                        o.tolerance, r.fixed.step_s, r.fixed.steps_per_period, r.fixed.parasitic_growth)
+                          : fmt::format("fixed RKF45, Δt = {:.6g} s = 1/{} of the stiffest period (54), "
+                                        "its parasitic growth ×{:.4g}",
+                                        r.fixed.step_s, r.fixed.steps_per_period, r.fixed.parasitic_growth),
+               r.steps.accepted, r.steps.rejected, r.steps.evaluations, r.steps.smallest_step, r.steps.largest_step);
+    fmt::print("tip        lateral peak {:.6g} mm, dominant {:.5g} Hz; axial mean {:.6g} mm (static {:.6g} mm), "
+               "peak {:.6g} mm, dominant {:.5g} Hz\n",
+               1e3 * s.peak_lateral_m, s.lateral_hz, 1e3 * s.mean_axial_m, 1e3 * r.static_tip_axial_m,
+               1e3 * s.peak_axial_m, s.axial_hz);
+    if (r.contact) {
+      fmt::print("casing     {} contacts, {:.6g} ms in all; peak force {:.6g} kN (F̄ = {:.4g}) at the deepest overlap "
+                 "{:.4g} µm of the penalty wall (k = {:.4g} N/m)\n",
+                 r.contact->closures, 1e3 * r.contact->contact_time_s, 1e-3 * r.contact->peak_force_n,
+                 r.contact->peak_force_n / BladeProperties(scene.blade).critical_load(), 1e6 * r.contact->max_overlap_m,
+                 r.contact->stiffness_n_m);
+    }
+    fmt::print("energy     balance E(t) − E(0) − W(t) within {:.3g} J{}\n", s.checks.energy_error_j,
+               s.checks.vibration_energy_j > 0 ? fmt::format(", {:.3g} of the vibration energy {:.4g} J",
+                                                             s.checks.energy_error_j / s.checks.vibration_energy_j,
+                                                             s.checks.vibration_energy_j)
+                                               : std::string(" (no vibration)"));
+    if (r.growth.omitted.empty()) {
+      fmt::print("growth     {:.7g} ± {:.2g} per revolution ({})\n", r.growth.growth, r.growth.error_estimate,
+                 !r.stopped ? "the state's change over each revolution, second half of the run"
+                 : r.continued_change.empty()
+                     ? "the last two ratios of the state's change over a revolution before the stop"
+                     : fmt::format("the state's change over the last whole revolution before the stop, carried on "
+                                   "by that revolution's propagators for {} revolutions", r.continued_change.size()));
+    } else {
+      fmt::print("growth     not reported: {}\n", r.growth.omitted);
+    }
+}
+
 }  // namespace
 
 Command register_transient(CLI::App& app) {
@@ -165,7 +248,16 @@ Command register_transient(CLI::App& app) {
   auto chart = std::make_shared<std::string>("png");
   auto name = std::make_shared<std::string>("transient");
   auto follower = std::make_shared<bool>(false);
+  auto method = std::make_shared<std::string>("fast");
+  auto max_deflection = std::make_shared<double>(0.1);
   add_scene_options(*command, *options);
+  command->add_option("--method", *method,
+                      "fast (default: exact free flight, Magnus through each contact, checked against RKF45; load.mode "
+                      "= \"force\" without --follower, else rkf45) or rkf45 (the paper's integrator)")
+      ->check(CLI::IsMember({"fast", "rkf45"}));
+  add_number_option(*command, "--max-deflection", *max_deflection, AllowedRange::above(0, 1),
+                    "the small-deflection range: the run stops where the lateral tip deflection exceeds this "
+                    "fraction of the length (default 0.1)");
   add_number_option(*command, "--revolutions", *revolutions, AllowedRange::above(0, 1e5),
                     "length of the run in revolutions (default 10)");
   add_number_option(*command, "--tolerance", *tolerance, AllowedRange::below(1e-13, 1),
@@ -180,6 +272,9 @@ Command register_transient(CLI::App& app) {
   command->add_option("--name", *name, "stem of the output files (default transient)");
   command->add_flag("--follower", *follower, "the tip load follows the tip slope (F cos ψ axially, −F sin ψ laterally)");
   return [=] {
+    if (*step == "fixed" && *method == "fast" && command->count("--method") > 0) {
+      throw InputError("--step fixed: the fixed step (54) is RKF45's; give --method rkf45 or leave out --method");
+    }
     if (command->count("--steps-per-period") > 0 && *step != "fixed") {
       throw InputError(fmt::format("--steps-per-period {}: must be in [8, 100000] (8 is the paper's (54)), with --step "
                                    "fixed", *steps_per_period));
@@ -198,13 +293,18 @@ Command register_transient(CLI::App& app) {
     o.tolerance = *tolerance;
     o.samples_per_revolution = *samples;
     o.follower = *follower;
+    o.method = *method == "fast" && *step == "adaptive" ? TransientMethod::fast : TransientMethod::rkf45;
+    o.max_lateral_over_length = *max_deflection;
     const bool for_people = options->output_format() == OutputFormat::table;
     o.progress = progress_reporter("transient: revolutions", for_people);
-    check_transient_work(model, scene, o);
+    if (o.method == TransientMethod::rkf45 || o.follower || scene.load.mode == LoadMode::clearance) {
+      check_transient_work(model, scene, o);
+    }
     const TransientResult r = run_transient(model, scene, o);
     const double sample_rate = *samples * scene.operation.speed_rad_s / two_pi;
     const Summary s = summarize(r, sample_rate);
-    if (const auto failure = transient_failure(s.checks, scene.blade.length)) {
+    const auto failure = transient_failure(s.checks, scene.blade.length);
+    if (failure && (failure->integration || !r.stopped)) {
       // A numerical failure (exit 1), not a result: no files, no numbers.
       const std::string what = o.adaptive ? fmt::format("--tolerance {:g}", *tolerance)
                                           : fmt::format("--step fixed, {} steps per stiffest period", r.fixed.steps_per_period);
@@ -222,39 +322,7 @@ Command register_transient(CLI::App& app) {
       case OutputFormat::json: fmt::print("{}", summary_json(scene, model, r, s, o.adaptive, false)); break;
       case OutputFormat::csv: fmt::print("{}", history_csv(r)); break;
       case OutputFormat::table:
-        fmt::print("scene      {}\nmodel      {}\n", scene.source, describe_model(model));
-        fmt::print("load       {}\n", load_description(scene));
-        fmt::print("steps      {}: {} accepted, {} rejected, {} RHS evaluations, step {:.3g} … {:.3g} s\n",
-                   o.adaptive ? fmt::format("adaptive RKF45, rtol {:g}, steps ≤ {:.4g} s (1/{} of the stiffest period: "
-                                            "its parasitic growth ≤ ×{:.4g})",
-                                            *tolerance, r.fixed.step_s, r.fixed.steps_per_period, r.fixed.parasitic_growth)
-                              : fmt::format("fixed RKF45, Δt = {:.6g} s = 1/{} of the stiffest period (54), "
-                                            "its parasitic growth ×{:.4g}",
-                                            r.fixed.step_s, r.fixed.steps_per_period, r.fixed.parasitic_growth),
-                   r.steps.accepted, r.steps.rejected, r.steps.evaluations, r.steps.smallest_step, r.steps.largest_step);
-        fmt::print("tip        lateral peak {:.6g} mm, dominant {:.5g} Hz; axial mean {:.6g} mm (static {:.6g} mm), "
-                   "peak {:.6g} mm, dominant {:.5g} Hz\n",
-                   1e3 * s.peak_lateral_m, s.lateral_hz, 1e3 * s.mean_axial_m, 1e3 * r.static_tip_axial_m,
-                   1e3 * s.peak_axial_m, s.axial_hz);
-        if (r.contact) {
-          fmt::print("casing     {} contacts, {:.6g} ms in all; peak force {:.6g} kN (F̄ = {:.4g}) at the deepest overlap "
-                     "{:.4g} µm of the penalty wall (k = {:.4g} N/m)\n",
-                     r.contact->closures, 1e3 * r.contact->contact_time_s, 1e-3 * r.contact->peak_force_n,
-                     r.contact->peak_force_n / BladeProperties(scene.blade).critical_load(), 1e6 * r.contact->max_overlap_m,
-                     r.contact->stiffness_n_m);
-        }
-        fmt::print("energy     balance E(t) − E(0) − W(t) within {:.3g} J{}\n", s.checks.energy_error_j,
-                   s.checks.vibration_energy_j > 0 ? fmt::format(", {:.3g} of the vibration energy {:.4g} J",
-                                                                 s.checks.energy_error_j / s.checks.vibration_energy_j,
-                                                                 s.checks.vibration_energy_j)
-                                                   : std::string(" (no vibration)"));
-        if (r.growth.omitted.empty()) {
-          fmt::print("growth     {:.6g} per revolution (± {:.2g} in ln; the state's change over each revolution, second half "
-                     "of the run)\n",
-                     r.growth.growth, r.growth.standard_error);
-        } else {
-          fmt::print("growth     not reported: {}\n", r.growth.omitted);
-        }
+        print_table(scene, model, o, r, s);
         fmt::print("written    {}\n", fmt::join(files, ", "));
     }
   };

@@ -1,0 +1,82 @@
+#pragma once
+// Exact stepping of the blade in load.mode = "force" (docs/theory.md §5.8): the equations of
+// transient.hpp are linear there, and between contacts their state matrix is constant.
+//
+// Coordinates: the undamped modes of the whole Ritz model at speed Ω, K(Ω) φ = ω² M φ with
+// Φᵀ M Φ = I, about the rotating equilibrium f_eq, scaled so that ½|y|² is the vibration energy:
+//
+//   f = f_eq + Φ D⁻¹ y₁,  ḟ = Φ y₂,  D = diag(ω_k),  z = [y₁; y₂; 1],
+//
+//   ż = (A_free + F(t) B) z,   A_free = [[0, D, 0], [−D, −Ĉ, 0], [0, 0, 0]],
+//                              B = [[0, 0, 0], [−Ĝ D⁻¹, 0, b], [0, 0, 0]],
+//
+// Ĉ = Φᵀ(C_D + C_G)Φ, Ĝ = Φᵀ G Φ, b = Φᵀ(p_u − G f_eq + μ cos β p_v): the tip load's axial push,
+// its geometric stiffness at the equilibrium and the friction, all proportional to F. The
+// friction is −μ|F| cos β · tanh(v_rel/ε) (transient.hpp) with tanh = 1: the tip slides past the
+// casing at v_rel ≈ ΩR, so the sign never changes; the stepper checks v_rel ≥ 20ε (tanh = 1 to
+// the unit roundoff) at every sample in contact and refuses otherwise.
+//
+// Free flight (F = 0) is stepped by e^{A_free h}, one exponential per distinct interval h, exact
+// to rounding. A contact piece is integrated by the sixth-order Magnus propagator (ltp/magnus.hpp)
+// with its steps doubled until the propagator has converged (ltp/step_doubling.hpp), once per
+// distinct piece: an endless train reuses the propagators of its first pulse.
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "bladestab/blade/model.hpp"
+#include "bladestab/scene/scene.hpp"
+#include "bladestab/stability/periodic_load.hpp"
+
+namespace bladestab {
+
+struct ExactSteppingStatistics {
+  int contact_pieces = 0;        // distinct contact pieces integrated
+  long magnus_steps = 0;         // Magnus steps over every level of every ladder
+  int free_exponentials = 0;     // distinct free-flight intervals
+  long intervals = 0;            // intervals stepped
+  double contact_error = 0;      // largest step-doubling bound of a piece propagator (relative)
+};
+
+class ExactStepper {
+public:
+  // `tolerance` bounds each contact piece's propagator, relative. InputError where the pulses have
+  // no frequency.
+  ExactStepper(const BladeModel& model, const Scene& scene, double tolerance);
+
+  // z over [a, b] inside one pulse period, with no pulse edge inside (a contact piece or free
+  // flight); `work` gains the damping's work in free flight (Van Loan's integral, exact). True
+  // for a contact piece.
+  bool step(double a, double b, Eigen::VectorXd& z, double& work);
+
+  // [f; ḟ] of z, and z of [f; ḟ].
+  Eigen::VectorXd physical(const Eigen::VectorXd& z) const;
+  Eigen::VectorXd modal(const Eigen::VectorXd& x) const;
+
+  // The tip's speed past the casing, ΩR + cos β v̇(L), at the state z.
+  double sliding_speed(const Eigen::VectorXd& z) const;
+  // The pulse train; where its profile has a kink inside the contact (triangular: at t_c/2).
+  const PulseTrain& pulses() const { return pulses_; }
+  std::vector<double> kinks() const;
+  const ExactSteppingStatistics& statistics() const { return stats_; }
+
+private:
+  struct Piece {
+    double start, end;  // offsets in the pulse, or (0, h) for free flight
+    Eigen::MatrixXd map, work;
+  };
+  const Piece& contact_piece(double start, double end);
+  const Piece& free_piece(double h);
+
+  int n_, dofs_;
+  PulseTrain pulses_;
+  double tolerance_, cos_beta_, mu_cos_beta_, rim_speed_;
+  bool damped_;
+  Eigen::MatrixXd Phi_, A_free_, B_, Q_damping_;
+  Eigen::VectorXd omega_, equilibrium_;
+  Eigen::RowVectorXd tip_lateral_;
+  std::vector<Piece> contact_, free_;
+  ExactSteppingStatistics stats_;
+};
+
+}  // namespace bladestab
