@@ -34,8 +34,9 @@ void print_table(const Scene& scene, const std::vector<CrosscheckPoint>& result,
   }
   fmt::print("\nTransient growth: of the state's change over each whole revolution, fitted over the second half of\n"
              "the run (the forced periodic response cancels in the change), its estimate twice the fit's standard\n"
-             "error; fast method on the whole Ritz model, checked against RKF45. Floquet: auto method for the cosine\n"
-             "load, monodromy for the pulse series.\n");
+             "error plus the contact propagators' own. The transients run the fast method on the reduced model the\n"
+             "Floquet multipliers use (model.reduction), so both share its basis and reduction error and differ in\n"
+             "their methods only. Floquet: auto method for the cosine load, monodromy for the pulse series.\n");
 }
 
 }  // namespace

@@ -13,7 +13,9 @@ namespace {
 
 // Growth per revolution (TransientResult::growth: the change of the state over each revolution)
 // of a transient started 1 µm off the rotating equilibrium in the lowest mode (so a parametric
-// instability has a seed), of the linear equations: not stopped at the small-deflection range.
+// instability has a seed), of the linear equations: not stopped at the small-deflection range. The
+// fast method on the reduced model the Floquet multipliers use (the scene's model.reduction), so
+// that the two share its basis and reduction and differ in their methods only.
 GrowthFit transient_growth(const BladeModel& model, const Scene& scene, double revolutions) {
   const double speed = scene.operation.speed_rad_s;
   const int n = model.layout.size();
@@ -25,6 +27,7 @@ GrowthFit transient_growth(const BladeModel& model, const Scene& scene, double r
   o.tolerance = 1e-8;
   o.initial_state = x;
   o.max_lateral_over_length = HUGE_VAL;
+  o.reduction = scene.model.reduction;
   return run_transient(model, scene, o).growth;
 }
 
@@ -55,7 +58,7 @@ std::vector<CrosscheckPoint> crosscheck(const Scene& base, const CrosscheckOptio
     cosine.load.approximation = LoadApproximation::cosine;
     cosine.load.profile = PulseProfile::cosine;
     cosine.load.contact_time_rev = 1.0 / cosine.load.pulses_per_rev;
-    const PeriodicSystem cosine_system = periodic_system(model, cosine, load_series(cosine));
+    const PeriodicSystem cosine_system = periodic_system(model, cosine, load_series(cosine), base.model.reduction);
     const FloquetResult fc = floquet_multipliers(cosine_system, {FloquetMethod::automatic, 0, o.tolerance});
     p.floquet_cosine = fc.max_abs_multiplier;
     p.floquet_cosine_error = fc.error_estimate;
@@ -73,7 +76,7 @@ std::vector<CrosscheckPoint> crosscheck(const Scene& base, const CrosscheckOptio
     Scene pulse = scene;
     pulse.load.approximation = LoadApproximation::fourier;
     const LoadSeries series = load_series(pulse, 1e-3, 400);
-    const FloquetResult fp = floquet_multipliers(periodic_system(model, pulse, series),
+    const FloquetResult fp = floquet_multipliers(periodic_system(model, pulse, series, base.model.reduction),
                                                  {FloquetMethod::monodromy, 0, o.tolerance});
     p.floquet_pulse = fp.max_abs_multiplier;
     p.floquet_pulse_error = fp.error_estimate;

@@ -10,6 +10,7 @@
 #include "bladestab/base/input_error.hpp"
 #include "bladestab/base/numerical_error.hpp"
 #include "bladestab/blade/damping.hpp"
+#include "bladestab/blade/reduction.hpp"
 #include "bladestab/blade/undamped_modes.hpp"
 #include "bladestab/ltp/magnus.hpp"
 #include "bladestab/ltp/step_doubling.hpp"
@@ -30,22 +31,36 @@ double map_distance(const Eigen::MatrixXd& X, const Eigen::MatrixXd& Y) {
 
 bool same_time(double a, double b, double scale) { return std::abs(a - b) <= 1e-12 * scale; }
 
+// Φ and ω²: the modes of the whole model, or of the reduced one in the span of its basis V
+// (Vᵀ M V = I, so Φ = V Q with Q the eigenvectors of Vᵀ K V is M-orthonormal).
+UndampedModes kept_modes(const BladeModel& model, const Scene& scene, const Eigen::MatrixXd& C_D, double peak_n,
+                         const std::optional<ReductionSpec>& reduction) {
+  const double speed = scene.operation.speed_rad_s;
+  if (!reduction) return undamped_modes(model, speed);
+  const ReducedSystem reduced = reduce(model, speed, C_D, -peak_n, *reduction);
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(reduced.K);
+  return {eigen.eigenvalues(), reduced.basis * eigen.eigenvectors()};
+}
+
 }  // namespace
 
-ExactStepper::ExactStepper(const BladeModel& model, const Scene& scene, double tolerance)
-    : n_(model.layout.size()), dofs_(2 * model.layout.size()), pulses_(pulse_train(scene)), tolerance_(tolerance) {
+ExactStepper::ExactStepper(const BladeModel& model, const Scene& scene, double tolerance,
+                           const std::optional<ReductionSpec>& reduction)
+    : pulses_(pulse_train(scene)), tolerance_(tolerance) {
   if (!pulses_.frequency_known) {
     throw InputError("operation.speed_rad_s = 0: the pulses have no frequency; give load.pulse_frequency_hz");
   }
   const double speed = scene.operation.speed_rad_s;
-  const UndampedModes modes = undamped_modes(model, speed);
+  const Eigen::MatrixXd C_D = damping_matrix(model, scene.damping, speed);
+  const UndampedModes modes = kept_modes(model, scene, C_D, pulses_.peak_n, reduction);
   if (!(modes.omega2(0) > 0)) {
     throw NumericalError(fmt::format("exact stepping: K(Ω) at {} rad/s is not positive definite", speed));
   }
+  n_ = static_cast<int>(modes.omega2.size()), dofs_ = 2 * n_;
   omega_ = modes.omega2.cwiseSqrt();
   Phi_ = modes.shapes;
-  equilibrium_ = rotating_equilibrium(model, speed).head(n_);
-  const Eigen::MatrixXd C_D = damping_matrix(model, scene.damping, speed);
+  PhiT_M_ = Phi_.transpose() * model.M;
+  equilibrium_ = rotating_equilibrium(model, speed).head(model.layout.size());
   damped_ = !C_D.isZero(0);
   const Eigen::MatrixXd C_hat = Phi_.transpose() * (C_D + model.gyroscopic(speed)) * Phi_;
   const Eigen::MatrixXd G_hat = Phi_.transpose() * model.G * Phi_;
@@ -74,18 +89,18 @@ std::vector<double> ExactStepper::kinks() const {
 }
 
 Eigen::VectorXd ExactStepper::physical(const Eigen::VectorXd& z) const {
-  Eigen::VectorXd x(dofs_);
-  x.head(n_) = equilibrium_ + Phi_ * z.head(n_).cwiseQuotient(omega_);
-  x.tail(n_) = Phi_ * z.segment(n_, n_);
+  const Eigen::Index n = equilibrium_.size();
+  Eigen::VectorXd x(2 * n);
+  x.head(n) = equilibrium_ + Phi_ * z.head(n_).cwiseQuotient(omega_);
+  x.tail(n) = Phi_ * z.segment(n_, n_);
   return x;
 }
 
 Eigen::VectorXd ExactStepper::modal(const Eigen::VectorXd& x) const {
-  // η = Φ⁻¹ (f − f_eq) by least squares on the square, well-conditioned Φ (Φᵀ M Φ = I).
-  const Eigen::PartialPivLU<Eigen::MatrixXd> lu(Phi_);
+  const Eigen::Index n = equilibrium_.size();
   Eigen::VectorXd z(dofs_ + 1);
-  z.head(n_) = omega_.cwiseProduct(lu.solve(Eigen::VectorXd(x.head(n_) - equilibrium_)));
-  z.segment(n_, n_) = lu.solve(Eigen::VectorXd(x.segment(n_, n_)));
+  z.head(n_) = omega_.cwiseProduct(PhiT_M_ * (x.head(n) - equilibrium_));
+  z.segment(n_, n_) = PhiT_M_ * x.segment(n, n);
   z(dofs_) = 1;
   return z;
 }

@@ -72,16 +72,20 @@ void check_sliding(const ExactStepper& stepper, const Eigen::VectorXd& z, double
 std::vector<double> continued_changes(ExactStepper& stepper, Eigen::VectorXd change, const std::vector<Landing>& revolution,
                                       double start, int count) {
   std::vector<double> norms;
-  double ignored_work = 0;
-  for (int k = 0; k < count; ++k) {
+  double ignored_work = 0, scale = change.norm() / std::sqrt(2.0);
+  change /= scale;
+  // Each revolution from a unit change, its norm times the norm before: no overflow until the
+  // product passes 1e300, where the continuation ends.
+  for (int k = 0; k < count && scale < 1e300; ++k) {
     double t = start;
     for (const Landing& l : revolution) {
       stepper.step(t, l.t, change, ignored_work);
       t = l.t;
     }
-    norms.push_back(change.norm() / std::sqrt(2.0));
-    // Rescaled so that a fast growth cannot overflow; the ratios are what is fitted.
-    if (norms.back() > 1e100) change /= norms.back(), norms.back() = 1;
+    const double norm = change.norm();
+    change /= norm;
+    scale *= norm;
+    norms.push_back(scale);
   }
   return norms;
 }
@@ -92,7 +96,7 @@ TransientResult run_fast_transient(const BladeModel& model, const Scene& scene, 
                                    double check_time, Eigen::VectorXd& check_state) {
   const int n = model.layout.size();
   const TransientSystem system(model, scene, o);
-  ExactStepper stepper(model, scene, o.tolerance);
+  ExactStepper stepper(model, scene, o.tolerance, o.reduction);
   TransientResult result;
   result.method = TransientMethod::fast;
   RunStart begin = run_start(model, scene, system, o, result);

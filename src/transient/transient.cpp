@@ -199,7 +199,7 @@ TransientResult run_transient(const BladeModel& model, const Scene& scene, const
     r.growth = fit_run_growth(r);
     return r;
   }
-  const double check_time = o.self_check ? check_stretch(scene, o) : 0;
+  const double check_time = o.self_check && !o.reduction ? check_stretch(scene, o) : 0;
   Eigen::VectorXd check_state;
   TransientResult r = detail::run_fast_transient(model, scene, o, check_time, check_state);
   if (check_state.size() > 0) {

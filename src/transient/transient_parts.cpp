@@ -30,6 +30,7 @@ std::optional<TransientStop> Recorder::operator()(double t, const Eigen::VectorX
       0.5 * v.dot(model_.M * v), E + (casing ? casing->energy(t, f) : 0), W, E - initial_energy_ - W, applied.axial,
       applied.lateral});
   const double L = model_.blade.L;
+  if (std::isinf(max_lateral_m_)) return std::nullopt;
   // Written as !(x ≤ limit) so that NaN stops the run too.
   if (!(std::abs(sample.tip_lateral_m) <= max_lateral_m_)) {
     return TransientStop{revolutions, fmt::format("the lateral tip deflection reached {:.4g} m = {:.4g} L, beyond the "

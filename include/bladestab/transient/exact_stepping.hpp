@@ -3,7 +3,8 @@
 // transient.hpp are linear there, and between contacts their state matrix is constant.
 //
 // Coordinates: the undamped modes of the whole Ritz model at speed Ω, K(Ω) φ = ω² M φ with
-// Φᵀ M Φ = I, about the rotating equilibrium f_eq, scaled so that ½|y|² is the vibration energy:
+// Φᵀ M Φ = I (or those of a reduced model, reduction.hpp: the modes of Vᵀ K(Ω) V in the span of
+// its basis V), about the rotating equilibrium f_eq, scaled so that ½|y|² is the vibration energy:
 //
 //   f = f_eq + Φ D⁻¹ y₁,  ḟ = Φ y₂,  D = diag(ω_k),  z = [y₁; y₂; 1],
 //
@@ -20,6 +21,7 @@
 // to rounding. A contact piece is integrated by the sixth-order Magnus propagator (ltp/magnus.hpp)
 // with its steps doubled until the propagator has converged (ltp/step_doubling.hpp), once per
 // distinct piece: an endless train reuses the propagators of its first pulse.
+#include <optional>
 #include <vector>
 
 #include <Eigen/Dense>
@@ -40,16 +42,18 @@ struct ExactSteppingStatistics {
 
 class ExactStepper {
 public:
-  // `tolerance` bounds each contact piece's propagator, relative. InputError where the pulses have
-  // no frequency.
-  ExactStepper(const BladeModel& model, const Scene& scene, double tolerance);
+  // `tolerance` bounds each contact piece's propagator, relative; `reduction`: on that reduced model
+  // (for the load's range 0 … −F_max) instead of the whole one. InputError where the pulses have no
+  // frequency.
+  ExactStepper(const BladeModel& model, const Scene& scene, double tolerance,
+               const std::optional<ReductionSpec>& reduction = std::nullopt);
 
   // z over [a, b] inside one pulse period, with no pulse edge inside (a contact piece or free
   // flight); `work` gains the damping's work in free flight (Van Loan's integral, exact). True
   // for a contact piece.
   bool step(double a, double b, Eigen::VectorXd& z, double& work);
 
-  // [f; ḟ] of z, and z of [f; ḟ].
+  // [f; ḟ] of z, and z of [f; ḟ] (its M-orthogonal projection on the modes kept).
   Eigen::VectorXd physical(const Eigen::VectorXd& z) const;
   Eigen::VectorXd modal(const Eigen::VectorXd& x) const;
 
@@ -68,11 +72,11 @@ private:
   const Piece& contact_piece(double start, double end);
   const Piece& free_piece(double h);
 
-  int n_, dofs_;
+  int n_, dofs_;  // modes kept, and 2n_
   PulseTrain pulses_;
   double tolerance_, cos_beta_, mu_cos_beta_, rim_speed_;
   bool damped_;
-  Eigen::MatrixXd Phi_, A_free_, B_, Q_damping_;
+  Eigen::MatrixXd Phi_, PhiT_M_, A_free_, B_, Q_damping_;
   Eigen::VectorXd omega_, equilibrium_;
   Eigen::RowVectorXd tip_lateral_;
   std::vector<Piece> contact_, free_;

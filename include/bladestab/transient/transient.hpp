@@ -45,6 +45,9 @@ struct TransientOptions {
   // fast: check the history against RKF45 at rtol 1e-10 through the first contact and a stretch of
   // free flight after it (a NumericalError when they differ by more than the stated error).
   bool self_check = true;
+  // fast: on this reduced model (reduction.hpp) instead of the whole Ritz model; without the
+  // self-check (RKF45 runs the whole model).
+  std::optional<ReductionSpec> reduction;
   double revolutions = 10;
   bool adaptive = true;
   int steps_per_period = 0;  // fixed mode: steps per period of the stiffest mode (≥ 8, (54)); 0 = choose
@@ -53,7 +56,8 @@ struct TransientOptions {
   double friction_velocity = 1e-3;              // ε of the regularized sign [m/s]
   // The small-deflection range: the run stops at the first sample whose lateral tip deflection
   // exceeds this fraction of the length (or whose axial tip deflection changes by more than
-  // TransientChecks::max_axial_strain of it).
+  // TransientChecks::max_axial_strain of it). Infinite: never stop (the linear equations' own
+  // response, for growth rates).
   double max_lateral_over_length = 0.1;
   bool follower = false;  // the tip load follows the tip slope ψ = v'(L): F cos ψ axially, −F sin ψ laterally
   std::optional<Eigen::VectorXd> initial_state; // x = [f; ḟ]; default: the steady rotating equilibrium
