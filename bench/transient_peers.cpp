@@ -21,6 +21,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <fstream>
 #include <functional>
 #include <iostream>
 #include <string>
@@ -36,6 +37,7 @@
 #include <sundials/sundials_context.h>
 
 #include "support/blas_threads.hpp"
+#include "bladestab/blade/damping.hpp"
 #include "bladestab/blade/model.hpp"
 #include "bladestab/stability/periodic_load.hpp"
 #include "bladestab/ltp/rkf45.hpp"
@@ -255,6 +257,33 @@ double tip_error(const Problem& p, const Run& run, const Run& reference) {
 
 std::string json_number(double v) { return std::isfinite(v) ? fmt::format("{:.6g}", v) : "null"; }
 
+// The scene's transient equations for bench/scipy_transient.py, every matrix premultiplied by M⁻¹
+// as TransientSystem does: f̈ = c − K f − C ḟ + F(t) (p_u − G f) + μ F(t) cos β · p_v (the friction
+// with its sign fixed: the tip slides at ΩR), F(t) the half-sine train. JSON, 17 digits.
+void export_system(const Scene& scene, const BladeModel& model, const std::string& path) {
+  const double speed = scene.operation.speed_rad_s;
+  const Eigen::LLT<Eigen::MatrixXd> mass(model.M);
+  const Eigen::MatrixXd C = damping_matrix(model, scene.damping, speed) + model.gyroscopic(speed);
+  const PulseTrain pulses = pulse_train(scene);
+  if (pulses.profile != PulseProfile::half_sine) throw std::runtime_error("--export-system: half-sine pulses only");
+  const auto matrix = [](const Eigen::MatrixXd& a) {
+    std::vector<std::string> rows;
+    for (Eigen::Index i = 0; i < a.rows(); ++i) rows.push_back(fmt::format("[{:.17g}]", fmt::join(a.row(i), ", ")));
+    return fmt::format("[{}]", fmt::join(rows, ", "));
+  };
+  const Eigen::VectorXd friction = scene.load.friction * std::cos(model.blade.beta_rad) * model.tip_lateral.transpose();
+  std::ofstream out(path);
+  out << fmt::format(
+      "{{\"n\": {}, \"K\": {}, \"C\": {}, \"G\": {}, \"c\": {}, \"p_u\": {}, \"p_friction\": {}, "
+      "\"equilibrium\": {}, \"tip_lateral\": {}, \"peak_n\": {:.17g}, \"contact_s\": {:.17g}, \"period_s\": {:.17g}, "
+      "\"revolution_s\": {:.17g}}}\n",
+      model.layout.size(), matrix(mass.solve(model.stiffness(speed))), matrix(mass.solve(C)), matrix(mass.solve(model.G)),
+      matrix(mass.solve(model.steady_load(speed)).transpose()),
+      matrix(mass.solve(Eigen::VectorXd(model.tip_axial.transpose())).transpose()),
+      matrix(mass.solve(friction).transpose()), matrix(rotating_equilibrium(model, speed).transpose()),
+      matrix(model.tip_lateral), pulses.peak_n, pulses.contact_time_s, pulses.period_s, two_pi / speed);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -274,9 +303,15 @@ int main(int argc, char** argv) {
   app.add_option("--repeats", repeats);
   app.add_option("--budget-s", budget_s, "fewer repeats (at least 1) where the repeats of one run would take longer");
   app.add_option("--reference-rtol", reference_rtol);
+  std::string export_path;
+  app.add_option("--export-system", export_path, "write the equations for bench/scipy_transient.py and stop");
   CLI11_PARSE(app, argc, argv);
   try {
     const Scene scene = load_scene(scene_path, overrides);
+    if (!export_path.empty()) {
+      export_system(scene, assemble_model(scene), export_path);
+      return 0;
+    }
     const Problem p = make_problem(scene, revolutions);
     const auto clock = [] { return std::chrono::steady_clock::now(); };
     const auto t0 = clock();
