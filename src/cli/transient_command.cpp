@@ -8,6 +8,7 @@
 #include "bladestab/transient/response_analysis.hpp"
 #include "bladestab/transient/transient.hpp"
 #include "bladestab/transient/transient_checks.hpp"
+#include "bladestab/transient/transient_error.hpp"
 #include "chart.hpp"
 #include "commands.hpp"
 #include "json_output.hpp"
@@ -138,8 +139,19 @@ std::string load_description(const Scene& scene) {
                      l.contact_time_rev, l.friction);
 }
 
+// JSON error_estimate (each quantity's whole estimate) and error_budget (its parts).
+void error_fields(Json& json, const TransientErrorEstimate& e) {
+  json["error_reference_terms"] = e.reference_terms;
+  for (const TransientQuantity& q : e.quantities) {
+    json["error_estimate"][q.name] = q.budget.total();
+    json["error_budget"][q.name] = {{"value", q.value},           {"basis", q.budget.basis},
+                                    {"reduction", q.budget.reduction}, {"load", q.budget.load},
+                                    {"method", q.budget.method},       {"unbounded", q.budget.unbounded}};
+  }
+}
+
 std::string summary_json(const Scene& scene, const BladeModel& model, const TransientResult& r, const Summary& s,
-                         bool adaptive, bool with_series) {
+                         bool adaptive, bool with_series, const std::optional<TransientErrorEstimate>& error) {
   Json json;
   json["title"] = fmt::format("{} — {}", scene_title(scene), load_description(scene));
   json["scene"] = scene.source;
@@ -147,6 +159,7 @@ std::string summary_json(const Scene& scene, const BladeModel& model, const Tran
   json["speed_rad_s"] = scene.operation.speed_rad_s;
   json["revolutions_run"] = r.samples.back().revolutions;
   summary_fields(json, r, s, adaptive);
+  if (error) error_fields(json, *error);
   if (with_series) {  // what the chart draws
     json["revolutions"] = column(r, &TransientSample::revolutions);
     json["tip_lateral_m"] = column(r, &TransientSample::tip_lateral_m);
@@ -191,6 +204,16 @@ void print_method(const TransientOptions& o, const TransientResult& r) {
                r.self_check->allowed, r.self_check->seconds);
   }
   if (r.stopped) fmt::print("stopped    at revolution {:.4g}: {}\n", r.stopped->revolution, r.stopped->reason);
+}
+
+void print_error(const TransientErrorEstimate& e) {
+  std::vector<std::string> parts;
+  for (const TransientQuantity& q : e.quantities) {
+    parts.push_back(fmt::format("{} {:.6g} ± {:.2g} (basis {:.2g}, method {:.2g}{})", q.name, q.value, q.budget.total(),
+                                q.budget.basis, q.budget.method, q.budget.unbounded.empty() ? "" : ", not all bounded"));
+  }
+  fmt::print("error      against the continuum model (basis: against {} terms): {}\n", e.reference_terms,
+             fmt::join(parts, "; "));
 }
 
 void print_table(const Scene& scene, const BladeModel& model, const TransientOptions& o, const TransientResult& r,
@@ -250,7 +273,13 @@ Command register_transient(CLI::App& app) {
   auto follower = std::make_shared<bool>(false);
   auto method = std::make_shared<std::string>("fast");
   auto max_deflection = std::make_shared<double>(0.1);
+  auto threads = std::make_shared<int>();
+  auto with_error = std::make_shared<bool>(false);
   add_scene_options(*command, *options);
+  command->add_flag("--error-estimate", *with_error,
+                    "estimate each reported quantity's error against the continuum model (runs the same transient "
+                    "on a richer Ritz model; JSON error_estimate, error_budget)");
+  add_threads_option(*command, *threads);
   command->add_option("--method", *method,
                       "fast (default: exact free flight, Magnus through each contact, checked against RKF45; load.mode "
                       "= \"force\" without --follower, else rkf45) or rkf45 (the paper's integrator)")
@@ -295,6 +324,7 @@ Command register_transient(CLI::App& app) {
     o.follower = *follower;
     o.method = *method == "fast" && *step == "adaptive" ? TransientMethod::fast : TransientMethod::rkf45;
     o.max_lateral_over_length = *max_deflection;
+    o.threads = *threads;
     const bool for_people = options->output_format() == OutputFormat::table;
     o.progress = progress_reporter("transient: revolutions", for_people);
     if (o.method == TransientMethod::rkf45 || o.follower || scene.load.mode == LoadMode::clearance) {
@@ -316,13 +346,16 @@ Command register_transient(CLI::App& app) {
               : "the response outgrows the model: run fewer --revolutions or a smaller load"));
     }
 
+    std::optional<TransientErrorEstimate> error;
+    if (*with_error) error = estimate_transient_error(scene, o, r);
     const std::vector<std::string> files = write_outputs(
-        *out, *name, {{*name + ".csv", history_csv(r)}}, summary_json(scene, model, r, s, o.adaptive, true), "transient", *chart);
+        *out, *name, {{*name + ".csv", history_csv(r)}}, summary_json(scene, model, r, s, o.adaptive, true, error), "transient", *chart);
     switch (options->output_format()) {
-      case OutputFormat::json: fmt::print("{}", summary_json(scene, model, r, s, o.adaptive, false)); break;
+      case OutputFormat::json: fmt::print("{}", summary_json(scene, model, r, s, o.adaptive, false, error)); break;
       case OutputFormat::csv: fmt::print("{}", history_csv(r)); break;
       case OutputFormat::table:
         print_table(scene, model, o, r, s);
+        if (error) print_error(*error);
         fmt::print("written    {}\n", fmt::join(files, ", "));
     }
   };

@@ -14,6 +14,7 @@
 #include "bladestab/blade/undamped_modes.hpp"
 #include "bladestab/ltp/magnus.hpp"
 #include "bladestab/ltp/step_doubling.hpp"
+#include "support/work_pool.hpp"
 #include "bladestab/transient/transient.hpp"
 
 namespace bladestab {
@@ -134,10 +135,27 @@ const ExactStepper::Piece& ExactStepper::free_piece(double h) {
   return free_.back();
 }
 
-const ExactStepper::Piece& ExactStepper::contact_piece(double start, double end) {
+const ExactStepper::Piece* ExactStepper::cached_contact(double start, double end) const {
   for (const Piece& p : contact_) {
-    if (same_time(p.start, start, pulses_.period_s) && same_time(p.end, end, pulses_.period_s)) return p;
+    if (same_time(p.start, start, pulses_.period_s) && same_time(p.end, end, pulses_.period_s)) return &p;
   }
+  return nullptr;
+}
+
+const ExactStepper::Piece& ExactStepper::keep(Integrated integrated) {
+  stats_.magnus_steps += integrated.steps;
+  stats_.contact_error = std::max(stats_.contact_error, integrated.error);
+  ++stats_.contact_pieces;
+  contact_.push_back(std::move(integrated.piece));
+  return contact_.back();
+}
+
+const ExactStepper::Piece& ExactStepper::contact_piece(double start, double end) {
+  if (const Piece* p = cached_contact(start, end)) return *p;
+  return keep(integrate_contact(start, end));
+}
+
+ExactStepper::Integrated ExactStepper::integrate_contact(double start, double end) const {
   const std::function<double(double)> load = [this](double tau) { return pulses_.force(tau); };
   // From 1/32 of the count where h‖A‖₁ ≤ 2 (the exponential takes the stiff modes exactly).
   const double norm = A_free_.cwiseAbs().colwise().sum().maxCoeff() +
@@ -145,10 +163,11 @@ const ExactStepper::Piece& ExactStepper::contact_piece(double start, double end)
   const double safe = std::max(1.0, norm * (end - start) / 2);
   const int first = 1 << static_cast<int>(std::max(0.0, std::ceil(std::log2(safe / 32))));
   StepDoubling ladder(first, 1 << 16, static_cast<int>(std::min(safe, 1e9)));
+  Integrated result;
   Eigen::MatrixXd previous;
   for (int steps = first; steps <= ladder.last(); steps *= 2) {
     Eigen::MatrixXd map = magnus_propagator(A_free_, B_, load, start, end, steps);
-    stats_.magnus_steps += steps;
+    result.steps += steps;
     if (!map.allFinite()) {
       ladder.start();
       previous.resize(0, 0);
@@ -156,10 +175,9 @@ const ExactStepper::Piece& ExactStepper::contact_piece(double start, double end)
     }
     if (previous.size() > 0) {
       if (const std::optional<double> error = ladder.judge(steps, map_distance(map, previous), tolerance_, 1e-15)) {
-        stats_.contact_error = std::max(stats_.contact_error, *error);
-        ++stats_.contact_pieces;
-        contact_.push_back({start, end, std::move(map), {}});
-        return contact_.back();
+        result.error = *error;
+        result.piece = {start, end, std::move(map), {}};
+        return result;
       }
     }
     previous = std::move(map);
@@ -168,15 +186,35 @@ const ExactStepper::Piece& ExactStepper::contact_piece(double start, double end)
                                    "within {} Magnus steps", start, end, tolerance_, ladder.last()));
 }
 
-bool ExactStepper::step(double a, double b, Eigen::VectorXd& z, double& work) {
-  ++stats_.intervals;
+std::optional<std::pair<double, double>> ExactStepper::contact_offsets(double a, double b) const {
   const double mid = 0.5 * (a + b);
   const std::optional<double> tau = pulses_.time_in_pulse(mid);
-  if (tau) {
-    const double pulse_start = mid - *tau;
-    const Piece& piece = contact_piece(std::max(0.0, a - pulse_start),
-                                       std::min(pulses_.contact_time_s, b - pulse_start));
-    z = piece.map * z;
+  if (!tau) return std::nullopt;
+  const double pulse_start = mid - *tau;
+  return std::pair{std::max(0.0, a - pulse_start), std::min(pulses_.contact_time_s, b - pulse_start)};
+}
+
+void ExactStepper::prepare(const std::vector<double>& landings, int threads) {
+  std::vector<std::pair<double, double>> missing;
+  for (std::size_t k = 1; k < landings.size(); ++k) {
+    if (!(landings[k] > landings[k - 1])) continue;
+    const auto offsets = contact_offsets(landings[k - 1], landings[k]);
+    if (!offsets || cached_contact(offsets->first, offsets->second)) continue;
+    const bool listed = std::any_of(missing.begin(), missing.end(), [&](const std::pair<double, double>& m) {
+      return same_time(m.first, offsets->first, pulses_.period_s) && same_time(m.second, offsets->second, pulses_.period_s);
+    });
+    if (!listed) missing.push_back(*offsets);
+  }
+  std::vector<Integrated> pieces = run_indexed(missing.size(), threads, [&](std::size_t i) {
+    return integrate_contact(missing[i].first, missing[i].second);
+  });
+  for (Integrated& piece : pieces) keep(std::move(piece));
+}
+
+bool ExactStepper::step(double a, double b, Eigen::VectorXd& z, double& work) {
+  ++stats_.intervals;
+  if (const auto offsets = contact_offsets(a, b)) {
+    z = contact_piece(offsets->first, offsets->second).map * z;
     return true;
   }
   const Piece& piece = free_piece(b - a);

@@ -107,6 +107,9 @@ TransientResult run_fast_transient(const BladeModel& model, const Scene& scene, 
   const bool friction = scene.load.friction != 0;
   const int total_revs = static_cast<int>(std::ceil(o.revolutions));
   const std::vector<Landing> all = landings(stepper, begin, o, check_time);
+  std::vector<double> times{0};
+  for (const Landing& l : all) times.push_back(l.t);
+  stepper.prepare(times, o.threads);
   for (const Landing& l : all) {
     if (l.t <= t) continue;  // the start
     const double energy_before = system.energy(x);

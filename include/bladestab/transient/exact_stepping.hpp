@@ -48,6 +48,11 @@ public:
   ExactStepper(const BladeModel& model, const Scene& scene, double tolerance,
                const std::optional<ReductionSpec>& reduction = std::nullopt);
 
+  // Integrates the contact pieces of the intervals [t_k, t_{k+1}] of `landings` (absolute times)
+  // that are not yet known, on up to `threads` threads (the pieces are independent; each comes out
+  // the same on any number of threads).
+  void prepare(const std::vector<double>& landings, int threads);
+
   // z over [a, b] inside one pulse period, with no pulse edge inside (a contact piece or free
   // flight); `work` gains the damping's work in free flight (Van Loan's integral, exact). True
   // for a contact piece.
@@ -69,7 +74,21 @@ private:
     double start, end;  // offsets in the pulse, or (0, h) for free flight
     Eigen::MatrixXd map, work;
   };
+  // The contact piece [start, end] of a pulse (offsets), from the cache or integrated now.
   const Piece& contact_piece(double start, double end);
+  // A contact piece's propagator by step doubling, with its Magnus steps and error bound; touches
+  // no member (prepare runs it side by side).
+  struct Integrated {
+    Piece piece;
+    long steps = 0;
+    double error = 0;
+  };
+  Integrated integrate_contact(double start, double end) const;
+  // The cached contact piece [start, end], if any.
+  const Piece* cached_contact(double start, double end) const;
+  // The contact piece offsets of [a, b] (absolute), if it lies in a contact.
+  std::optional<std::pair<double, double>> contact_offsets(double a, double b) const;
+  const Piece& keep(Integrated integrated);
   const Piece& free_piece(double h);
 
   int n_, dofs_;  // modes kept, and 2n_

@@ -48,6 +48,7 @@ struct TransientOptions {
   // fast: on this reduced model (reduction.hpp) instead of the whole Ritz model; without the
   // self-check (RKF45 runs the whole model).
   std::optional<ReductionSpec> reduction;
+  int threads = 1;  // fast: the contact pieces integrated side by side
   double revolutions = 10;
   bool adaptive = true;
   int steps_per_period = 0;  // fixed mode: steps per period of the stiffest mode (≥ 8, (54)); 0 = choose
