@@ -5,16 +5,40 @@
 
 #include "bladestab/transient/crosscheck.hpp"
 #include "bladestab/base/input_error.hpp"
+#include "bladestab/base/constants.hpp"
+#include "bladestab/blade/reduction.hpp"
 #include "bladestab/scene/scene_limits.hpp"
+#include "bladestab/transient/transient.hpp"
 #include "commands.hpp"
 #include "finite_results.hpp"
 #include "json_output.hpp"
 #include "number_options.hpp"
 #include "options.hpp"
 #include "progress.hpp"
+#include "work_limits.hpp"
 
 namespace bladestab::cli {
 namespace {
+
+// Two fast transients per point on the reduced model (3 vectors per load level for the automatic
+// reduction, else the whole model's dofs as a bound): the cosine load's revolution-long contact
+// and the pulse's, at about one Magnus step per step of RKF45's cap on the whole model (a bound:
+// the reduced model's stiffest mode is far lower).
+void check_crosscheck_work(const Scene& scene, std::size_t points, double revolutions) {
+  const BladeModel model = assemble_model(scene);
+  const double revolution = two_pi / scene.operation.speed_rad_s, duration = revolutions * revolution;
+  const double cap = transient_step(model, scene, TransientOptions{}, duration).step_s;
+  const ReductionSpec& r = scene.model.reduction;
+  const int modes = r.kind == ReductionKind::automatic
+                        ? std::min(model.layout.size(), 3 * (r.vectors > 0 ? r.vectors : default_reduction_vectors))
+                        : model.layout.size();
+  const double steps = points * (1 + scene.load.contact_time_rev) * revolution / cap;
+  check_work(fmt::format("--points with {} values and --revolutions {:g} with model.terms = {}", points, revolutions,
+                         scene.model.terms),
+             fmt::format("{:.3g} Magnus steps of a {}-mode model", steps, modes),
+             fast_transient_seconds(steps, 2 * points * revolutions * 200, modes),
+             transient_history_bytes(revolutions, 200));
+}
 
 // The table: per point and load, Floquet max|ρ| and the transient growth, each with its estimate,
 // and whether they agree within the two.
@@ -55,6 +79,7 @@ Command register_crosscheck(CLI::App& app) {
   return [=] {
     const Scene scene = options->load();
     if (scene.operation.speed_rad_s <= 0) throw InputError("operation.speed_rad_s = 0: crosscheck needs a speed > 0");
+    check_crosscheck_work(scene, points->size(), *revolutions);
     CrosscheckOptions o;
     o.fmax_over_fcr = *points;
     o.revolutions = *revolutions;

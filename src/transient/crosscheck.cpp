@@ -15,7 +15,8 @@ namespace {
 // of a transient started 1 µm off the rotating equilibrium in the lowest mode (so a parametric
 // instability has a seed), of the linear equations: not stopped at the small-deflection range. The
 // fast method on the reduced model the Floquet multipliers use (the scene's model.reduction), so
-// that the two share its basis and reduction and differ in their methods only.
+// that the two share its basis and reduction and differ in their methods only; the growth from the
+// last revolution change carried on for growth_continuation revolutions (transient.hpp).
 GrowthFit transient_growth(const BladeModel& model, const Scene& scene, double revolutions) {
   const double speed = scene.operation.speed_rad_s;
   const int n = model.layout.size();
@@ -28,6 +29,7 @@ GrowthFit transient_growth(const BladeModel& model, const Scene& scene, double r
   o.initial_state = x;
   o.max_lateral_over_length = HUGE_VAL;
   o.reduction = scene.model.reduction;
+  o.continue_growth = true;
   return run_transient(model, scene, o).growth;
 }
 

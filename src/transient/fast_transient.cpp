@@ -125,6 +125,12 @@ TransientResult run_fast_transient(const BladeModel& model, const Scene& scene, 
     if (l.output) {
       if ((result.stopped = record(t, x))) break;
     }
+    // Without the small-deflection stop an unstable response would overflow: stop where its
+    // vibration energy ½|y|² passes 1e200 J (the growth is carried on from there).
+    if (!(z.head(2 * stepper.modes()).squaredNorm() < 4e200)) {
+      result.stopped = TransientStop{t / begin.revolution, "the linear response passed 1e200 J, near the range of doubles"};
+      break;
+    }
     if (l.whole_revolution) {
       result.revolution_change.push_back(energy_norm(system.stiffness(), model.M, x - last_whole));
       last_whole = x;
@@ -133,7 +139,7 @@ TransientResult run_fast_transient(const BladeModel& model, const Scene& scene, 
     }
   }
   const int whole = static_cast<int>(result.revolution_change.size());
-  if (result.stopped && whole >= 1) {
+  if ((result.stopped || o.continue_growth) && whole >= 1) {
     std::vector<Landing> last;
     const double a = (whole - 1) * begin.revolution, b = whole * begin.revolution;
     std::copy_if(all.begin(), all.end(), std::back_inserter(last), [&](const Landing& l) { return l.t > a && l.t <= b; });

@@ -71,7 +71,10 @@ GrowthFit fit_growth(const std::vector<double>& a, int min_revolutions, double m
   for (int k = first; k < count; ++k) residual += std::pow(std::log(a[k]) - intercept - slope * k, 2);
   fit.growth = std::exp(slope);
   fit.standard_error = std::sqrt(residual / (m - 2) / Sxx);
+  // Also the spread of the single revolutions' ratios about the fit: a short run's decaying
+  // multipliers bias the slope without scattering the points.
   fit.error_estimate = fit.growth * std::expm1(2 * fit.standard_error);
+  for (int k = first + 1; k < count; ++k) fit.error_estimate = std::max(fit.error_estimate, std::abs(a[k] / a[k - 1] - fit.growth));
   if (!(fit.standard_error <= max_standard_error)) {
     fit.omitted = fmt::format("not a steady exponential: the fit over revolutions {} to {} leaves ln growth uncertain by {:.2g} "
                               "(allowed {:g}); run more revolutions",

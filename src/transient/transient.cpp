@@ -181,9 +181,9 @@ SelfCheck self_check(const BladeModel& model, const Scene& scene, const Transien
 
 // The growth per revolution of the run's revolution changes.
 GrowthFit fit_run_growth(const TransientResult& r) {
-  GrowthFit fit = !r.stopped                    ? fit_growth(r.revolution_change)
-                  : r.continued_change.empty() ? latest_growth(r.revolution_change)
-                                               : fit_growth(r.continued_change);
+  GrowthFit fit = !r.continued_change.empty() ? fit_growth(r.continued_change)
+                  : r.stopped                  ? latest_growth(r.revolution_change)
+                                               : fit_growth(r.revolution_change);
   // The fast method's contact propagators' own error, once per piece of a revolution.
   if (r.method == TransientMethod::fast) fit.error_estimate += fit.growth * r.exact.contact_pieces * r.exact.contact_error;
   return fit;

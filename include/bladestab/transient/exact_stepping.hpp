@@ -66,6 +66,7 @@ public:
   double sliding_speed(const Eigen::VectorXd& z) const;
   // The pulse train; where its profile has a kink inside the contact (triangular: at t_c/2).
   const PulseTrain& pulses() const { return pulses_; }
+  int modes() const { return n_; }
   std::vector<double> kinks() const;
   const ExactSteppingStatistics& statistics() const { return stats_; }
 

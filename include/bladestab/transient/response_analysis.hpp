@@ -30,7 +30,8 @@ struct GrowthFit {
   double error_estimate = 0;  // of growth, absolute: what the fit leaves open (see fit_growth)
   std::string omitted;        // empty: meaningful
 };
-// error_estimate: twice the standard error, as growth·(e^{2σ} − 1).
+// error_estimate: twice the standard error, as growth·(e^{2σ} − 1), or where larger the largest
+// distance of a single revolution's ratio a_k/a_{k−1} in the fitted half from the growth.
 GrowthFit fit_growth(const std::vector<double>& per_revolution, int min_revolutions = 6,
                      double max_standard_error = 1e-2);
 

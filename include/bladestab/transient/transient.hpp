@@ -49,6 +49,9 @@ struct TransientOptions {
   // self-check (RKF45 runs the whole model).
   std::optional<ReductionSpec> reduction;
   int threads = 1;  // fast: the contact pieces integrated side by side
+  // fast: fit the growth on the last revolution change carried on past the run's end as after a
+  // stop (continued_change), where the run is too short for the other multipliers to fade.
+  bool continue_growth = false;
   double revolutions = 10;
   bool adaptive = true;
   int steps_per_period = 0;  // fixed mode: steps per period of the stiffest mode (≥ 8, (54)); 0 = choose
@@ -124,8 +127,8 @@ struct TransientResult {
   // ‖x((k+1)T) − x(kT)‖ for each whole revolution k, in the energy norm √(½Δfᵀ K(Ω) Δf + ½Δḟᵀ M Δḟ):
   // states at the ends of the integration, not interpolated, so independent of the output sampling.
   std::vector<double> revolution_change;
-  // fast, stopped: revolution_change continued past the stop (continued_changes in
-  // fast_transient.cpp) for growth_continuation revolutions, to fit the growth on.
+  // fast, stopped (or continue_growth): revolution_change continued past the end (continued_changes
+  // in fast_transient.cpp) for growth_continuation revolutions, to fit the growth on.
   std::vector<double> continued_change;
   GrowthFit growth;  // of revolution_change (or continued_change): the growth per revolution, when meaningful
 };
