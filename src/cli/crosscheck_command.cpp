@@ -70,7 +70,9 @@ Command register_crosscheck(CLI::App& app) {
   auto options = std::make_shared<SceneOptions>();
   auto points = std::make_shared<std::vector<double>>(std::vector<double>{1, 2, 5, 10});
   auto revolutions = std::make_shared<double>(16);
+  auto threads = std::make_shared<int>();
   add_scene_options(*command, *options);
+  add_threads_option(*command, *threads);
   add_number_list_option(*command, "--points", *points, scene_limits::fmax_over_fcr,
                          "F̄_max values at the scene's speed (default 1,2,5,10)");
   // The growth fit needs 6 whole revolutions.
@@ -83,6 +85,7 @@ Command register_crosscheck(CLI::App& app) {
     CrosscheckOptions o;
     o.fmax_over_fcr = *points;
     o.revolutions = *revolutions;
+    o.threads = *threads;
     o.progress = progress_reporter("crosscheck: points", options->output_format() == OutputFormat::table);
     const std::vector<CrosscheckPoint> result = crosscheck(scene, o);
     const FiniteResults check("crosscheck");

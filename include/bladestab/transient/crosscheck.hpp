@@ -35,6 +35,7 @@ struct CrosscheckOptions {
   std::vector<double> fmax_over_fcr{1, 2, 5, 10};
   double revolutions = 16;
   double tolerance = 1e-6;  // Floquet; the transients run at 1e-8
+  int threads = 1;          // points side by side (the answer does not depend on it)
   std::function<void(int, int)> progress;
 };
 
