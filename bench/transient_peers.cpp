@@ -110,7 +110,7 @@ bool is_revolution(const Problem& p, double t) {
 Run run_fast(const Problem& p, double rtol) {
   TransientOptions o;
   o.revolutions = p.revolutions;
-  o.tolerance = rtol;
+  o.tolerance = o.contact_tolerance = rtol;
   o.self_check = false;
   o.samples_per_revolution = 8;
   o.max_lateral_over_length = HUGE_VAL;

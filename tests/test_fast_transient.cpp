@@ -23,7 +23,7 @@ namespace {
 TransientResult run(const Scene& scene, TransientMethod method, double tolerance, double revolutions) {
   TransientOptions o;
   o.method = method;
-  o.tolerance = tolerance;
+  o.tolerance = o.contact_tolerance = tolerance;
   o.revolutions = revolutions;
   o.self_check = false;
   return run_transient(assemble_model(scene), scene, o);

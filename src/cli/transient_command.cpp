@@ -199,7 +199,8 @@ void print_method(const TransientOptions& o, const TransientResult& r) {
   if (r.method == TransientMethod::fast) {
     fmt::print("method     fast: free flight exact (one exponential per distinct interval, {} in all), {} contact "
                "piece(s) by Magnus ({} steps in all, propagators within {:.2g} of tolerance {:g})\n",
-               r.exact.free_exponentials, r.exact.contact_pieces, r.exact.magnus_steps, r.exact.contact_error, o.tolerance);
+               r.exact.free_exponentials, r.exact.contact_pieces, r.exact.magnus_steps, r.exact.contact_error,
+               o.contact_tolerance);
   } else if (!r.fallback.empty()) {
     fmt::print("method     rkf45, not fast: {}\n", r.fallback);
   }
@@ -296,7 +297,8 @@ Command register_transient(CLI::App& app) {
   add_number_option(*command, "--revolutions", *revolutions, AllowedRange::above(0, 1e5),
                     "length of the run in revolutions (default 10)");
   add_number_option(*command, "--tolerance", *tolerance, AllowedRange::below(1e-13, 1),
-                    "relative tolerance of the adaptive steps (default 1e-8)");
+                    "relative tolerance: of RKF45's adaptive steps (default 1e-8) and of the fast method's contact "
+                    "propagators (default 1e-7)");
   command->add_option("--step", *step, "adaptive (default) or fixed (the paper's Δt = (1/8)(2π/ω_max), eq. 54)")
       ->check(CLI::IsMember({"adaptive", "fixed"}));
   add_integer_option(*command, "--steps-per-period", *steps_per_period, 8, 100000,
@@ -326,6 +328,7 @@ Command register_transient(CLI::App& app) {
     o.adaptive = *step == "adaptive";
     o.steps_per_period = *steps_per_period;
     o.tolerance = *tolerance;
+    if (command->count("--tolerance") > 0) o.contact_tolerance = *tolerance;
     o.samples_per_revolution = *samples;
     o.follower = *follower;
     o.method = *method == "fast" && *step == "adaptive" ? TransientMethod::fast : TransientMethod::rkf45;

@@ -14,6 +14,7 @@
 #include "bladestab/transient/transient_system.hpp"
 #include "bladestab/blade/undamped_modes.hpp"
 #include "bladestab/base/numerical_error.hpp"
+#include "support/work_pool.hpp"
 #include "transient_parts.hpp"
 
 namespace bladestab {
@@ -151,31 +152,44 @@ double check_stretch(const Scene& scene, const TransientOptions& o) {
   return std::min(o.revolutions, std::min(pulses.contact_time_s / revolution, 0.1) + 0.02) * revolution;
 }
 
-// The fast history's state at `check_time` against RKF45's at rtol 1e-10 (SelfCheck).
-SelfCheck self_check(const BladeModel& model, const Scene& scene, const TransientOptions& o, double check_time,
-                     const Eigen::VectorXd& fast_state) {
+// The RKF45 run the self-check compares with, at rtol 1e-10 to `check_time`: its state there, and
+// how long it took.
+struct ReferenceRun {
+  Eigen::VectorXd state;
+  double seconds = 0;
+};
+constexpr double reference_tolerance = 1e-10;
+
+ReferenceRun reference_run(const BladeModel& model, const Scene& scene, const TransientOptions& o, double check_time) {
   const auto started = std::chrono::steady_clock::now();
-  SelfCheck check;
-  const double revolution = two_pi / scene.operation.speed_rad_s;
-  check.until_revolutions = check_time / revolution;
-  check.rkf45_tolerance = 1e-10;
   TransientOptions reference = o;
   reference.method = TransientMethod::rkf45;
-  reference.revolutions = check.until_revolutions;
-  reference.tolerance = check.rkf45_tolerance;
+  reference.revolutions = check_time * scene.operation.speed_rad_s / two_pi;
+  reference.tolerance = reference_tolerance;
   reference.progress = nullptr;
   reference.max_lateral_over_length = HUGE_VAL;
-  const TransientResult r = detail::run_rkf45_transient(model, scene, reference);
+  ReferenceRun run;
+  run.state = detail::run_rkf45_transient(model, scene, reference).final_state;
+  run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  return run;
+}
+
+// The fast history's state at `check_time` against the reference's (SelfCheck).
+SelfCheck self_check(const BladeModel& model, const Scene& scene, const TransientOptions& o, double check_time,
+                     const Eigen::VectorXd& fast_state, const ReferenceRun& reference) {
+  SelfCheck check;
+  check.until_revolutions = check_time * scene.operation.speed_rad_s / two_pi;
+  check.rkf45_tolerance = reference_tolerance;
+  check.seconds = reference.seconds;
   const Eigen::MatrixXd K = model.stiffness(scene.operation.speed_rad_s);
   const Eigen::VectorXd equilibrium = rotating_equilibrium(model, scene.operation.speed_rad_s);
   const Eigen::VectorXd start = o.initial_state ? *o.initial_state : equilibrium;
   const double scale = std::max(detail::energy_norm(K, model.M, start - equilibrium),
-                                detail::energy_norm(K, model.M, r.final_state - equilibrium));
-  check.difference = detail::energy_norm(K, model.M, fast_state - r.final_state) / scale;
+                                detail::energy_norm(K, model.M, reference.state - equilibrium));
+  check.difference = detail::energy_norm(K, model.M, fast_state - reference.state) / scale;
   // Each contact piece's propagator within the tolerance, RKF45's local errors within its own, and
   // a margin of 10 for the pieces and steps they add up over.
-  check.allowed = 10 * (o.tolerance + check.rkf45_tolerance);
-  check.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  check.allowed = 10 * (o.contact_tolerance + check.rkf45_tolerance);
   return check;
 }
 
@@ -200,10 +214,15 @@ TransientResult run_transient(const BladeModel& model, const Scene& scene, const
     return r;
   }
   const double check_time = o.self_check && !o.reduction ? check_stretch(scene, o) : 0;
+  // The reference runs beside the fast run where there are threads for it.
+  std::optional<WorkPool<ReferenceRun>> reference;
+  if (check_time > 0) {
+    reference.emplace(o.threads, 1, [&](std::size_t) { return reference_run(model, scene, o, check_time); });
+  }
   Eigen::VectorXd check_state;
   TransientResult r = detail::run_fast_transient(model, scene, o, check_time, check_state);
-  if (check_state.size() > 0) {
-    r.self_check = self_check(model, scene, o, check_time, check_state);
+  if (reference) {
+    r.self_check = self_check(model, scene, o, check_time, check_state, reference->get(0));
     if (!(r.self_check->difference <= r.self_check->allowed)) {
       throw NumericalError(fmt::format("the fast method's state at revolution {:.4g} differs from RKF45's (rtol {:g}) by "
                                        "{:.3g} of the vibration, beyond the stated {:.3g}",
