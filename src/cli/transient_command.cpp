@@ -73,18 +73,14 @@ void method_fields(Json& json, const TransientResult& r) {
   json["method"] = r.method == TransientMethod::fast ? "fast" : "rkf45";
   if (!r.fallback.empty()) json["method_fallback"] = r.fallback;
   if (r.method == TransientMethod::fast) {
-    json["exact_stepping"] = {{"contact_pieces", r.exact.contact_pieces},
-                              {"magnus_steps", r.exact.magnus_steps},
-                              {"free_flight_exponentials", r.exact.free_exponentials},
-                              {"intervals", r.exact.intervals},
-                              {"contact_propagator_error", r.exact.contact_error}};
+    const ExactSteppingStatistics& e = r.exact;
+    json["exact_stepping"] = {{"contact_pieces", e.contact_pieces}, {"magnus_steps", e.magnus_steps},
+                              {"free_flight_exponentials", e.free_exponentials}, {"intervals", e.intervals},
+                              {"contact_propagator_error", e.contact_error}};
   }
-  if (r.self_check) {
-    json["self_check"] = {{"until_revolution", r.self_check->until_revolutions},
-                          {"rkf45_tolerance", r.self_check->rkf45_tolerance},
-                          {"relative_difference", r.self_check->difference},
-                          {"allowed", r.self_check->allowed},
-                          {"seconds", r.self_check->seconds}};
+  if (const std::optional<SelfCheck>& c = r.self_check) {
+    json["self_check"] = {{"until_revolution", c->until_revolutions}, {"rkf45_tolerance", c->rkf45_tolerance},
+                          {"relative_difference", c->difference}, {"allowed", c->allowed}, {"seconds", c->seconds}};
   }
   if (r.stopped) json["stopped"] = {{"revolution", r.stopped->revolution}, {"reason", r.stopped->reason}};
 }
