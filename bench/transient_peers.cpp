@@ -10,6 +10,8 @@
 //   odeint-rkf78   Boost.Odeint, controlled runge_kutta_fehlberg78
 //   arkode-rkf45   SUNDIALS ARKODE ERKStep, Fehlberg 6-4-5 (the same pair as ours)
 //   arkode-dopri5  SUNDIALS ARKODE ERKStep, Dormand–Prince 7-4-5
+//   fast           bladestab's exact stepping (run_transient's fast method, exact_stepping.hpp) at
+//                  --tolerance rtol, without its RKF45 self-check, 8 samples per revolution
 //
 // at rtol from --rtol and atol = rtol · 1e-6 (run_transient's absolute floor). The error of a run is
 // measured at the whole revolutions against a reference (odeint-rkf78 at --reference-rtol): the
@@ -19,6 +21,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <fstream>
 #include <functional>
 #include <iostream>
 #include <string>
@@ -34,6 +37,7 @@
 #include <sundials/sundials_context.h>
 
 #include "support/blas_threads.hpp"
+#include "bladestab/blade/damping.hpp"
 #include "bladestab/blade/model.hpp"
 #include "bladestab/stability/periodic_load.hpp"
 #include "bladestab/ltp/rkf45.hpp"
@@ -49,6 +53,8 @@ constexpr double two_pi = 6.28318530717958647692;
 struct Problem {
   Problem(const Scene& scene, const BladeModel& model, int revolutions);
 
+  Scene scene;
+  BladeModel model;
   int n = 0;                 // dofs; the state has 2n + 1 entries
   double revolution_s = 0;   // one revolution
   int revolutions = 0;
@@ -66,7 +72,7 @@ struct Problem {
 };
 
 Problem::Problem(const Scene& scene, const BladeModel& model, int revolutions)
-    : n(model.layout.size()), revolution_s(two_pi / scene.operation.speed_rad_s), revolutions(revolutions),
+    : scene(scene), model(model), n(model.layout.size()), revolution_s(two_pi / scene.operation.speed_rad_s), revolutions(revolutions),
       system(model, scene, TransientOptions{}), tip_lateral(model.tip_lateral), tip_axial(model.tip_axial) {
   const double speed = scene.operation.speed_rad_s;
   start = Eigen::VectorXd::Zero(2 * n + 1);
@@ -92,9 +98,36 @@ struct Run {
   long steps = 0, evaluations = 0;
 };
 
+
+
 bool is_revolution(const Problem& p, double t) {
   const double r = t / p.revolution_s;
   return std::abs(r - std::round(r)) < 1e-12 * std::max(1.0, r);
+}
+
+// The fast method: its samples at the whole revolutions as states whose f carries the sampled tip
+// deflections (the least-norm f with those tip values: only they are compared).
+Run run_fast(const Problem& p, double rtol) {
+  TransientOptions o;
+  o.revolutions = p.revolutions;
+  o.tolerance = o.contact_tolerance = rtol;
+  o.self_check = false;
+  o.samples_per_revolution = 8;
+  o.max_lateral_over_length = HUGE_VAL;
+  const TransientResult r = run_transient(p.model, p.scene, o);
+  if (r.method != TransientMethod::fast) throw std::runtime_error("fast: not applicable: " + r.fallback);
+  Eigen::MatrixXd tips(2, p.n);
+  tips << p.tip_lateral, p.tip_axial;
+  const Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> least_norm(tips);
+  Run run;
+  for (const TransientSample& s : r.samples) {
+    if (s.time_s == 0 || !is_revolution(p, s.time_s)) continue;
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(2 * p.n + 1);
+    x.head(p.n) = least_norm.solve(Eigen::Vector2d(s.tip_lateral_m, s.tip_axial_m));
+    run.at_revolutions.push_back(x);
+  }
+  run.steps = r.exact.magnus_steps + r.exact.intervals;
+  return run;
 }
 
 // bladestab's RKF45, one revolution per call as run_transient does, landing on the pulse edges.
@@ -194,6 +227,7 @@ Run run_integrator(const Problem& p, const std::string& name, double rtol) {
   namespace odeint = boost::numeric::odeint;
   using State = std::vector<double>;
   if (name == "rkf45") return run_rkf45(p, rtol, true);
+  if (name == "fast") return run_fast(p, rtol);
   if (name == "rkf45-fixed") return run_rkf45(p, rtol, false);
   if (name == "odeint-dopri5") return run_odeint<odeint::runge_kutta_dopri5<State>>(p, rtol);
   if (name == "odeint-rkf78") return run_odeint<odeint::runge_kutta_fehlberg78<State>>(p, rtol);
@@ -223,6 +257,33 @@ double tip_error(const Problem& p, const Run& run, const Run& reference) {
 
 std::string json_number(double v) { return std::isfinite(v) ? fmt::format("{:.6g}", v) : "null"; }
 
+// The scene's transient equations for bench/scipy_transient.py, every matrix premultiplied by M⁻¹
+// as TransientSystem does: f̈ = c − K f − C ḟ + F(t) (p_u − G f) + μ F(t) cos β · p_v (the friction
+// with its sign fixed: the tip slides at ΩR), F(t) the half-sine train. JSON, 17 digits.
+void export_system(const Scene& scene, const BladeModel& model, const std::string& path) {
+  const double speed = scene.operation.speed_rad_s;
+  const Eigen::LLT<Eigen::MatrixXd> mass(model.M);
+  const Eigen::MatrixXd C = damping_matrix(model, scene.damping, speed) + model.gyroscopic(speed);
+  const PulseTrain pulses = pulse_train(scene);
+  if (pulses.profile != PulseProfile::half_sine) throw std::runtime_error("--export-system: half-sine pulses only");
+  const auto matrix = [](const Eigen::MatrixXd& a) {
+    std::vector<std::string> rows;
+    for (Eigen::Index i = 0; i < a.rows(); ++i) rows.push_back(fmt::format("[{:.17g}]", fmt::join(a.row(i), ", ")));
+    return fmt::format("[{}]", fmt::join(rows, ", "));
+  };
+  const Eigen::VectorXd friction = scene.load.friction * std::cos(model.blade.beta_rad) * model.tip_lateral.transpose();
+  std::ofstream out(path);
+  out << fmt::format(
+      "{{\"n\": {}, \"K\": {}, \"C\": {}, \"G\": {}, \"c\": {}, \"p_u\": {}, \"p_friction\": {}, "
+      "\"equilibrium\": {}, \"tip_lateral\": {}, \"peak_n\": {:.17g}, \"contact_s\": {:.17g}, \"period_s\": {:.17g}, "
+      "\"revolution_s\": {:.17g}}}\n",
+      model.layout.size(), matrix(mass.solve(model.stiffness(speed))), matrix(mass.solve(C)), matrix(mass.solve(model.G)),
+      matrix(mass.solve(model.steady_load(speed)).transpose()),
+      matrix(mass.solve(Eigen::VectorXd(model.tip_axial.transpose())).transpose()),
+      matrix(mass.solve(friction).transpose()), matrix(rotating_equilibrium(model, speed).transpose()),
+      matrix(model.tip_lateral), pulses.peak_n, pulses.contact_time_s, pulses.period_s, two_pi / speed);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -230,7 +291,7 @@ int main(int argc, char** argv) {
   CLI::App app{"transient integrators side by side on the blade's pulse-train response (bench/run)"};
   std::string scene_path;
   std::vector<std::string> overrides;
-  std::vector<std::string> integrators{"rkf45", "rkf45-fixed", "odeint-dopri5", "odeint-rkf78", "arkode-rkf45", "arkode-dopri5"};
+  std::vector<std::string> integrators{"fast", "rkf45", "rkf45-fixed", "odeint-dopri5", "odeint-rkf78", "arkode-rkf45", "arkode-dopri5"};
   std::vector<double> tolerances{1e-5, 1e-7, 1e-9};
   int revolutions = 10, repeats = 5;
   double reference_rtol = 1e-13, budget_s = 1e300;
@@ -242,9 +303,15 @@ int main(int argc, char** argv) {
   app.add_option("--repeats", repeats);
   app.add_option("--budget-s", budget_s, "fewer repeats (at least 1) where the repeats of one run would take longer");
   app.add_option("--reference-rtol", reference_rtol);
+  std::string export_path;
+  app.add_option("--export-system", export_path, "write the equations for bench/scipy_transient.py and stop");
   CLI11_PARSE(app, argc, argv);
   try {
     const Scene scene = load_scene(scene_path, overrides);
+    if (!export_path.empty()) {
+      export_system(scene, assemble_model(scene), export_path);
+      return 0;
+    }
     const Problem p = make_problem(scene, revolutions);
     const auto clock = [] { return std::chrono::steady_clock::now(); };
     const auto t0 = clock();

@@ -30,6 +30,10 @@ void forget_child();
 // A set of output files is in place: a stop from now on says so instead of "no output files written".
 void note_files_written();
 
+// The run is ending (its answer or its one line is being written): a stop from now on waits for the
+// process's end, so the last line is the run's own, never followed by a stop's.
+void end_of_run();
+
 // While one lives, a stop waits: a set of output files is being renamed into place, or a child
 // started (until remember_child) or reaped (after forget_child).
 class StopDeferral {

@@ -34,6 +34,7 @@ std::string command_names(const std::map<std::string, bladestab::cli::Command>& 
 // "bladestab: error: …" (kind "error", exit 2) or "bladestab: failed: …" (exit 1), on one line
 // (notes.hpp).
 int report(const char* kind, const std::string& message, int status) {
+  bladestab::cli::end_of_run();
   bladestab::cli::print_stderr_line(kind, message);
   return status;
 }
@@ -41,6 +42,7 @@ int report(const char* kind, const std::string& message, int status) {
 // The answer went to stdout; a write that failed there (a full disk, /dev/full, a closed pipe
 // with SIGPIPE ignored) is a failure of the run, not a success with a lost answer.
 int finish_stdout() {
+  bladestab::cli::end_of_run();
   if (std::fflush(stdout) != 0 || std::ferror(stdout)) {
     return report("failed", fmt::format("cannot write the output to stdout: {}", std::strerror(errno)), 1);
   }

@@ -60,4 +60,12 @@ inline double rkf45_seconds(double steps, int dofs) {
   return steps * 6 * 5 * (n * n + 100) / small_product_flops_per_second;
 }
 
+// Seconds of the fast transient method (exact_stepping.hpp) on `modes` modes: `magnus_steps` steps
+// of the Magnus propagator, each ~8 products of (2·modes + 1)-square matrices, and `intervals` steps
+// of the state by a stored propagator.
+inline double fast_transient_seconds(double magnus_steps, double intervals, int modes) {
+  const double m = 2.0 * modes + 1;
+  return (magnus_steps * 16 * m * m * m + intervals * 2 * m * m) / dense_flops_per_second;
+}
+
 }  // namespace bladestab::cli

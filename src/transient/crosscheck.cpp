@@ -1,19 +1,25 @@
 #include "bladestab/transient/crosscheck.hpp"
 
 #include <cmath>
+#include <mutex>
 
 #include "bladestab/ltp/floquet.hpp"
 #include "bladestab/stability/periodic_system.hpp"
 #include "bladestab/transient/response_analysis.hpp"
 #include "bladestab/transient/transient.hpp"
 #include "bladestab/blade/undamped_modes.hpp"
+#include "support/work_pool.hpp"
 
 namespace bladestab {
 namespace {
 
-// Growth per revolution (TransientResult::growth: the change of the state over each revolution,
-// fitted over the second half of the run) of a transient started 1 µm off the rotating equilibrium in the lowest mode (so a parametric instability has a seed).
-double transient_growth(const BladeModel& model, const Scene& scene, double revolutions) {
+// Growth per revolution (TransientResult::growth: the change of the state over each revolution)
+// of a transient started 1 µm off the rotating equilibrium in the lowest mode (so a parametric
+// instability has a seed), of the linear equations: not stopped at the small-deflection range. The
+// fast method on the reduced model the Floquet multipliers use (the scene's model.reduction), so
+// that the two share its basis and reduction and differ in their methods only; the growth from the
+// last revolution change carried on for growth_continuation revolutions (transient.hpp).
+GrowthFit transient_growth(const BladeModel& model, const Scene& scene, double revolutions) {
   const double speed = scene.operation.speed_rad_s;
   const int n = model.layout.size();
   Eigen::VectorXd x = rotating_equilibrium(model, speed);
@@ -23,55 +29,80 @@ double transient_growth(const BladeModel& model, const Scene& scene, double revo
   o.revolutions = revolutions;
   o.tolerance = 1e-8;
   o.initial_state = x;
-  return run_transient(model, scene, o).growth.growth;
+  o.max_lateral_over_length = HUGE_VAL;
+  o.reduction = scene.model.reduction;
+  o.continue_growth = true;
+  return run_transient(model, scene, o).growth;
+}
+
+}  // namespace
+
+bool CrosscheckPoint::cosine_agrees() const {
+  return std::abs(transient_cosine_growth - floquet_cosine) <= transient_cosine_error + floquet_cosine_error;
+}
+
+bool CrosscheckPoint::pulse_agrees() const {
+  return std::abs(transient_pulse_growth - floquet_pulse) <= transient_pulse_error + floquet_pulse_error;
+}
+
+namespace {
+
+// One point of the cross-check at F̄_max = fbar.
+CrosscheckPoint crosscheck_point(const BladeModel& model, const Scene& base, double fbar, const CrosscheckOptions& o) {
+  CrosscheckPoint p;
+  p.fmax_over_fcr = fbar;
+  Scene scene = base;
+  scene.load.fmax_over_fcr = fbar;
+  scene.load.pulse_count = 0;  // a periodic load
+
+  // The paper's cosine approximation: in the frequency domain (42); in the time domain the
+  // cosine profile over a whole revolution, which is the same function.
+  Scene cosine = scene;
+  cosine.load.approximation = LoadApproximation::cosine;
+  cosine.load.profile = PulseProfile::cosine;
+  cosine.load.contact_time_rev = 1.0 / cosine.load.pulses_per_rev;
+  const PeriodicSystem cosine_system = periodic_system(model, cosine, load_series(cosine), base.model.reduction);
+  const FloquetResult fc = floquet_multipliers(cosine_system, {FloquetMethod::automatic, 0, o.tolerance});
+  p.floquet_cosine = fc.max_abs_multiplier;
+  p.floquet_cosine_error = fc.error_estimate;
+  const GrowthFit cosine_growth = transient_growth(model, cosine, o.revolutions);
+  p.transient_cosine_growth = cosine_growth.growth;
+  p.transient_cosine_error = cosine_growth.error_estimate;
+  // Entry by entry Φ(T) converges more slowly than max|ρ| (the stiff modes' phases): RKF45 at
+  // 1e-8 and 2048 Magnus steps agree to ~1e-5, where max|ρ| agrees to ~1e-10.
+  const Eigen::MatrixXd phi_rkf = rkf45_monodromy(cosine_system, 1e-8);
+  const Eigen::MatrixXd phi_magnus = magnus_monodromy(cosine_system, 2048);
+  p.rkf45_max_abs_multiplier = Eigen::EigenSolver<Eigen::MatrixXd>(phi_rkf, false).eigenvalues().cwiseAbs().maxCoeff();
+  p.monodromy_difference = (phi_rkf - phi_magnus).norm() / phi_magnus.norm();
+
+  // The true pulse: its Fourier series, and the pulse train itself.
+  Scene pulse = scene;
+  pulse.load.approximation = LoadApproximation::fourier;
+  const LoadSeries series = load_series(pulse, 1e-3, 400);
+  const FloquetResult fp = floquet_multipliers(periodic_system(model, pulse, series, base.model.reduction),
+                                               {FloquetMethod::monodromy, 0, o.tolerance});
+  p.floquet_pulse = fp.max_abs_multiplier;
+  p.floquet_pulse_error = fp.error_estimate;
+  p.pulse_harmonics = series.harmonics();
+  p.pulse_series_tail = series.relative_tail;
+  const GrowthFit pulse_growth = transient_growth(model, pulse, o.revolutions);
+  p.transient_pulse_growth = pulse_growth.growth;
+  p.transient_pulse_error = pulse_growth.error_estimate;
+  return p;
 }
 
 }  // namespace
 
 std::vector<CrosscheckPoint> crosscheck(const Scene& base, const CrosscheckOptions& o) {
   const BladeModel model = assemble_model(base);
-  std::vector<CrosscheckPoint> points;
+  std::mutex progress_lock;
   int done = 0;
-  for (double fbar : o.fmax_over_fcr) {
-    CrosscheckPoint p;
-    p.fmax_over_fcr = fbar;
-    Scene scene = base;
-    scene.load.fmax_over_fcr = fbar;
-    scene.load.pulse_count = 0;  // a periodic load
-
-    // The paper's cosine approximation: in the frequency domain (42); in the time domain the
-    // cosine profile over a whole revolution, which is the same function.
-    Scene cosine = scene;
-    cosine.load.approximation = LoadApproximation::cosine;
-    cosine.load.profile = PulseProfile::cosine;
-    cosine.load.contact_time_rev = 1.0 / cosine.load.pulses_per_rev;
-    const PeriodicSystem cosine_system = periodic_system(model, cosine, load_series(cosine));
-    const FloquetResult fc = floquet_multipliers(cosine_system, {FloquetMethod::automatic, 0, o.tolerance});
-    p.floquet_cosine = fc.max_abs_multiplier;
-    p.floquet_cosine_error = fc.error_estimate;
-    p.transient_cosine_growth = transient_growth(model, cosine, o.revolutions);
-    // Entry by entry Φ(T) converges more slowly than max|ρ| (the stiff modes' phases): RKF45 at
-    // 1e-8 and 2048 Magnus steps agree to ~1e-5, where max|ρ| agrees to ~1e-10.
-    const Eigen::MatrixXd phi_rkf = rkf45_monodromy(cosine_system, 1e-8);
-    const Eigen::MatrixXd phi_magnus = magnus_monodromy(cosine_system, 2048);
-    p.rkf45_max_abs_multiplier = Eigen::EigenSolver<Eigen::MatrixXd>(phi_rkf, false).eigenvalues().cwiseAbs().maxCoeff();
-    p.monodromy_difference = (phi_rkf - phi_magnus).norm() / phi_magnus.norm();
-
-    // The true pulse: its Fourier series, and the pulse train itself.
-    Scene pulse = scene;
-    pulse.load.approximation = LoadApproximation::fourier;
-    const LoadSeries series = load_series(pulse, 1e-3, 400);
-    const FloquetResult fp = floquet_multipliers(periodic_system(model, pulse, series),
-                                                 {FloquetMethod::monodromy, 0, o.tolerance});
-    p.floquet_pulse = fp.max_abs_multiplier;
-    p.floquet_pulse_error = fp.error_estimate;
-    p.pulse_harmonics = series.harmonics();
-    p.pulse_series_tail = series.relative_tail;
-    p.transient_pulse_growth = transient_growth(model, pulse, o.revolutions);
-    points.push_back(p);
+  return run_indexed(o.fmax_over_fcr.size(), o.threads, [&](std::size_t i) {
+    CrosscheckPoint p = crosscheck_point(model, base, o.fmax_over_fcr[i], o);
+    const std::lock_guard<std::mutex> lock(progress_lock);
     if (o.progress) o.progress(++done, static_cast<int>(o.fmax_over_fcr.size()));
-  }
-  return points;
+    return p;
+  });
 }
 
 }  // namespace bladestab

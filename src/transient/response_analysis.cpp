@@ -71,11 +71,34 @@ GrowthFit fit_growth(const std::vector<double>& a, int min_revolutions, double m
   for (int k = first; k < count; ++k) residual += std::pow(std::log(a[k]) - intercept - slope * k, 2);
   fit.growth = std::exp(slope);
   fit.standard_error = std::sqrt(residual / (m - 2) / Sxx);
+  // Also the spread of the single revolutions' ratios about the fit: a short run's decaying
+  // multipliers bias the slope without scattering the points.
+  fit.error_estimate = fit.growth * std::expm1(2 * fit.standard_error);
+  for (int k = first + 1; k < count; ++k) fit.error_estimate = std::max(fit.error_estimate, std::abs(a[k] / a[k - 1] - fit.growth));
   if (!(fit.standard_error <= max_standard_error)) {
     fit.omitted = fmt::format("not a steady exponential: the fit over revolutions {} to {} leaves ln growth uncertain by {:.2g} "
                               "(allowed {:g}); run more revolutions",
                               first + 1, count, fit.standard_error, max_standard_error);
   }
+  return fit;
+}
+
+GrowthFit latest_growth(const std::vector<double>& a) {
+  GrowthFit fit;
+  const std::size_t count = a.size();
+  if (count < 3) {
+    fit.omitted = fmt::format("{} whole revolutions before the stop; the growth needs 3", count);
+    return fit;
+  }
+  const double last = a[count - 1] / a[count - 2], before = a[count - 2] / a[count - 3];
+  if (!(std::isfinite(last) && std::isfinite(before) && last > 0 && before > 0)) {
+    fit.omitted = fmt::format("the last revolutions changed the state by {}, {}, {}: nothing to fit", a[count - 3],
+                              a[count - 2], a[count - 1]);
+    return fit;
+  }
+  fit.growth = last;
+  fit.error_estimate = std::abs(last - before);
+  fit.standard_error = fit.error_estimate / last;
   return fit;
 }
 

@@ -1,5 +1,6 @@
 #include "bladestab/transient/transient.hpp"
 
+#include <chrono>
 #include <cmath>
 #include <stdexcept>
 
@@ -12,6 +13,9 @@
 #include "bladestab/transient/response_analysis.hpp"
 #include "bladestab/transient/transient_system.hpp"
 #include "bladestab/blade/undamped_modes.hpp"
+#include "bladestab/base/numerical_error.hpp"
+#include "support/work_pool.hpp"
+#include "transient_parts.hpp"
 
 namespace bladestab {
 
@@ -127,163 +131,107 @@ void TransientSystem::derivative(double t, const Eigen::Ref<const Eigen::VectorX
 
 namespace {
 
-// Clearance mode: what the casing did, from landings on every closing and opening (g = 0) and on
-// every deepest overlap (ġ = 0).
-class ContactEvents {
-public:
-  ContactEvents(const CasingContact& casing, const Eigen::VectorXd& start) : casing_(casing), summary_{casing.stiffness_n_m} {
-    if (casing.overlap(0, start.head(start.size() / 2)) > 0) summary_.closures = 1;  // starts in contact
+// Why the fast method does not apply to this run; empty when it does.
+std::string fast_method_refusal(const BladeModel& model, const Scene& scene, const TransientOptions& o) {
+  if (scene.load.mode == LoadMode::clearance) {
+    return "clearance mode: the casing's contact events are found on RKF45's dense output";
   }
-  std::vector<OdeEvent> events(int n) {
-    const auto overlap = [this, n](double t, const Eigen::VectorXd& y) { return casing_.overlap(t, y.head(n)); };
-    const auto rate = [this, n](double t, const Eigen::VectorXd& y) {
-      return casing_.overlap_rate(t, y.head(n), y.segment(n, n));
-    };
-    const auto closing_or_opening = [this](double t, const Eigen::VectorXd&, int direction) {
-      if (direction > 0) {
-        ++summary_.closures, contact_start_ = t;
-      } else {
-        summary_.contact_time_s += t - contact_start_;
-      }
-    };
-    const auto deepest = [this, n](double t, const Eigen::VectorXd& y, int direction) {
-      if (direction > 0) return;  // the shallowest point
-      const double g = casing_.overlap(t, y.head(n));
-      summary_.max_overlap_m = std::max(summary_.max_overlap_m, g);
-      summary_.peak_force_n = std::max(summary_.peak_force_n, casing_.stiffness_n_m * g);
-    };
-    return {{overlap, closing_or_opening}, {rate, deepest}};
+  if (o.follower) return "the follower load is nonlinear in the tip slope";
+  if (!o.adaptive) return "fixed steps are RKF45's (54)";
+  if (!(undamped_modes(model, scene.operation.speed_rad_s, 0, 1, false).omega2(0) > 0)) {
+    return "K(Ω) is not positive definite at this speed";
   }
-  // The summary at the run's end `t_end` with the state x there (a contact still open counts).
-  ContactSummary finished(double t_end, const Eigen::VectorXd& x, int n) {
-    if (casing_.overlap(t_end, x.head(n)) > 0) summary_.contact_time_s += t_end - contact_start_;
-    return summary_;
-  }
-
-private:
-  const CasingContact& casing_;
-  ContactSummary summary_;
-  double contact_start_ = 0;
-};
-
-// The steps: adaptive ones never exceed the fixed step (54). The error control alone cannot keep
-// RKF45 stable on the undamped stiff modes: it measures the error relative to |x|, so once a mode
-// amplified by |R(iωh)| > 1 dominates a component it sets its own allowance: at rtol 1e-2 it
-// accepts a growth of ×1e21 in two revolutions. Below this cap the growth per unit time,
-// ln|R(iωh)|/h, is smaller still for every mode (it rises with ωh), so the whole run stays within
-// the 1 % bound.
-StepControl step_control(const TransientOptions& o, const FixedStep& fixed) {
-  StepControl control;
-  control.adaptive = o.adaptive;
-  control.rtol = o.tolerance;
-  // Absolute floor: a millionth of the tolerance on the scale of the static stretch (≈ mm).
-  control.atol = o.tolerance * 1e-6;
-  (o.adaptive ? control.max_step : control.fixed_step) = fixed.step_s;
-  return control;
+  return {};
 }
 
-// The samples of a run: tip motion, loads and the energy balance at each output time.
-class Recorder {
-public:
-  Recorder(const BladeModel& model, const TransientSystem& system, double speed, double revolution,
-           double initial_energy, std::vector<TransientSample>& samples)
-      : model_(model), system_(system), K_E_(model.elastic_stiffness()), speed_(speed), revolution_(revolution),
-        initial_energy_(initial_energy), samples_(samples) {}
-  void operator()(double t, const Eigen::VectorXd& s) const {
-    const int n = system_.dofs();
-    const Eigen::VectorXd f = s.head(n), v = s.segment(n, n);
-    const std::optional<CasingContact>& casing = system_.casing();
-    const double F = system_.tip_load(t, s), E = system_.energy(s), W = s(2 * n);
-    const TipLoads applied = system_.tip_loads(F, s);
-    samples_.push_back({t, speed_ > 0 ? t * speed_ / two_pi : t / revolution_, model_.tip_lateral.dot(f),
-                        model_.tip_axial.dot(f), model_.tip_lateral.dot(v), model_.tip_axial.dot(v), F,
-                        system_.friction(F, s), casing ? casing->overlap(t, f) : 0, 0.5 * f.dot(K_E_ * f),
-                        0.5 * v.dot(model_.M * v), E + (casing ? casing->energy(t, f) : 0), W,
-                        E - initial_energy_ - W, applied.axial, applied.lateral});
-  }
-
-private:
-  const BladeModel& model_;
-  const TransientSystem& system_;
-  const Eigen::MatrixXd K_E_;
-  double speed_, revolution_, initial_energy_;
-  std::vector<TransientSample>& samples_;
-};
-
-void add_statistics(StepStatistics& total, const StepStatistics& s, bool first) {
-  total.accepted += s.accepted;
-  total.rejected += s.rejected;
-  total.evaluations += s.evaluations;
-  total.event_landings += s.event_landings;
-  total.smallest_step = first ? s.smallest_step : std::min(total.smallest_step, s.smallest_step);
-  total.largest_step = std::max(total.largest_step, s.largest_step);
+// The self-check's stretch: through the first contact (at most 0.1 revolution of it) and 0.02
+// revolution of what follows, within the run.
+double check_stretch(const Scene& scene, const TransientOptions& o) {
+  const PulseTrain pulses = pulse_train(scene);
+  const double revolution = two_pi / scene.operation.speed_rad_s;
+  return std::min(o.revolutions, std::min(pulses.contact_time_s / revolution, 0.1) + 0.02) * revolution;
 }
 
-// The output times of revolution r in [a, b]: evenly spaced, also in a last, partial revolution
-// (the spectra assume it); the start only in the first.
-std::vector<double> output_times(int r, double a, double b, double revolution, int per_rev) {
-  std::vector<double> outputs;
-  for (int k = (r == 0 ? 0 : 1); k <= per_rev && a + k * revolution / per_rev <= b * (1 + 1e-12); ++k) {
-    outputs.push_back(k == per_rev ? b : a + k * revolution / per_rev);
-  }
-  return outputs;
+// The RKF45 run the self-check compares with, at rtol 1e-10 to `check_time`: its state there, and
+// how long it took.
+struct ReferenceRun {
+  Eigen::VectorXd state;
+  double seconds = 0;
+};
+constexpr double reference_tolerance = 1e-10;
+
+ReferenceRun reference_run(const BladeModel& model, const Scene& scene, const TransientOptions& o, double check_time) {
+  const auto started = std::chrono::steady_clock::now();
+  TransientOptions reference = o;
+  reference.method = TransientMethod::rkf45;
+  reference.revolutions = check_time * scene.operation.speed_rad_s / two_pi;
+  reference.tolerance = reference_tolerance;
+  reference.progress = nullptr;
+  reference.max_lateral_over_length = HUGE_VAL;
+  ReferenceRun run;
+  run.state = detail::run_rkf45_transient(model, scene, reference).final_state;
+  run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  return run;
+}
+
+// The fast history's state at `check_time` against the reference's (SelfCheck).
+SelfCheck self_check(const BladeModel& model, const Scene& scene, const TransientOptions& o, double check_time,
+                     const Eigen::VectorXd& fast_state, const ReferenceRun& reference) {
+  SelfCheck check;
+  check.until_revolutions = check_time * scene.operation.speed_rad_s / two_pi;
+  check.rkf45_tolerance = reference_tolerance;
+  check.seconds = reference.seconds;
+  const Eigen::MatrixXd K = model.stiffness(scene.operation.speed_rad_s);
+  const Eigen::VectorXd equilibrium = rotating_equilibrium(model, scene.operation.speed_rad_s);
+  const Eigen::VectorXd start = o.initial_state ? *o.initial_state : equilibrium;
+  const double scale = std::max(detail::energy_norm(K, model.M, start - equilibrium),
+                                detail::energy_norm(K, model.M, reference.state - equilibrium));
+  check.difference = detail::energy_norm(K, model.M, fast_state - reference.state) / scale;
+  // Each contact piece's propagator within the tolerance, RKF45's local errors within its own, and
+  // a margin of 10 for the pieces and steps they add up over.
+  check.allowed = 10 * (o.contact_tolerance + check.rkf45_tolerance);
+  return check;
+}
+
+// The growth per revolution of the run's revolution changes.
+GrowthFit fit_run_growth(const TransientResult& r) {
+  GrowthFit fit = !r.continued_change.empty() ? fit_growth(r.continued_change)
+                  : r.stopped                  ? latest_growth(r.revolution_change)
+                                               : fit_growth(r.revolution_change);
+  // The fast method's contact propagators' own error, once per piece of a revolution.
+  if (r.method == TransientMethod::fast) fit.error_estimate += fit.growth * r.exact.contact_pieces * r.exact.contact_error;
+  return fit;
 }
 
 }  // namespace
 
 TransientResult run_transient(const BladeModel& model, const Scene& scene, const TransientOptions& o) {
-  const double speed = scene.operation.speed_rad_s;
-  const int n = model.layout.size();
-  const TransientSystem system(model, scene, o);
-  const double revolution = speed > 0 ? two_pi / speed : system.pulses().period_s * scene.load.pulses_per_rev;
-  const double t_end = o.revolutions * revolution;
-  const OdeFunction rhs = [&](double t, const Eigen::VectorXd& x, Eigen::VectorXd& dx) {
-    dx.resize(2 * n + 1);
-    system.derivative(t, x, dx);
-  };
-
-  TransientResult result;
-  const Eigen::VectorXd equilibrium = rotating_equilibrium(model, speed);
-  const Eigen::VectorXd start = o.initial_state ? *o.initial_state : equilibrium;
-  if (start.size() != 2 * n) throw std::invalid_argument("initial state has the wrong size");
-  Eigen::VectorXd x(2 * n + 1);
-  x << start, 0.0;
-  result.static_tip_axial_m = model.tip_axial.dot(equilibrium.head(n));
-  const double initial_energy = system.energy(x);
-  result.initial_vibration_energy_j = initial_energy - system.energy(equilibrium);
-
-  std::optional<ContactEvents> contact;
-  if (system.casing()) contact.emplace(*system.casing(), start);
-  const std::vector<OdeEvent> events = contact ? contact->events(n) : std::vector<OdeEvent>{};
-  result.fixed = transient_step(model, scene, o, t_end);
-  const StepControl control = step_control(o, result.fixed);
-  const Recorder sample(model, system, speed, revolution, initial_energy, result.samples);
-  const int total_revs = static_cast<int>(std::ceil(o.revolutions));
-  // The change of the state over each whole revolution, in the energy norm (K(Ω) is positive
-  // definite below the blade's spin divergence): for a load periodic in a revolution the map over a
-  // revolution is affine, x_{k+1} = Φ x_k + c, so x_{k+1} − x_k = Φ^k (x_1 − x_0) grows like max|ρ|^k
-  // whatever the forced periodic response (docs/theory.md §5's cross-check with the Floquet multipliers).
-  const auto energy_norm = [&](const Eigen::VectorXd& d) {
-    const Eigen::MatrixXd& K = system.stiffness();
-    return std::sqrt(0.5 * d.head(n).dot(K * d.head(n)) + 0.5 * d.segment(n, n).dot(model.M * d.segment(n, n)));
-  };
-  Eigen::VectorXd last_whole = x;
-  // One revolution at a time, so long runs can report progress.
-  for (int r = 0; r < total_revs; ++r) {
-    const double a = r * revolution, b = std::min(t_end, (r + 1) * revolution);
-    const StepStatistics s = rkf45_integrate(rhs, x, a, b, control, system.pulses().edges(a, b),
-                                             output_times(r, a, b, revolution, o.samples_per_revolution),
-                                             std::cref(sample), events);
-    add_statistics(result.steps, s, r == 0);
-    if (b == (r + 1) * revolution) {
-      result.revolution_change.push_back(energy_norm(x - last_whole));
-      last_whole = x;
-    }
-    if (o.progress) o.progress(r + 1, total_revs);
+  const std::string refusal = o.method == TransientMethod::fast ? fast_method_refusal(model, scene, o) : "";
+  if (o.method == TransientMethod::rkf45 || !refusal.empty()) {
+    TransientResult r = detail::run_rkf45_transient(model, scene, o);
+    r.fallback = refusal;
+    r.growth = fit_run_growth(r);
+    return r;
   }
-  result.growth = fit_growth(result.revolution_change);
-  if (contact) result.contact = contact->finished(t_end, x, n);
-  return result;
+  const double check_time = o.self_check && !o.reduction ? check_stretch(scene, o) : 0;
+  // The reference runs beside the fast run where there are threads for it.
+  std::optional<WorkPool<ReferenceRun>> reference;
+  if (check_time > 0) {
+    reference.emplace(o.threads, 1, [&](std::size_t) { return reference_run(model, scene, o, check_time); });
+  }
+  Eigen::VectorXd check_state;
+  TransientResult r = detail::run_fast_transient(model, scene, o, check_time, check_state);
+  if (reference) {
+    r.self_check = self_check(model, scene, o, check_time, check_state, reference->get(0));
+    if (!(r.self_check->difference <= r.self_check->allowed)) {
+      throw NumericalError(fmt::format("the fast method's state at revolution {:.4g} differs from RKF45's (rtol {:g}) by "
+                                       "{:.3g} of the vibration, beyond the stated {:.3g}",
+                                       r.self_check->until_revolutions, r.self_check->rkf45_tolerance,
+                                       r.self_check->difference, r.self_check->allowed));
+    }
+  }
+  r.growth = fit_run_growth(r);
+  return r;
 }
 
 }  // namespace bladestab

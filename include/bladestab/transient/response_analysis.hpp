@@ -27,9 +27,18 @@ double dominant_frequency(const Spectrum& spectrum, double min_hz = 0);
 struct GrowthFit {
   double growth = 1;          // per revolution
   double standard_error = 0;  // of ln growth
+  double error_estimate = 0;  // of growth, absolute: what the fit leaves open (see fit_growth)
   std::string omitted;        // empty: meaningful
 };
+// error_estimate: twice the standard error, as growth·(e^{2σ} − 1), or where larger the largest
+// distance of a single revolution's ratio a_k/a_{k−1} in the fitted half from the growth.
 GrowthFit fit_growth(const std::vector<double>& per_revolution, int min_revolutions = 6,
                      double max_standard_error = 1e-2);
+
+// The growth of a run cut short (the response left the model): the last ratio a_K/a_{K−1}, which
+// converges to max|ρ| as the other multipliers' share fades like (|ρ₂|/max|ρ|)^K; error_estimate
+// the change from the ratio before, |a_K/a_{K−1} − a_{K−1}/a_{K−2}| (a geometric convergence
+// moves less than that from here on). Meaningful with at least 3 values.
+GrowthFit latest_growth(const std::vector<double>& per_revolution);
 
 }  // namespace bladestab

@@ -15,6 +15,7 @@
 // F cos ψ along the axis (and in the geometric stiffness), −F sin ψ on the lateral tip.
 #include <functional>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include <Eigen/Dense>
@@ -24,6 +25,7 @@
 #include "bladestab/transient/response_analysis.hpp"
 #include "bladestab/ltp/rkf45.hpp"
 #include "bladestab/scene/scene.hpp"
+#include "bladestab/transient/exact_stepping.hpp"
 
 namespace bladestab {
 
@@ -33,13 +35,37 @@ struct FixedStep {
   double parasitic_growth = 1;  // |R(iω_maxΔt)|^steps: the stiffest mode's spurious amplification over the run
 };
 
+// How the transient is integrated: `fast` steps free flight exactly and each contact by Magnus
+// (exact_stepping.hpp) in load.mode = "force" without the follower correction, and falls back to
+// `rkf45` elsewhere (the result says so); `rkf45` is the paper's integrator, as described above.
+enum class TransientMethod { fast, rkf45 };
+
 struct TransientOptions {
+  TransientMethod method = TransientMethod::fast;
+  // fast: check the history against RKF45 at rtol 1e-10 through the first contact and a stretch of
+  // free flight after it (a NumericalError when they differ by more than the stated error).
+  bool self_check = true;
+  // fast: on this reduced model (reduction.hpp) instead of the whole Ritz model; without the
+  // self-check (RKF45 runs the whole model).
+  std::optional<ReductionSpec> reduction;
+  int threads = 1;  // fast: the contact pieces integrated side by side
+  // fast: fit the growth on the last revolution change carried on past the run's end as after a
+  // stop (continued_change), where the run is too short for the other multipliers to fade.
+  bool continue_growth = false;
   double revolutions = 10;
   bool adaptive = true;
   int steps_per_period = 0;  // fixed mode: steps per period of the stiffest mode (≥ 8, (54)); 0 = choose
   double tolerance = 1e-8;   // rtol of the adaptive steps
+  // fast: each contact piece's propagator, relative (its step doubling; exact_stepping.hpp). At
+  // 1e-7 the scene as shipped takes 128 Magnus steps per half contact, at 1e-8 256.
+  double contact_tolerance = 1e-7;
   int samples_per_revolution = 200;
   double friction_velocity = 1e-3;              // ε of the regularized sign [m/s]
+  // The small-deflection range: the run stops at the first sample whose lateral tip deflection
+  // exceeds this fraction of the length (or whose axial tip deflection changes by more than
+  // TransientChecks::max_axial_strain of it). Infinite: never stop (the linear equations' own
+  // response, for growth rates).
+  double max_lateral_over_length = 0.1;
   bool follower = false;  // the tip load follows the tip slope ψ = v'(L): F cos ψ axially, −F sin ψ laterally
   std::optional<Eigen::VectorXd> initial_state; // x = [f; ḟ]; default: the steady rotating equilibrium
   std::function<void(int, int)> progress;       // (revolutions done, total)
@@ -73,8 +99,29 @@ struct ContactSummary {
   double max_overlap_m = 0;     // the wall's largest give, max g
 };
 
+// Where and why a run stopped before its end: the response left the small-deflection range.
+struct TransientStop {
+  double revolution = 0;
+  std::string reason;
+};
+
+// The fast method's history against RKF45 at a much tighter tolerance over [0, until]: the state
+// at `until` in the energy norm, relative to the largest vibration (‖x − x_eq‖ in that norm) seen.
+struct SelfCheck {
+  double until_revolutions = 0;
+  double rkf45_tolerance = 0;
+  double difference = 0, allowed = 0;
+  double seconds = 0;
+};
+
 struct TransientResult {
+  TransientMethod method = TransientMethod::rkf45;  // the one used
+  std::string fallback;     // why rkf45 ran where fast was asked for; empty otherwise
   std::vector<TransientSample> samples;
+  std::optional<TransientStop> stopped;
+  ExactSteppingStatistics exact;       // fast
+  std::optional<SelfCheck> self_check; // fast, when asked for
+  Eigen::VectorXd final_state;         // [f; ḟ] at the last sample
   StepStatistics steps;
   FixedStep fixed;          // the fixed step, or in adaptive mode the cap on the step (same rule, n chosen)
   double static_tip_axial_m = 0;  // the rotating equilibrium's tip stretch
@@ -83,8 +130,16 @@ struct TransientResult {
   // ‖x((k+1)T) − x(kT)‖ for each whole revolution k, in the energy norm √(½Δfᵀ K(Ω) Δf + ½Δḟᵀ M Δḟ):
   // states at the ends of the integration, not interpolated, so independent of the output sampling.
   std::vector<double> revolution_change;
-  GrowthFit growth;  // of revolution_change: the growth per revolution, when meaningful
+  // fast, stopped (or continue_growth): revolution_change continued past the end (continued_changes
+  // in fast_transient.cpp) for growth_continuation revolutions, to fit the growth on.
+  std::vector<double> continued_change;
+  GrowthFit growth;  // of revolution_change (or continued_change): the growth per revolution, when meaningful
 };
+
+// Revolutions a stopped fast run's last revolution change is carried on for its growth fit: the
+// other multipliers' share fades like (|ρ₂|/max|ρ|)^k, to 1e-10 of it in 60 revolutions where
+// max|ρ| ≥ 1.5 |ρ₂|.
+constexpr int growth_continuation = 60;
 
 // The steady rotating equilibrium: K(Ω) f = Ω² P_cf + F_s p_u (steady_load(): a static tip force F_s
 // included), ḟ = 0.

@@ -1,0 +1,106 @@
+#pragma once
+// Exact stepping of the blade in load.mode = "force" (docs/theory.md §5.8): the equations of
+// transient.hpp are linear there, and between contacts their state matrix is constant.
+//
+// Coordinates: the undamped modes of the whole Ritz model at speed Ω, K(Ω) φ = ω² M φ with
+// Φᵀ M Φ = I (or those of a reduced model, reduction.hpp: the modes of Vᵀ K(Ω) V in the span of
+// its basis V), about the rotating equilibrium f_eq, scaled so that ½|y|² is the vibration energy:
+//
+//   f = f_eq + Φ D⁻¹ y₁,  ḟ = Φ y₂,  D = diag(ω_k),  z = [y₁; y₂; 1],
+//
+//   ż = (A_free + F(t) B) z,   A_free = [[0, D, 0], [−D, −Ĉ, 0], [0, 0, 0]],
+//                              B = [[0, 0, 0], [−Ĝ D⁻¹, 0, b], [0, 0, 0]],
+//
+// Ĉ = Φᵀ(C_D + C_G)Φ, Ĝ = Φᵀ G Φ, b = Φᵀ(p_u − G f_eq + μ cos β p_v): the tip load's axial push,
+// its geometric stiffness at the equilibrium and the friction, all proportional to F. The
+// friction is −μ|F| cos β · tanh(v_rel/ε) (transient.hpp) with tanh = 1: the tip slides past the
+// casing at v_rel ≈ ΩR, so the sign never changes; the stepper checks v_rel ≥ 20ε (tanh = 1 to
+// the unit roundoff) at every sample in contact and refuses otherwise.
+//
+// Free flight (F = 0) is stepped by e^{A_free h}, one exponential per distinct interval h, exact
+// to rounding. A contact piece is integrated by the sixth-order Magnus propagator (ltp/magnus.hpp)
+// with its steps doubled until the propagator has converged (ltp/step_doubling.hpp), once per
+// distinct piece: an endless train reuses the propagators of its first pulse.
+#include <optional>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "bladestab/blade/model.hpp"
+#include "bladestab/scene/scene.hpp"
+#include "bladestab/stability/periodic_load.hpp"
+
+namespace bladestab {
+
+struct ExactSteppingStatistics {
+  int contact_pieces = 0;        // distinct contact pieces integrated
+  long magnus_steps = 0;         // Magnus steps over every level of every ladder
+  int free_exponentials = 0;     // distinct free-flight intervals
+  long intervals = 0;            // intervals stepped
+  double contact_error = 0;      // largest step-doubling bound of a piece propagator (relative)
+};
+
+class ExactStepper {
+public:
+  // `tolerance` bounds each contact piece's propagator, relative; `reduction`: on that reduced model
+  // (for the load's range 0 … −F_max) instead of the whole one. InputError where the pulses have no
+  // frequency.
+  ExactStepper(const BladeModel& model, const Scene& scene, double tolerance,
+               const std::optional<ReductionSpec>& reduction = std::nullopt);
+
+  // Integrates the contact pieces of the intervals [t_k, t_{k+1}] of `landings` (absolute times)
+  // that are not yet known, on up to `threads` threads (the pieces are independent; each comes out
+  // the same on any number of threads).
+  void prepare(const std::vector<double>& landings, int threads);
+
+  // z over [a, b] inside one pulse period, with no pulse edge inside (a contact piece or free
+  // flight); `work` gains the damping's work in free flight (Van Loan's integral, exact). True
+  // for a contact piece.
+  bool step(double a, double b, Eigen::VectorXd& z, double& work);
+
+  // [f; ḟ] of z, and z of [f; ḟ] (its M-orthogonal projection on the modes kept).
+  Eigen::VectorXd physical(const Eigen::VectorXd& z) const;
+  Eigen::VectorXd modal(const Eigen::VectorXd& x) const;
+
+  // The tip's speed past the casing, ΩR + cos β v̇(L), at the state z.
+  double sliding_speed(const Eigen::VectorXd& z) const;
+  // The pulse train; where its profile has a kink inside the contact (triangular: at t_c/2).
+  const PulseTrain& pulses() const { return pulses_; }
+  int modes() const { return n_; }
+  std::vector<double> kinks() const;
+  const ExactSteppingStatistics& statistics() const { return stats_; }
+
+private:
+  struct Piece {
+    double start, end;  // offsets in the pulse, or (0, h) for free flight
+    Eigen::MatrixXd map, work;
+  };
+  // The contact piece [start, end] of a pulse (offsets), from the cache or integrated now.
+  const Piece& contact_piece(double start, double end);
+  // A contact piece's propagator by step doubling, with its Magnus steps and error bound; touches
+  // no member (prepare runs it side by side).
+  struct Integrated {
+    Piece piece;
+    long steps = 0;
+    double error = 0;
+  };
+  Integrated integrate_contact(double start, double end) const;
+  // The cached contact piece [start, end], if any.
+  const Piece* cached_contact(double start, double end) const;
+  // The contact piece offsets of [a, b] (absolute), if it lies in a contact.
+  std::optional<std::pair<double, double>> contact_offsets(double a, double b) const;
+  const Piece& keep(Integrated integrated);
+  const Piece& free_piece(double h);
+
+  int n_, dofs_;  // modes kept, and 2n_
+  PulseTrain pulses_;
+  double tolerance_, cos_beta_, mu_cos_beta_, rim_speed_;
+  bool damped_;
+  Eigen::MatrixXd Phi_, PhiT_M_, A_free_, B_, Q_damping_;
+  Eigen::VectorXd omega_, equilibrium_;
+  Eigen::RowVectorXd tip_lateral_;
+  std::vector<Piece> contact_, free_;
+  ExactSteppingStatistics stats_;
+};
+
+}  // namespace bladestab

@@ -1,0 +1,227 @@
+#include "bladestab/transient/exact_stepping.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+#include <fmt/format.h>
+#include <unsupported/Eigen/MatrixFunctions>
+
+#include "bladestab/base/input_error.hpp"
+#include "bladestab/base/numerical_error.hpp"
+#include "bladestab/blade/damping.hpp"
+#include "bladestab/blade/reduction.hpp"
+#include "bladestab/blade/undamped_modes.hpp"
+#include "bladestab/ltp/magnus.hpp"
+#include "bladestab/ltp/step_doubling.hpp"
+#include "support/work_pool.hpp"
+#include "bladestab/transient/transient.hpp"
+
+namespace bladestab {
+namespace {
+
+// ‖X − Y‖_F / ‖Y‖_F over the homogeneous block and, apart, over the forcing column (its scale is
+// the forced response's, not the propagator's).
+double map_distance(const Eigen::MatrixXd& X, const Eigen::MatrixXd& Y) {
+  const Eigen::Index s = X.rows() - 1;
+  const double homogeneous = (X.topLeftCorner(s, s) - Y.topLeftCorner(s, s)).norm() / Y.topLeftCorner(s, s).norm();
+  const double forcing_scale = Y.col(s).head(s).norm();
+  const double forcing = forcing_scale > 0 ? (X.col(s) - Y.col(s)).head(s).norm() / forcing_scale : 0;
+  return std::max(homogeneous, forcing);
+}
+
+bool same_time(double a, double b, double scale) { return std::abs(a - b) <= 1e-12 * scale; }
+
+// Φ and ω²: the modes of the whole model, or of the reduced one in the span of its basis V
+// (Vᵀ M V = I, so Φ = V Q with Q the eigenvectors of Vᵀ K V is M-orthonormal).
+UndampedModes kept_modes(const BladeModel& model, const Scene& scene, const Eigen::MatrixXd& C_D, double peak_n,
+                         const std::optional<ReductionSpec>& reduction) {
+  const double speed = scene.operation.speed_rad_s;
+  if (!reduction) return undamped_modes(model, speed);
+  const ReducedSystem reduced = reduce(model, speed, C_D, -peak_n, *reduction);
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(reduced.K);
+  return {eigen.eigenvalues(), reduced.basis * eigen.eigenvectors()};
+}
+
+}  // namespace
+
+ExactStepper::ExactStepper(const BladeModel& model, const Scene& scene, double tolerance,
+                           const std::optional<ReductionSpec>& reduction)
+    : pulses_(pulse_train(scene)), tolerance_(tolerance) {
+  if (!pulses_.frequency_known) {
+    throw InputError("operation.speed_rad_s = 0: the pulses have no frequency; give load.pulse_frequency_hz");
+  }
+  const double speed = scene.operation.speed_rad_s;
+  const Eigen::MatrixXd C_D = damping_matrix(model, scene.damping, speed);
+  const UndampedModes modes = kept_modes(model, scene, C_D, pulses_.peak_n, reduction);
+  if (!(modes.omega2(0) > 0)) {
+    throw NumericalError(fmt::format("exact stepping: K(Ω) at {} rad/s is not positive definite", speed));
+  }
+  n_ = static_cast<int>(modes.omega2.size()), dofs_ = 2 * n_;
+  omega_ = modes.omega2.cwiseSqrt();
+  Phi_ = modes.shapes;
+  PhiT_M_ = Phi_.transpose() * model.M;
+  equilibrium_ = rotating_equilibrium(model, speed).head(model.layout.size());
+  damped_ = !C_D.isZero(0);
+  const Eigen::MatrixXd C_hat = Phi_.transpose() * (C_D + model.gyroscopic(speed)) * Phi_;
+  const Eigen::MatrixXd G_hat = Phi_.transpose() * model.G * Phi_;
+  const int n = n_, s = dofs_;
+  A_free_ = Eigen::MatrixXd::Zero(s + 1, s + 1);
+  A_free_.block(0, n, n, n) = omega_.asDiagonal();
+  A_free_.block(n, 0, n, n) = -Eigen::MatrixXd(omega_.asDiagonal());
+  A_free_.block(n, n, n, n) = -C_hat;
+  cos_beta_ = std::cos(model.blade.beta_rad);
+  mu_cos_beta_ = scene.load.friction * cos_beta_;
+  const Eigen::VectorXd forcing = model.tip_axial.transpose() - model.G * equilibrium_ +
+                                  mu_cos_beta_ * model.tip_lateral.transpose();
+  B_ = Eigen::MatrixXd::Zero(s + 1, s + 1);
+  B_.block(n, 0, n, n) = -G_hat * omega_.cwiseInverse().asDiagonal();
+  B_.block(n, s, n, 1) = Phi_.transpose() * forcing;
+  // W' = −ḟᵀ C_D ḟ = yᵀ Q y in free flight.
+  Q_damping_ = Eigen::MatrixXd::Zero(s, s);
+  Q_damping_.block(n, n, n, n) = -Phi_.transpose() * C_D * Phi_;
+  rim_speed_ = speed * model.blade.tip_radius();
+  tip_lateral_ = model.tip_lateral;
+}
+
+std::vector<double> ExactStepper::kinks() const {
+  if (pulses_.profile == PulseProfile::triangular) return {0.5 * pulses_.contact_time_s};
+  return {};
+}
+
+Eigen::VectorXd ExactStepper::physical(const Eigen::VectorXd& z) const {
+  const Eigen::Index n = equilibrium_.size();
+  Eigen::VectorXd x(2 * n);
+  x.head(n) = equilibrium_ + Phi_ * z.head(n_).cwiseQuotient(omega_);
+  x.tail(n) = Phi_ * z.segment(n_, n_);
+  return x;
+}
+
+Eigen::VectorXd ExactStepper::modal(const Eigen::VectorXd& x) const {
+  const Eigen::Index n = equilibrium_.size();
+  Eigen::VectorXd z(dofs_ + 1);
+  z.head(n_) = omega_.cwiseProduct(PhiT_M_ * (x.head(n) - equilibrium_));
+  z.segment(n_, n_) = PhiT_M_ * x.segment(n, n);
+  z(dofs_) = 1;
+  return z;
+}
+
+double ExactStepper::sliding_speed(const Eigen::VectorXd& z) const {
+  return rim_speed_ + cos_beta_ * tip_lateral_.dot(Phi_ * z.segment(n_, n_));
+}
+
+const ExactStepper::Piece& ExactStepper::free_piece(double h) {
+  for (const Piece& p : free_) {
+    if (same_time(p.end, h, pulses_.period_s)) return p;
+  }
+  const int s = dofs_;
+  Piece piece{0, h, {}, {}};
+  if (damped_) {
+    // Van Loan: e^{H h} = [[F1, G1], [0, F2]] for H = [[−Aᵀ, Q], [0, A]] gives F2 = e^{Ah} and
+    // ∫₀ʰ e^{Aᵀτ} Q e^{Aτ} dτ = F2ᵀ G1, the damping's work over h from any start y as yᵀ(F2ᵀG1)y.
+    const Eigen::MatrixXd A = A_free_.topLeftCorner(s, s);
+    Eigen::MatrixXd H = Eigen::MatrixXd::Zero(2 * s, 2 * s);
+    H.topLeftCorner(s, s) = -A.transpose();
+    H.topRightCorner(s, s) = Q_damping_;
+    H.bottomRightCorner(s, s) = A;
+    const Eigen::MatrixXd E = (H * h).exp();
+    piece.map = E.bottomRightCorner(s, s);
+    piece.work = piece.map.transpose() * E.topRightCorner(s, s);
+  } else {
+    piece.map = (A_free_.topLeftCorner(s, s) * h).exp();
+  }
+  ++stats_.free_exponentials;
+  free_.push_back(std::move(piece));
+  return free_.back();
+}
+
+const ExactStepper::Piece* ExactStepper::cached_contact(double start, double end) const {
+  for (const Piece& p : contact_) {
+    if (same_time(p.start, start, pulses_.period_s) && same_time(p.end, end, pulses_.period_s)) return &p;
+  }
+  return nullptr;
+}
+
+const ExactStepper::Piece& ExactStepper::keep(Integrated integrated) {
+  stats_.magnus_steps += integrated.steps;
+  stats_.contact_error = std::max(stats_.contact_error, integrated.error);
+  ++stats_.contact_pieces;
+  contact_.push_back(std::move(integrated.piece));
+  return contact_.back();
+}
+
+const ExactStepper::Piece& ExactStepper::contact_piece(double start, double end) {
+  if (const Piece* p = cached_contact(start, end)) return *p;
+  return keep(integrate_contact(start, end));
+}
+
+ExactStepper::Integrated ExactStepper::integrate_contact(double start, double end) const {
+  const std::function<double(double)> load = [this](double tau) { return pulses_.force(tau); };
+  // From 1/32 of the count where h‖A‖₁ ≤ 2 (the exponential takes the stiff modes exactly).
+  const double norm = A_free_.cwiseAbs().colwise().sum().maxCoeff() +
+                      pulses_.peak_n * B_.cwiseAbs().colwise().sum().maxCoeff();
+  const double safe = std::max(1.0, norm * (end - start) / 2);
+  const int first = 1 << static_cast<int>(std::max(0.0, std::ceil(std::log2(safe / 32))));
+  StepDoubling ladder(first, 1 << 16, static_cast<int>(std::min(safe, 1e9)));
+  Integrated result;
+  Eigen::MatrixXd previous;
+  for (int steps = first; steps <= ladder.last(); steps *= 2) {
+    Eigen::MatrixXd map = magnus_propagator(A_free_, B_, load, start, end, steps);
+    result.steps += steps;
+    if (!map.allFinite()) {
+      ladder.start();
+      previous.resize(0, 0);
+      continue;
+    }
+    if (previous.size() > 0) {
+      if (const std::optional<double> error = ladder.judge(steps, map_distance(map, previous), tolerance_, 1e-15)) {
+        result.error = *error;
+        result.piece = {start, end, std::move(map), {}};
+        return result;
+      }
+    }
+    previous = std::move(map);
+  }
+  throw NumericalError(fmt::format("exact stepping: the contact piece [{:.6g}, {:.6g}] s did not converge to {:g} "
+                                   "within {} Magnus steps", start, end, tolerance_, ladder.last()));
+}
+
+std::optional<std::pair<double, double>> ExactStepper::contact_offsets(double a, double b) const {
+  const double mid = 0.5 * (a + b);
+  const std::optional<double> tau = pulses_.time_in_pulse(mid);
+  if (!tau) return std::nullopt;
+  const double pulse_start = mid - *tau;
+  return std::pair{std::max(0.0, a - pulse_start), std::min(pulses_.contact_time_s, b - pulse_start)};
+}
+
+void ExactStepper::prepare(const std::vector<double>& landings, int threads) {
+  std::vector<std::pair<double, double>> missing;
+  for (std::size_t k = 1; k < landings.size(); ++k) {
+    if (!(landings[k] > landings[k - 1])) continue;
+    const auto offsets = contact_offsets(landings[k - 1], landings[k]);
+    if (!offsets || cached_contact(offsets->first, offsets->second)) continue;
+    const bool listed = std::any_of(missing.begin(), missing.end(), [&](const std::pair<double, double>& m) {
+      return same_time(m.first, offsets->first, pulses_.period_s) && same_time(m.second, offsets->second, pulses_.period_s);
+    });
+    if (!listed) missing.push_back(*offsets);
+  }
+  std::vector<Integrated> pieces = run_indexed(missing.size(), threads, [&](std::size_t i) {
+    return integrate_contact(missing[i].first, missing[i].second);
+  });
+  for (Integrated& piece : pieces) keep(std::move(piece));
+}
+
+bool ExactStepper::step(double a, double b, Eigen::VectorXd& z, double& work) {
+  ++stats_.intervals;
+  if (const auto offsets = contact_offsets(a, b)) {
+    z = contact_piece(offsets->first, offsets->second).map * z;
+    return true;
+  }
+  const Piece& piece = free_piece(b - a);
+  const auto y = z.head(dofs_);
+  if (damped_) work += y.dot(piece.work * y);
+  z.head(dofs_) = piece.map * y;
+  return false;
+}
+
+}  // namespace bladestab

@@ -1,0 +1,61 @@
+#pragma once
+// The two transient methods (transient.hpp) and what they share: the output times, the samples
+// taken from the state [f; ḟ; W], where a run leaves the small-deflection range, and the energy
+// norm of the state's change over a revolution.
+#include <optional>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "bladestab/blade/model.hpp"
+#include "bladestab/transient/transient.hpp"
+#include "bladestab/transient/transient_system.hpp"
+
+namespace bladestab::detail {
+
+// The samples of a run: tip motion, loads and the energy balance at each output time.
+class Recorder {
+public:
+  Recorder(const BladeModel& model, const TransientSystem& system, double speed, double revolution,
+           double initial_energy, double max_lateral_m, double static_tip_axial_m,
+           std::vector<TransientSample>& samples);
+  // Records the sample at t of the state s = [f; ḟ; W]; the stop when it lies beyond the
+  // small-deflection range (the sample is kept: the history ends there).
+  std::optional<TransientStop> operator()(double t, const Eigen::VectorXd& s) const;
+
+private:
+  const BladeModel& model_;
+  const TransientSystem& system_;
+  const Eigen::MatrixXd K_E_;
+  double speed_, revolution_, initial_energy_, max_lateral_m_, static_axial_m_;
+  std::vector<TransientSample>& samples_;
+};
+
+// The output times of revolution r in [a, b]: evenly spaced, also in a last, partial revolution
+// (the spectra assume it); the start only in the first.
+std::vector<double> output_times(int r, double a, double b, double revolution, int per_rev);
+
+// √(½Δfᵀ K Δf + ½Δḟᵀ M Δḟ) of a change d = [Δf; Δḟ] (K = K(Ω), positive definite below the
+// blade's spin divergence).
+double energy_norm(const Eigen::MatrixXd& K, const Eigen::MatrixXd& M, const Eigen::VectorXd& d);
+
+// What a run starts from: the revolution's length, the end, the state [f; ḟ; W] (W = 0) and its
+// energy; run_start also fills the result's static stretch and initial vibration energy.
+struct RunStart {
+  double speed = 0, revolution = 0, t_end = 0, initial_energy = 0;
+  Eigen::VectorXd x;
+  Recorder recorder(const BladeModel& model, const TransientSystem& system, const TransientOptions& options,
+                    TransientResult& result) const;
+};
+RunStart run_start(const BladeModel& model, const Scene& scene, const TransientSystem& system,
+                   const TransientOptions& options, TransientResult& result);
+
+// run_transient by RKF45.
+TransientResult run_rkf45_transient(const BladeModel& model, const Scene& scene, const TransientOptions& options);
+
+// run_transient by exact stepping (exact_stepping.hpp); with `check_time` > 0 the state [f; ḟ]
+// there is put in `check_state`.
+TransientResult run_fast_transient(const BladeModel& model, const Scene& scene, const TransientOptions& options,
+                                   double check_time, Eigen::VectorXd& check_state);
+
+}  // namespace bladestab::detail
