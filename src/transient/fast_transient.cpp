@@ -144,7 +144,7 @@ TransientResult run_fast_transient(const BladeModel& model, const Scene& scene, 
     const double a = (whole - 1) * begin.revolution, b = whole * begin.revolution;
     std::copy_if(all.begin(), all.end(), std::back_inserter(last), [&](const Landing& l) { return l.t > a && l.t <= b; });
     Eigen::VectorXd change = z_whole - z_before;
-    change(2 * n) = 0;
+    change(change.size() - 1) = 0;  // the augmentation's constant, not a change (z is modal: 2·modes + 1)
     result.continued_change = continued_changes(stepper, change, last, a, growth_continuation);
   }
   result.final_state = x.head(2 * n);
