@@ -39,7 +39,7 @@ RangeParameter key_parameter(const ParameterSweep& s) {
 
 // The sweep as its files print it (printed_digits.hpp): each frequency and Λ to its estimate, the
 // damping ratio to the same (absolute), the correlations (no estimate of their own) to 6 digits;
-// the estimates themselves to 2; where the values meet a static limit to its 1e-12.
+// the estimates themselves to 2.
 ParameterSweep as_printed(ParameterSweep s, const PrintedDigits& digits) {
   for (SweptMode& m : s.modes) {
     m.error_estimate = digits.estimate(m.error_estimate);
@@ -48,14 +48,11 @@ ParameterSweep as_printed(ParameterSweep s, const PrintedDigits& digits) {
     m.damping_ratio = digits.absolute(m.damping_ratio, m.error_estimate);
     m.correlation = digits.unestimated(m.correlation);
   }
-  for (std::optional<StaticLimit>* limit : {&s.static_limits.before, &s.static_limits.after}) {
-    if (*limit) (*limit)->where = digits.relative((*limit)->where, 1e-12);  // found to 1e-12 of itself
-  }
   return s;
 }
 
-// `s` as printed (as_printed).
-std::string sweep_json(const Scene& scene, const ParameterSweep& s) {
+// `s` as printed (as_printed); where it meets a static limit to `digits`.
+std::string sweep_json(const Scene& scene, const ParameterSweep& s, const PrintedDigits& digits) {
   Json json;
   json["title"] = sweep_title(scene, s);
   json["scene"] = scene.source;
@@ -67,7 +64,7 @@ std::string sweep_json(const Scene& scene, const ParameterSweep& s) {
   json["reference_terms"] = s.reference_terms;
   json["damping"] = to_string(scene.damping.model);
   json["solver"] = to_string(s.solver);
-  write_static_limits(json, s.static_limits, key_parameter(s), "sweep", PrintedDigits(DigitsRule::full));  // rounded by as_printed
+  write_static_limits(json, s.static_limits, key_parameter(s), "sweep", digits);
   json["matched_by"] = Json::array();
   for (ModeMatch m : s.matched_by) json["matched_by"].push_back(to_string(m));
   json["min_correlation"] = s.min_correlation();
@@ -182,8 +179,9 @@ Command register_sweep(CLI::App& app) {
     const bool for_people = options->output_format() == OutputFormat::table;
     const ParameterSweep sweep = parameter_sweep(read_scene_file(options->path), options->path, options->overrides, o,
                                                  progress_reporter("sweep: values", for_people));
-    const ParameterSweep printed = as_printed(sweep, options->printed_digits());
-    const std::string json = sweep_json(scene, printed);
+    const PrintedDigits digits = options->printed_digits();
+    const ParameterSweep printed = as_printed(sweep, digits);
+    const std::string json = sweep_json(scene, printed, digits);
     const std::vector<std::string> files =
         write_outputs(*out, *name, {{*name + ".csv", sweep_csv(printed)}}, json, "sweep", *chart);
     switch (options->output_format()) {
