@@ -135,15 +135,6 @@ void note_files_written() { files_written.store(true); }
 
 // Signals are blocked (they stay pending and stop the run once the set is in place); the deadline
 // waits for the lock.
-void end_of_run() {
-  static std::once_flag ending;
-  std::call_once(ending, [] {
-    const sigset_t set = stop_signals();
-    pthread_sigmask(SIG_BLOCK, &set, nullptr);
-    commit_lock().lock();  // never released: the process ends after the last line
-  });
-}
-
 StopDeferral::StopDeferral() {
   const sigset_t set = stop_signals();
   pthread_sigmask(SIG_BLOCK, &set, nullptr);
@@ -154,6 +145,11 @@ StopDeferral::~StopDeferral() {
   commit_lock().unlock();
   const sigset_t set = stop_signals();
   pthread_sigmask(SIG_UNBLOCK, &set, nullptr);
+}
+
+void end_of_run() {
+  static const StopDeferral* const held = new StopDeferral;  // never released: the process ends after the last line
+  static_cast<void>(held);
 }
 
 }  // namespace bladestab::cli
