@@ -439,7 +439,7 @@ TEST_CASE("bad input: issue 11, work and memory beyond the limits (bad_input)", 
     CHECK((WIFEXITED(o.wait_status) && WEXITSTATUS(o.wait_status) == 130));
     CHECK(std::count(o.err.begin(), o.err.end(), '\n') == 1);
     CHECK(o.err.find("interrupted") != std::string::npos);
-    CHECK(fs::is_empty(dir));
+    CHECK((!fs::exists(dir) || fs::is_empty(dir)));  // a slow host may stop it before --out is made
   }
 }
 

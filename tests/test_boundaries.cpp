@@ -122,7 +122,7 @@ TEST_CASE("boundaries: with a modal cut-off the reduction part covers the true e
   }
 }
 
-TEST_CASE("boundaries: Mathieu's first two tongues with the automatic k", "[boundaries][mathieu]") {
+TEST_CASE("boundaries: Mathieu's first two tongues with the automatic k", "[boundaries][mathieu][long_under_sanitizers]") {
   for (double fbar : {0.2, 0.6, 1.2}) {
     const Scene s = mathieu_scene(fbar);
     const BladeModel m = assemble_model(s);
@@ -155,7 +155,7 @@ TEST_CASE("boundaries: Mathieu's first two tongues with the automatic k", "[boun
 }
 
 TEST_CASE("boundaries: where the stiffness touches zero (F̄ = 1) the pinched tongues do not sink the first two, "
-          "at every starting k from 2 to 20", "[boundaries][mathieu]") {
+          "at every starting k from 2 to 20", "[boundaries][mathieu][long_under_sanitizers]") {
   // F̄ = 1: a = 2q, Mathieu's line where the stiffness vanishes once a period. The tongues of high
   // order at low θ pinch and converge slowly or not at all in k; the order-1 and order-2 edges
   // converge at small k and must be reported whatever k the run starts from.

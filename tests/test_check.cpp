@@ -50,7 +50,7 @@ std::size_t count_of(const std::string& text, const std::string& what) {
 
 }  // namespace
 
-TEST_CASE("check: the Campbell margin's worst point against dense solves", "[check][parallel]") {
+TEST_CASE("check: the Campbell margin's worst point against dense solves", "[check][parallel][long_under_sanitizers]") {
   SECTION("a crossing inside the range: margin 0 at the root of f = kΩ/2π") {
     const Scene scene = load_scene(example("fails"));
     const FrequencyMarginResult m = check_frequency_margin(scene, 1e-6);
@@ -109,7 +109,7 @@ TEST_CASE("check: the Campbell margin's worst point against dense solves", "[che
   }
 }
 
-TEST_CASE("check: the stability onset at the worst speed against Floquet either side", "[check][parallel]") {
+TEST_CASE("check: the stability onset at the worst speed against Floquet either side", "[check][parallel][long_under_sanitizers]") {
   // Damped, so the regions lift off F̄ = 0 and the onset is a boundary: max|ρ| ≤ 1 just below it,
   // > 1 just above.
   Scene scene = load_scene(example("passes"),
@@ -162,7 +162,7 @@ TEST_CASE("check: the example scenes end to end: fails.toml, exit 1, JSON", "[ch
 
 // The JUnit form of two failed checks: the passing scene asked for more than it holds (a 50 %
 // frequency margin, stability up to 8 F_cr), 2.5× cheaper than fails.toml's run at a tongue's tip.
-TEST_CASE("check: the example scenes end to end: two failures as JUnit", "[check][parallel]") {
+TEST_CASE("check: the example scenes end to end: two failures as JUnit", "[check][parallel][long_under_sanitizers]") {
   const Outcome x = run_bladestab({"check", example("passes"), "--set", "requirements.frequency_margin=0.5", "--set",
                                    "requirements.max_fmax_over_fcr=8", "--format", "junit"},
                                   {120});

@@ -70,7 +70,7 @@ TEST_CASE("two modes coupled by the load: the unstable multiplier is named by th
 }
 
 TEST_CASE("the paper blade's theta plane: the islands near 720-850 rad/s are (w1 + w2)/2, confirmed at their point",
-          "[combination][map][parallel]") {
+          "[combination][map][parallel][long_under_sanitizers]") {
   const Scene scene = paper_scene({"model.terms=8"});
   MapOptions o;
   o.plane = MapPlane::theta_fmax;

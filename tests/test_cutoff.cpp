@@ -53,7 +53,7 @@ int modes_below(const BladeModel& m, double speed, double cutoff_hz) {
 }  // namespace
 
 TEST_CASE("stability --cutoff-hz keeps the modes below the cut-off, SPEC section 6's table, error within the estimate",
-          "[stability][cutoff][parallel]") {
+          "[stability][cutoff][parallel][long_under_sanitizers]") {
   // docs/theory.md §6: kept dofs and max|ρ| for each cut-off; the whole model (24 dofs) gives 2.199227.
   struct Row {
     double cutoff_hz;
@@ -99,7 +99,7 @@ TEST_CASE("stability --cutoff-hz keeps the modes below the cut-off, SPEC section
 }
 
 TEST_CASE("boundaries --cutoff-hz: the boundaries of exactly the modes below the cut-off, error within the estimate",
-          "[boundaries][cutoff][parallel]") {
+          "[boundaries][cutoff][parallel][long_under_sanitizers]") {
   const double cutoff = 3000;  // the lowest bending modes and the first axial mode of the N = 8 blade
   const Scene s = paper_scene({"model.terms=8"});
   const BladeModel m = assemble_model(s);

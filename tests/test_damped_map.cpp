@@ -99,7 +99,7 @@ TEST_CASE("a damped map's principal region is lifted off the F-bar = 0 axis", "[
 }
 
 TEST_CASE("a damped region's traced boundary is closed through its tip, and the tip is where Floquet says",
-          "[map][damping][fold][parallel]") {
+          "[map][damping][fold][parallel][long_under_sanitizers]") {
   const Scene s = scene_with("modal:0.01");
   MapOptions o;
   o.plane = MapPlane::theta_fmax;
@@ -170,7 +170,7 @@ double odeint_true_pulse_max_rho(const Scene& s) {
 
 }  // namespace
 
-TEST_CASE("a map of the true pulse train matches an independent integration of the train", "[map][exact][parallel]") {
+TEST_CASE("a map of the true pulse train matches an independent integration of the train", "[map][exact][parallel][long_under_sanitizers]") {
   // The speed plane of the paper blade's true half-sine train (t̄c = 0.01), N = 4 for a cheap
   // reference; six refined samples against Boost.Odeint on the whole Ritz model.
   const Scene s = paper_scene({"model.terms=4", "load.approximation=exact"});

@@ -206,7 +206,7 @@ TEST_CASE("end to end: campbell, json, csv, crossings and PNG, mode 1 at rest is
   check_png(dir / "campbell.png", 1200, 825);
 }
 
-TEST_CASE("end to end: stability, json and csv, max|rho| against Runge-Kutta 7(8) on the same system", "[end_to_end][stability][parallel]") {
+TEST_CASE("end to end: stability, json and csv, max|rho| against Runge-Kutta 7(8) on the same system", "[end_to_end][stability][parallel][long_under_sanitizers]") {
   const Json j = run_json("stability", {});
   const Csv c = run_csv("stability", {});
   const std::size_t count = j["multipliers"].size();
@@ -228,7 +228,7 @@ TEST_CASE("end to end: stability, json and csv, max|rho| against Runge-Kutta 7(8
 }
 
 TEST_CASE("end to end: boundaries, json and csv, a multiplier of the reference monodromy at -1 there",
-          "[end_to_end][boundaries][parallel]") {
+          "[end_to_end][boundaries][parallel][long_under_sanitizers]") {
   const std::vector<std::string> more{"--max-order", "1", "--set", "model.axial=false"};
   // The four-term basis is ~1e-3 from the continuum, above the harmonics' --tolerance: said in one line.
   const std::string note = "bladestab: note: boundaries: the whole estimate ";
@@ -262,7 +262,7 @@ TEST_CASE("end to end: boundaries, json and csv, a multiplier of the reference m
 }
 
 TEST_CASE("end to end: map, json, csv, grid and curve files, PNG and SVG, the scene point's max|rho|",
-          "[end_to_end][map][parallel]") {
+          "[end_to_end][map][parallel][long_under_sanitizers]") {
   const fs::path dir = output_dir("map");
   const std::vector<std::string> grid{"--plane", "theta-fmax", "--theta", "100:900:5", "--fmax", "0:10:3", "--trace",
                                       "11", "--resolution", "10x6", "--max-order", "1", "--out", dir.string(),
@@ -367,7 +367,7 @@ TEST_CASE("end to end: sweep, json, csv and PNG, mode 1 at rest is the cantileve
 }
 
 TEST_CASE("end to end: check, json and junit, the worst Campbell margin from the test's own eigen-solve",
-          "[end_to_end][check][parallel]") {
+          "[end_to_end][check][parallel][long_under_sanitizers]") {
   const std::string scene = std::string(BLADESTAB_SOURCE_DIR) + "/stability_maps/ci/passes.toml";
   const auto check_run = [&](const char* format) {
     // Every digit: the worst point is compared with the test's own solve of the same model to 1e-8,

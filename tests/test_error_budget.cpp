@@ -205,7 +205,7 @@ TEST_CASE("a blade that diverges beyond the double range within a period is refu
   CHECK_THROWS_AS(analyse_stability(paper_scene({"blade.slenderness=0.3"}), {}), NumericalError);
 }
 
-TEST_CASE("the first release's wrong answers are right now (issue table)", "[budget][parallel]") {
+TEST_CASE("the first release's wrong answers are right now (issue table)", "[budget][parallel][long_under_sanitizers]") {
   // Each against the value the issue measured with independent integrations.
   CHECK(analyse_stability(paper_scene({"model.terms=40"}), {}).floquet.max_abs_multiplier ==
         Approx(2.1992297).epsilon(2e-7));
@@ -249,7 +249,7 @@ TEST_CASE("answers do not depend on --threads: stability's budget and campbell's
   }
 }
 
-TEST_CASE("stability's progress counts the answer's levels and its variants, and leaves the answer alone", "[budget][parallel]") {
+TEST_CASE("stability's progress counts the answer's levels and its variants, and leaves the answer alone", "[budget][parallel][long_under_sanitizers]") {
   // The cosine approximation by the automatic method and by Koopman–Hill, and the true pulse train
   // (its contact's step ladder).
   for (const auto& [approximation, method] : {std::pair{"cosine", FloquetMethod::automatic},

@@ -124,7 +124,7 @@ TEST_CASE("fast transient: damped free vibration is the closed form", "[transien
 }
 
 TEST_CASE("fast transient: the unstable cosine load stops at the small-deflection range with the Floquet growth",
-          "[transient][fast]") {
+          "[transient][fast][long_under_sanitizers]") {
   // The paper's cosine load (42) at F̄ = 5, 300 rad/s, N = 8: max|ρ| = 2.1992274 (validation.md).
   const Scene scene = paper_scene({"model.terms=8", "load.profile=\"cosine\"", "load.contact_time_rev=1"});
   const BladeModel model = assemble_model(scene);

@@ -52,7 +52,7 @@ std::vector<double> field(const TransientResult& r, double TransientSample::*mem
 }  // namespace
 
 TEST_CASE("friction mu = 0.2: the transient matches an independent integration of the Coulomb law to 1e-6 of the peak",
-          "[transient][friction]") {
+          "[transient][friction][long_under_sanitizers]") {
   const FrictionRun with = friction_run(0.2, 2);
   const std::vector<double> lateral = field(with.result, &TransientSample::tip_lateral_m);
   const std::vector<double> axial = field(with.result, &TransientSample::tip_axial_m);
@@ -72,7 +72,7 @@ TEST_CASE("friction mu = 0.2: the transient matches an independent integration o
 }
 
 TEST_CASE("friction: the force is mu|F| cos(beta), against the sliding, only in contact, its work is the reference's",
-          "[transient][friction]") {
+          "[transient][friction][long_under_sanitizers]") {
   const FrictionRun run = friction_run(0.2, 2);
   const double mu = 0.2, cos_beta = std::cos(run.scene.blade.stagger_deg * 3.14159265358979323846 / 180);
   const double rim_speed = run.scene.operation.speed_rad_s * (run.scene.blade.hub_radius + run.scene.blade.length);

@@ -183,8 +183,8 @@ TEST_CASE("fuzz: the corpus has the size the suite promises", "[fuzz]") {
   CHECK(scene_key_cases().size() + option_cases().size() + file_cases().size() >= 300);
 }
 
-TEST_CASE("fuzz: hostile scene values over all commands", "[fuzz]") { run(scene_key_cases()); }
+TEST_CASE("fuzz: hostile scene values over all commands", "[fuzz][long_under_sanitizers]") { run(scene_key_cases()); }
 
-TEST_CASE("fuzz: hostile option values over all commands", "[fuzz]") { run(option_cases()); }
+TEST_CASE("fuzz: hostile option values over all commands", "[fuzz][long_under_sanitizers]") { run(option_cases()); }
 
 TEST_CASE("fuzz: scene files that are not scene files", "[fuzz]") { run(file_cases()); }

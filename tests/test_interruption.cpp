@@ -62,7 +62,7 @@ void expect_stopped(const Outcome& o, const fs::path& out, int status, const std
 
 }  // namespace
 
-TEST_CASE("interruption: a signal while a chart is drawn ends the drawer, one line, no files", "[interruption][parallel]") {
+TEST_CASE("interruption: a signal while a chart is drawn ends the drawer, one line, no files", "[interruption][parallel][long_under_sanitizers]") {
   RunOptions options;
   options.freeze_drawer = true;
   options.timeout_seconds = 120;

@@ -83,7 +83,7 @@ void check_export(const std::vector<std::string>& overrides, const std::string& 
 
 }  // namespace
 
-TEST_CASE("stability --export-matrices writes the system it integrated (export)", "[export][parallel]") {
+TEST_CASE("stability --export-matrices writes the system it integrated (export)", "[export][parallel][long_under_sanitizers]") {
   SECTION("the whole 8-term Ritz model") {
     check_export({"model.terms=8", "model.reduction=none"}, "1e-5", 48);
   }

@@ -280,7 +280,7 @@ TEST_CASE("error estimates are honest and --tolerance raises the number of terms
   CHECK(std::abs(tight.solution.modes[2].lambda / exact - 1) < 1e-9);
 }
 
-TEST_CASE("sine basis: the estimate from N, 2N, 4N covers the true error against the closed form", "[modes][convergence]") {
+TEST_CASE("sine basis: the estimate from N, 2N, 4N covers the true error against the closed form", "[modes][convergence][long_under_sanitizers]") {
   const double E_over_kappaG = 2 * (1 + 0.3) / 0.833;
   double lowest_ratio = 1e300, highest_ratio = 0;
   for (double d : {0.01, 0.1}) {

@@ -34,7 +34,7 @@ Eigen::VectorXcd reference_multipliers(const PeriodicSystem& sys, double peak) {
 }  // namespace
 
 TEST_CASE("monodromy-rkf45: max|rho| agrees with Magnus and with Runge-Kutta 7(8) within its estimate",
-          "[stability][rkf45]") {
+          "[stability][rkf45][long_under_sanitizers]") {
   // The paper blade, four terms, automatic reduction, cosine load: stable (F̄ = 1) and unstable (F̄ = 5).
   for (const double fbar : {1.0, 5.0}) {
     const Scene s = paper_scene({"model.terms=4", "load.fmax_over_fcr=" + std::to_string(fbar)});
@@ -58,7 +58,7 @@ TEST_CASE("monodromy-rkf45: max|rho| agrees with Magnus and with Runge-Kutta 7(8
 }
 
 TEST_CASE("monodromy-rkf45: det Phi(T) is Liouville's exp(-T tr(M^-1 C)) on the whole damped model",
-          "[stability][rkf45]") {
+          "[stability][rkf45][long_under_sanitizers]") {
   // Every mode of a small bending model (reduction "none"), modal damping ζ: the gyroscopic part of
   // C is skew and has no trace, M⁻¹C_D = Φ diag(2ζω_k) Φᵀ M has the trace Σ 2ζω_k.
   const double zeta = 0.002;
@@ -82,7 +82,7 @@ TEST_CASE("monodromy-rkf45: det Phi(T) is Liouville's exp(-T tr(M^-1 C)) on the 
 }
 
 TEST_CASE("stability --method monodromy-rkf45 through the program: the Magnus answer within both estimates",
-          "[stability][rkf45][cli][parallel]") {
+          "[stability][rkf45][cli][parallel][long_under_sanitizers]") {
   const auto answer = [](const std::string& method) {
     const testing_support::Outcome o = testing_support::run_bladestab(
         {"stability", testing_support::paper_scene_path(), "--set", "model.terms=4", "--method", method, "--tolerance",

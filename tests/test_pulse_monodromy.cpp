@@ -140,7 +140,7 @@ TEST_CASE("Meissner: one dof under rectangular pulses is a product of two closed
   }
 }
 
-TEST_CASE("every profile: the exact monodromy matches Runge-Kutta 7(8) on the true pulse train", "[exact]") {
+TEST_CASE("every profile: the exact monodromy matches Runge-Kutta 7(8) on the true pulse train", "[exact][long_under_sanitizers]") {
   for (const char* profile : {"half-sine", "cosine", "triangular", "saw-tooth", "rectangular"}) {
     for (const double zeta : {0.0, 0.001}) {  // light damping keeps det Φ = e^{−tr Ĉ T} representable
       std::vector<std::string> o = small_model;

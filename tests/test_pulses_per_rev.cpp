@@ -92,7 +92,7 @@ TEST_CASE("three pulses per revolution: the Fourier series lives on the pulse pe
 }
 
 TEST_CASE("p = 2 and 3 pulses per revolution: Floquet per pulse period to the power p is the revolution's monodromy",
-          "[stability][pulses_per_rev]") {
+          "[stability][pulses_per_rev][long_under_sanitizers]") {
   // Six bending terms (Euler–Bernoulli, no axial field): ω_max ≈ 1e5 rad/s keeps the 7(8) reference quick.
   for (const int p : {2, 3}) {
     for (const char* approximation : {"cosine", "fourier"}) {
@@ -128,7 +128,7 @@ TEST_CASE("p = 2 and 3 pulses per revolution: Floquet per pulse period to the po
 }
 
 TEST_CASE("three pulses per revolution in the transient: the force at the SPEC's times, the response of the reference",
-          "[transient][pulses_per_rev]") {
+          "[transient][pulses_per_rev][long_under_sanitizers]") {
   const Scene s = paper_scene({"model.theory=euler-bernoulli", "model.terms=4", "load.pulses_per_rev=3"});
   const BladeModel m = assemble_model(s);
   TransientOptions o;

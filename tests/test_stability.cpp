@@ -114,7 +114,7 @@ TEST_CASE("Mathieu: approximation 1 is Bolotin's first approximation 2ω0 sqrt(1
   }
 }
 
-TEST_CASE("paper blade with Legendre N = 8 at 300 rad/s under the cosine load: max|rho| by every method", "[stability][paper]") {
+TEST_CASE("paper blade with Legendre N = 8 at 300 rad/s under the cosine load: max|rho| by every method", "[stability][paper][long_under_sanitizers]") {
   for (double fbar : {1.0, 2.0, 5.0}) {
     const Setup s = setup(paper_scene({"model.terms=8", "load.fmax_over_fcr=" + std::to_string(fbar)}));
     for (FloquetMethod method : {FloquetMethod::koopman_hill, FloquetMethod::monodromy, FloquetMethod::automatic}) {
@@ -132,7 +132,7 @@ TEST_CASE("paper blade with Legendre N = 8 at 300 rad/s under the cosine load: m
   }
 }
 
-TEST_CASE("classical Hill at the paper's q = 2 keeps a shifted copy of the unstable exponent and is 1.7 % off", "[stability][paper]") {
+TEST_CASE("classical Hill at the paper's q = 2 keeps a shifted copy of the unstable exponent and is 1.7 % off", "[stability][paper][long_under_sanitizers]") {
   // The paper blade, Legendre N = 8, F̄ = 5 at 300 rad/s under the cosine load: converged
   // max|ρ| = 2.199227 (docs/theory.md §6, monodromy at rtol 1e-10). Classical Hill is rebuilt here from the
   // reduced second-order system the library's periodic system is made of (q̈ + Cq̇ + (K + F(t)G)q = 0,
@@ -251,7 +251,7 @@ TEST_CASE("methods agree within their error estimates on a grid of stable, unsta
   CHECK(methods_agree_on({12.0}, {100.0, 200.0}).divergent >= 2);
 }
 
-TEST_CASE("boundary frequencies coincide with where the stability verdict changes", "[stability][boundaries]") {
+TEST_CASE("boundary frequencies coincide with where the stability verdict changes", "[stability][boundaries][long_under_sanitizers]") {
   for (double fbar : {1.0, 2.0, 4.0}) {
     const Scene scene = paper_scene({"model.terms=4", "load.fmax_over_fcr=" + std::to_string(fbar)});
     const Setup s = setup(scene);

@@ -428,7 +428,7 @@ TEST_CASE("clearance mode: a slow casing distortion pushes the tip with the stat
   }
 }
 
-TEST_CASE("clearance mode: bouncing on a still casing conserves the energy with the penalty's potential", "[transient][clearance]") {
+TEST_CASE("clearance mode: bouncing on a still casing conserves the energy with the penalty's potential", "[transient][clearance][long_under_sanitizers]") {
   // No distortion, 0.05 mm clearance, a 0.1 mm first-axial-mode vibration started on its inward
   // swing: the tip hits the wall every cycle. Undamped, μ = 0: ½ḟᵀMḟ + ½fᵀKf − Ω²P_cfᵀf + ½k g₊² is conserved.
   const Scene s = paper_scene({"model.terms=8", "load.mode=clearance", "load.clearance=5e-5", "load.intrusion=0"});
@@ -445,7 +445,7 @@ TEST_CASE("clearance mode: bouncing on a still casing conserves the energy with 
   CHECK(drift < 1e-8 * swing);  // measured 1.4e-9
 }
 
-TEST_CASE("clearance mode: contacts and contact time from the events match a densely sampled overlap", "[transient][clearance]") {
+TEST_CASE("clearance mode: contacts and contact time from the events match a densely sampled overlap", "[transient][clearance][long_under_sanitizers]") {
   // The paper blade meeting a 3.5 mm, 3.6° half-sine distortion with 3 mm clearance: a violent rub
   // that opens and closes many times.
   const Scene s = paper_scene({"model.terms=8", "load.mode=clearance", "load.intrusion=3.5e-3"});

@@ -80,7 +80,7 @@ TEST_CASE("tolerance 1e-2 on the issue's run: the capped steps stay stable and m
   CHECK(history_difference(a, b, &TransientSample::tip_axial_m) < 1e-6);    // measured 2.2e-8
 }
 
-TEST_CASE("the energy balance E(t) - E(0) = W(t) holds with friction, damping and the follower load", "[transient][honesty]") {
+TEST_CASE("the energy balance E(t) - E(0) = W(t) holds with friction, damping and the follower load", "[transient][honesty][long_under_sanitizers]") {
   // The work W integrates the power of each force term separately from the state; E is computed from
   // the state. Only the right power formula closes the balance: every load term is on here (one F̄ = 5
   // pulse, μ = 0.2, modal damping ζ = 2 %, follower correction), from 1 mm of bending mode 1.
@@ -107,7 +107,7 @@ TEST_CASE("the energy balance E(t) - E(0) = W(t) holds with friction, damping an
   CHECK(!transient_failure(c, s.blade.length));
 }
 
-TEST_CASE("the energy check flags the paper's literal fixed step, whose parasitic growth it cannot see itself", "[transient][honesty]") {
+TEST_CASE("the energy check flags the paper's literal fixed step, whose parasitic growth it cannot see itself", "[transient][honesty][long_under_sanitizers]") {
   // (54) taken literally, 8 steps per period of the stiffest (64 kHz) mode: RKF45 amplifies that mode
   // by |R(iπ/4)| = 1 + 1.7e-4 per step, ×1e7 over 7 revolutions of the F̄ = 5 pulse train. The chosen
   // step (n = 33 here) is the control.
@@ -130,7 +130,7 @@ TEST_CASE("the energy check flags the paper's literal fixed step, whose parasiti
   CHECK(bad.vibration_energy_j == Approx(good.vibration_energy_j).epsilon(1e-2));
 }
 
-TEST_CASE("a response growing past 0.1 L is outside the small-deflection model: an error, not a result", "[transient][honesty]") {
+TEST_CASE("a response growing past 0.1 L is outside the small-deflection model: an error, not a result", "[transient][honesty][long_under_sanitizers]") {
   // The cosine load (42) at F̄ = 5 is parametrically unstable, max|ρ| = 2.199 per revolution. From 1 mm
   // of bending mode 1 the tip passes 0.1 L = 100 mm after ln(100)/ln(2.199) ≈ 5.8 revolutions.
   const Scene s = paper_scene({"model.terms=8", "load.profile=cosine", "load.contact_time_rev=1"});
@@ -196,7 +196,7 @@ TEST_CASE("growth per revolution: the Floquet max|rho| under the cosine load, wh
   CHECK(b.growth.growth == Approx(a.growth.growth).epsilon(1e-12));
 }
 
-TEST_CASE("growth per revolution is omitted, with the reason, for a 2-revolution run", "[transient][honesty]") {
+TEST_CASE("growth per revolution is omitted, with the reason, for a 2-revolution run", "[transient][honesty][long_under_sanitizers]") {
   const Scene s = paper_scene({"model.terms=6", "load.profile=cosine", "load.contact_time_rev=1"});
   const BladeModel m = assemble_model(s);
   TransientOptions o;
@@ -223,7 +223,7 @@ TEST_CASE("fit_growth: an exact exponential, a beat that is no exponential, too 
   CHECK(fit_growth(clean).omitted == "5 whole revolutions; the fit needs 6");
 }
 
-TEST_CASE("the CLI: a run that broke its energy balance is a one-line error with exit 1, and writes nothing", "[transient][honesty]") {
+TEST_CASE("the CLI: a run that broke its energy balance is a one-line error with exit 1, and writes nothing", "[transient][honesty][long_under_sanitizers]") {
   // The paper's literal step over 7 revolutions (the broken run above).
   const CliRun run = run_transient_cli("--set model.terms=8 --revolutions 7 --step fixed --steps-per-period 8");
   INFO("stderr: " << run.err);
@@ -247,7 +247,7 @@ TEST_CASE("the CLI: a 2-revolution run gives growth_per_revolution null and says
 }
 
 TEST_CASE("the CLI: an unstable run is a result: it stops at the small-deflection range, writes its history, exit 0",
-          "[transient][honesty]") {
+          "[transient][honesty][long_under_sanitizers]") {
   // The cosine load (42) at F̄ = 5 grows ×2.1992274 per revolution (N = 8): from the equilibrium the
   // tip passes 0.1 L in revolution 5.
   const CliRun run = run_transient_cli(

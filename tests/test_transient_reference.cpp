@@ -12,7 +12,7 @@
 
 using namespace bladestab;
 
-TEST_CASE("RKF45 at tolerance 1e-9 agrees with Odeint's Dormand-Prince to 1e-4 of the peak", "[transient][reference]") {
+TEST_CASE("RKF45 at tolerance 1e-9 agrees with Odeint's Dormand-Prince to 1e-4 of the peak", "[transient][reference][long_under_sanitizers]") {
   for (const char* count : {"load.pulse_count=1", "load.pulse_count=0"}) {
     const Scene s = testing_support::paper_scene({"model.terms=4", count});
     const BladeModel m = assemble_model(s);

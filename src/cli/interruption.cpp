@@ -11,6 +11,7 @@
 #include <chrono>
 #include <cstring>
 #include <mutex>
+#include <new>
 #include <thread>
 
 #include <fmt/format.h>
@@ -148,7 +149,9 @@ StopDeferral::~StopDeferral() {
 }
 
 void end_of_run() {
-  static const StopDeferral* const held = new StopDeferral;  // never released: the process ends after the last line
+  // Built once in static storage and never destroyed: the deferral lasts until the process ends.
+  alignas(StopDeferral) static unsigned char storage[sizeof(StopDeferral)];
+  static const StopDeferral* const held = new (storage) StopDeferral;
   static_cast<void>(held);
 }
 

@@ -45,6 +45,18 @@ std::vector<int> match_by_shape(const Eigen::MatrixXcd& tracked, const Eigen::Ma
   return assign_by_correlation((tracked.adjoint() * candidates).cwiseAbs2(), mac_out);
 }
 
+// The sweep's modes at `speed` with their bounds against the whole model; ReducedSweepUnavailable
+// where a reduced sweep cannot bound some of them (the dense sweep then serves the estimate).
+SpeedModes certified_modes(SpeedSweep& sweep, double speed) {
+  SpeedModes modes = sweep.at(speed, true);
+  for (double bound : modes.bound) {
+    if (!std::isfinite(bound)) {
+      throw ReducedSweepUnavailable(fmt::format("the reduced model's modes could not be certified at {} rad/s", speed));
+    }
+  }
+  return modes;
+}
+
 // The sweep's frequency [Hz] at `speed` of the mode most like `shape`: the curve between the speeds.
 double frequency_of(SpeedSweep& sweep, const Eigen::VectorXcd& shape, double speed) {
   const SpeedModes modes = sweep.at(speed, false);
@@ -369,9 +381,9 @@ public:
     const double lo = options_.speeds_rad_s.front(), hi = options_.speeds_rad_s.back();
     Screening s;
     for (double speed : {lo, 0.5 * (lo + hi), hi}) {
-      const SpeedModes here = base_->at(speed, true);
+      const SpeedModes here = certified_modes(*base_, speed);
       std::vector<SpeedModes> richer;
-      for (Reference& r : refs_) richer.push_back(r.sweep->at(speed, true));
+      for (Reference& r : refs_) richer.push_back(certified_modes(*r.sweep, speed));
       for (int j = 0; j < tracked_; ++j) {
         if (here.frequency_hz[j] > 0) {
           const ErrorBudget b = point_budget(here, j, here.shapes.col(j), refs_, pointers(richer), terms_);
@@ -460,9 +472,9 @@ private:
   }
   // The budget of the frequency followed by `shape` at `speed` (relative).
   ErrorBudget frequency_budget(double speed, const Eigen::VectorXcd& shape) {
-    const SpeedModes here = base_->at(speed, true);
+    const SpeedModes here = certified_modes(*base_, speed);
     std::vector<SpeedModes> there;
-    for (Reference& r : refs_) there.push_back(r.sweep->at(speed, true));
+    for (Reference& r : refs_) there.push_back(certified_modes(*r.sweep, speed));
     const int j = most_like(here, shape);
     return point_budget(here, j, here.shapes.col(j), refs_, pointers(there), terms_);
   }
