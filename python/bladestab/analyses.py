@@ -9,21 +9,24 @@ files (campbell, map, sweep, transient) write them into `out` if given, else int
 directory removed afterwards (their JSON document is kept as Result.document); they draw no chart
 unless `chart` is given (Result.plot() draws it on demand)."""
 
-import os
+import contextlib
 import tempfile
 import warnings
 
 from bladestab import _core
 from bladestab.arguments import command_line, command_options, scene_source
-from bladestab.errors import Note
+from bladestab.errors import InputError, Note
 from bladestab.results import Result
 
 
 def run(command, scene, progress=None, **options):
     """Runs `command` on `scene` (a path, TOML text or a dict) with `options`; its Result."""
+    if command not in command_options():
+        raise InputError(f"{command}: unknown command; known: {', '.join(sorted(command_options()))}")
     name, text = scene_source(scene)
     writes = "--out" in command_options()[command]
-    with tempfile.TemporaryDirectory(prefix="bladestab-") if writes and "out" not in options else _Nothing() as out:
+    scratch = writes and "out" not in options
+    with tempfile.TemporaryDirectory(prefix="bladestab-") if scratch else contextlib.nullcontext() as out:
         if out is not None:
             options = {"out": out, "chart": "none", **options}
         elif writes:
@@ -33,14 +36,6 @@ def run(command, scene, progress=None, **options):
     for note in result.notes:
         warnings.warn(note, Note, stacklevel=3)
     return result
-
-
-class _Nothing:
-    def __enter__(self):
-        return None
-
-    def __exit__(self, *exc):
-        return False
 
 
 def _analysis(command):
