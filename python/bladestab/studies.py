@@ -61,6 +61,8 @@ def study(scene, grid, analysis, executor=None, store=None, options=None, chunk=
     with its variables missing; a study where every point fails raises the first one's error."""
     command = _command(analysis)
     options = dict(options or {})
+    if "--threads" in command_options()[command]:
+        options.setdefault("threads", 1)  # a worker per core: each point on its own one (answers do not depend on it)
     name, text = _scene_text(scene)
     plan = Plan(grid, chunk, _workers(executor))
     description = {"analysis": command, "scene": name, "options": {k: repr(v) for k, v in options.items()},
