@@ -36,5 +36,7 @@ def test_ctrl_c_stops_a_long_map_and_the_interpreter_goes_on():
     out, _ = child.communicate(timeout=120)
     lines = out.split("\n")
     assert lines[0].startswith("interrupted"), out
-    assert float(lines[0].split()[1]) - sent < 1.0  # at its next report, not at the map's end
+    # At its next report, once the points under way are done (under 1 s when run alone here, 1.2 s
+    # beside the whole suite on 2 cores at load 9.8), not at the map's end a minute later.
+    assert float(lines[0].split()[1]) - sent < 5.0
     assert lines[1] == "then False" and child.returncode == 0
