@@ -16,6 +16,7 @@
 #include "bladestab/stability/periodic_system.hpp"
 #include "bladestab/scene/scene_limits.hpp"
 #include "commands.hpp"
+#include "embedding.hpp"
 #include "error_output.hpp"
 #include "finite_results.hpp"
 #include "json_output.hpp"
@@ -164,7 +165,7 @@ void print_json(const BoundaryOutput& o) {
                                {"middle_max_abs_multiplier",
                                 o.digits.relative(r.middle_max_abs_multiplier, region_check_tolerance)}});
   }
-  fmt::print("{}", json_text(json));
+  print_json_answer(json_text(json));
 }
 
 void print_csv(const BoundaryOutput& o) {

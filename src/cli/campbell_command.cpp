@@ -10,6 +10,7 @@
 #include "bladestab/scene/scene_limits.hpp"
 #include "chart.hpp"
 #include "commands.hpp"
+#include "embedding.hpp"
 #include "error_output.hpp"
 #include "json_output.hpp"
 #include "number_options.hpp"
@@ -226,7 +227,7 @@ Command register_campbell(CLI::App& app) {
         {{"campbell.csv", curves_csv(printed.diagram)}, {"campbell_crossings.csv", crossings_csv(printed, digits)}}, json,
         "campbell", *chart);
     switch (options->output_format()) {
-      case OutputFormat::json: fmt::print("{}", json); break;
+      case OutputFormat::json: print_json_answer(json); break;
       case OutputFormat::csv: fmt::print("{}", curves_csv(printed.diagram)); break;
       case OutputFormat::table: print_table(scene, result, files); break;
     }

@@ -16,6 +16,7 @@
 
 #include "bladestab/base/input_error.hpp"
 #include "chart_script.hpp"
+#include "embedding.hpp"
 #include "interruption.hpp"
 #include "options.hpp"
 #include "output_files.hpp"
@@ -157,7 +158,9 @@ std::vector<std::string> write_outputs(const std::string& dir, const std::string
     const std::string chart = (folder / (stem + "." + chart_format)).string();
     draw_chart(chart_kind, json_temporary, output.reserve(chart), chart);
   }
-  return output.commit();
+  std::vector<std::string> written = output.commit();
+  if (EmbeddedAnswer* answer = embedded_answer(); answer != nullptr) answer->files = written;
+  return written;
 }
 
 }  // namespace bladestab::cli

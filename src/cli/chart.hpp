@@ -20,7 +20,8 @@ void draw_chart(const std::string& kind, const std::string& json_path, const std
 void add_chart_options(CLI::App& command, std::string& out, std::string& chart, const std::string& out_help);
 
 // Writes each {file name, text} of `data` and `<stem>.json` into `dir`, then draws the chart
-// `<stem>.<format>` from the JSON unless the format is "none". Returns the paths written.
+// `<stem>.<format>` from the JSON unless the format is "none". Returns the paths written (and hands
+// them to an embedded run's answer, embedding.hpp).
 std::vector<std::string> write_outputs(const std::string& dir, const std::string& stem,
                                        const std::vector<std::pair<std::string, std::string>>& data,
                                        const std::string& json, const std::string& chart_kind,

@@ -12,6 +12,7 @@
 #include "bladestab/modal/basis_error.hpp"
 #include "bladestab/stability/requirements_check.hpp"
 #include "commands.hpp"
+#include "embedding.hpp"
 #include "json_output.hpp"
 #include "number_options.hpp"
 #include "options.hpp"
@@ -320,7 +321,7 @@ Command register_check(CLI::App& app) {
       checks.back().seconds = seconds;
     }
     if (options->format == "json") {
-      fmt::print("{}", check_json(scene, *tolerance, checks, options->printed_digits()));
+      print_json_answer(check_json(scene, *tolerance, checks, options->printed_digits()));
     } else if (options->format == "junit") {
       fmt::print("{}", check_junit(scene, checks));
     } else {

@@ -10,6 +10,7 @@
 #include "bladestab/scene/scene_limits.hpp"
 #include "bladestab/transient/transient.hpp"
 #include "commands.hpp"
+#include "embedding.hpp"
 #include "finite_results.hpp"
 #include "json_output.hpp"
 #include "number_options.hpp"
@@ -145,7 +146,7 @@ Command register_crosscheck(CLI::App& app) {
                  {"transient_growth_error_estimate", p.transient_pulse_error},
                  {"agree", p.pulse_agrees()}}}});
         }
-        fmt::print("{}", json_text(json));
+        print_json_answer(json_text(json));
         break;
       }
       case OutputFormat::csv:

@@ -17,19 +17,12 @@
 
 #include "support/blas_threads.hpp"
 #include "bladestab/base/input_error.hpp"
-#include "support/message_text.hpp"
 #include "commands.hpp"
 #include "notes.hpp"
 #include "interruption.hpp"
 #include "work_limits.hpp"
 
 namespace {
-
-std::string command_names(const std::map<std::string, bladestab::cli::Command>& run) {
-  std::string names;
-  for (const auto& [name, unused] : run) names += (names.empty() ? "" : ", ") + name;
-  return names;
-}
 
 // "bladestab: error: …" (kind "error", exit 2) or "bladestab: failed: …" (exit 1), on one line
 // (notes.hpp).
@@ -56,25 +49,9 @@ int main(int argc, char** argv) {
   bladestab::use_single_threaded_blas();
   stop_on_signals();
   CLI::App app{"bladestab: modes, Campbell diagrams and dynamic stability of rotating Timoshenko blades"};
-  app.require_subcommand(1);
-  std::map<std::string, Command> run;
-  run["modes"] = register_modes(app);
-  run["campbell"] = register_campbell(app);
-  run["stability"] = register_stability(app);
-  run["boundaries"] = register_boundaries(app);
-  run["map"] = register_map(app);
-  run["transient"] = register_transient(app);
-  run["crosscheck"] = register_crosscheck(app);
-  run["sweep"] = register_sweep(app);
-  run["check"] = register_check(app);
-  if (argc < 2) {
-    return report("error", fmt::format("a command is required: {} (see bladestab --help)", command_names(run)), 2);
-  }
-  if (argv[1][0] != '-' && run.count(argv[1]) == 0) {
-    return report("error",
-                  fmt::format("{}: unknown command; known: {}", bladestab::echoed(argv[1]), command_names(run)), 2);
-  }
+  const std::map<std::string, Command> run = register_commands(app);
   try {
+    check_command_name(run, argc < 2 ? nullptr : argv[1]);
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);

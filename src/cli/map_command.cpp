@@ -18,6 +18,7 @@
 #include "chart.hpp"
 #include "error_output.hpp"
 #include "commands.hpp"
+#include "embedding.hpp"
 #include "json_output.hpp"
 #include "number_options.hpp"
 #include "options.hpp"
@@ -317,7 +318,7 @@ Command register_map(CLI::App& app) {
         write_outputs(*out, base, {{base + "_curves.csv", curves_csv(printed)}, {base + "_grid.csv", grid_csv(printed)}},
                       json, "map", *chart);
     switch (options->output_format()) {
-      case OutputFormat::json: fmt::print("{}", json); break;
+      case OutputFormat::json: print_json_answer(json); break;
       case OutputFormat::csv: fmt::print("{}", curves_csv(printed)); break;
       case OutputFormat::table: {
         int unstable = 0, points = 0;

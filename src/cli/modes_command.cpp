@@ -9,6 +9,7 @@
 #include "bladestab/base/input_error.hpp"
 #include "bladestab/modal/basis_error.hpp"
 #include "commands.hpp"
+#include "embedding.hpp"
 #include "error_output.hpp"
 #include "finite_results.hpp"
 #include "json_output.hpp"
@@ -91,7 +92,7 @@ void print_modes(const SceneOptions& options, const Scene& scene, const Converge
         mode["energy_share"] = {
             {"rotation", m.energy_share(0)}, {"lateral", m.energy_share(1)}, {"axial", m.energy_share(2)}};
       }
-      fmt::print("{}", json_text(json));
+      print_json_answer(json_text(json));
       break;
     }
     case OutputFormat::csv:

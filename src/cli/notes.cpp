@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "support/message_text.hpp"
+#include "embedding.hpp"
 
 namespace bladestab::cli {
 
@@ -13,6 +14,14 @@ void print_stderr_line(const char* kind, const std::string& message) {
   std::string line = one_line(message);
   if (line.size() > longest) line = line.substr(0, longest) + "…";
   fmt::print(stderr, "bladestab: {}: {}\n", kind, line);
+}
+
+void print_note(const std::string& message) {
+  if (EmbeddedAnswer* answer = embedded_answer(); answer != nullptr) {
+    answer->notes.push_back(one_line(message));
+  } else {
+    print_stderr_line("note", message);
+  }
 }
 
 }  // namespace bladestab::cli

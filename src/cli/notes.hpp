@@ -11,6 +11,7 @@ void print_stderr_line(const char* kind, const std::string& message);
 
 // A note beside an answer that stands but is not the whole of what was asked (boundaries: some did
 // not converge; a tolerance the basis cannot reach).
-inline void print_note(const std::string& message) { print_stderr_line("note", message); }
+// In an embedded run (embedding.hpp) it goes to the answer's notes.
+void print_note(const std::string& message);
 
 }  // namespace bladestab::cli

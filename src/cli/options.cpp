@@ -11,13 +11,16 @@
 #include "bladestab/blade/undamped_modes.hpp"
 #include "support/message_text.hpp"
 #include "support/work_pool.hpp"
+#include "embedding.hpp"
 #include "number_options.hpp"
 #include "work_limits.hpp"
 
 namespace bladestab::cli {
 
 Scene SceneOptions::load() const {
-  Scene scene = load_scene(path, overrides);
+  const EmbeddedRun* run = embedded_run();
+  Scene scene = run != nullptr && !run->scene_text.empty() ? parse_scene(run->scene_text, path, overrides)
+                                                          : load_scene(path, overrides);
   const ReductionSpec& reduction = scene.model.reduction;
   if (reduction.kind == ReductionKind::modal && reduction.cutoff_hz > 0) {
     check_modal_cutoff(scene, reduction.cutoff_hz, fmt::format("model.cutoff_hz = {:g}", reduction.cutoff_hz));

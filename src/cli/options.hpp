@@ -22,7 +22,7 @@ struct SceneOptions {
   std::string solver = "auto";
   std::string digits = "estimate";  // --digits
 
-  // The scene with its overrides; a modal cut-off of its own (model.cutoff_hz) is checked as
+  // The scene with its overrides (from an embedded run's text where it has one, embedding.hpp); a modal cut-off of its own (model.cutoff_hz) is checked as
   // check_modal_cutoff says.
   Scene load() const;
   OutputFormat output_format() const;

@@ -15,6 +15,7 @@
 #include "bladestab/scene/scene_limits.hpp"
 #include "bladestab/stability/periodic_system.hpp"
 #include "commands.hpp"
+#include "embedding.hpp"
 #include "error_output.hpp"
 #include "finite_results.hpp"
 #include "json_output.hpp"
@@ -141,7 +142,7 @@ void print(const SceneOptions& options, const Scene& scene, const StabilityAnswe
       }
       json["log_decrements"] = Json::array();
       for (Eigen::Index k = 0; k < r.multipliers.size(); ++k) json["log_decrements"].push_back(shown.log_decrement(k));
-      fmt::print("{}", json_text(json));
+      print_json_answer(json_text(json));
       break;
     }
     case OutputFormat::csv:

@@ -10,6 +10,7 @@
 #include "bladestab/modal/parameter_sweep.hpp"
 #include "chart.hpp"
 #include "commands.hpp"
+#include "embedding.hpp"
 #include "json_output.hpp"
 #include "number_options.hpp"
 #include "options.hpp"
@@ -185,7 +186,7 @@ Command register_sweep(CLI::App& app) {
     const std::vector<std::string> files =
         write_outputs(*out, *name, {{*name + ".csv", sweep_csv(printed)}}, json, "sweep", *chart);
     switch (options->output_format()) {
-      case OutputFormat::json: fmt::print("{}", json); break;
+      case OutputFormat::json: print_json_answer(json); break;
       case OutputFormat::csv: fmt::print("{}", sweep_csv(printed)); break;
       case OutputFormat::table: print_table(scene, sweep, files); break;
     }

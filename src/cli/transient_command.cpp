@@ -15,6 +15,7 @@
 #include "bladestab/transient/transient_error.hpp"
 #include "chart.hpp"
 #include "commands.hpp"
+#include "embedding.hpp"
 #include "json_output.hpp"
 #include "number_options.hpp"
 #include "options.hpp"
@@ -429,7 +430,7 @@ Command register_transient(CLI::App& app) {
                       summary_json(scene, model, printed, printed_summary, o.adaptive, true, error), "transient", *chart);
     switch (options->output_format()) {
       case OutputFormat::json:
-        fmt::print("{}", summary_json(scene, model, printed, printed_summary, o.adaptive, false, error));
+        print_json_answer(summary_json(scene, model, printed, printed_summary, o.adaptive, false, error));
         break;
       case OutputFormat::csv: fmt::print("{}", history_csv(printed)); break;
       case OutputFormat::table:

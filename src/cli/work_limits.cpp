@@ -26,7 +26,7 @@ std::string size_text(double bytes) {
 }  // namespace
 
 WorkLimits& work_limits() {
-  static WorkLimits limits;
+  thread_local WorkLimits limits;
   return limits;
 }
 

@@ -17,7 +17,7 @@ struct WorkLimits {
   double megabytes = 1024;
 };
 
-// The limits of this run (one command runs per process).
+// The limits of this thread's run (one command runs on a thread at a time).
 WorkLimits& work_limits();
 
 // Adds --max-seconds and --max-memory to a command.

@@ -1,0 +1,90 @@
+"""Design studies: one analysis over a grid of scene overrides, on any concurrent.futures executor
+(local processes by default, a Dask cluster through its Client, MPI through mpi4py.futures), the
+answers gathered into an xarray.Dataset and, with a store, into Zarr as they arrive, so a stopped
+study resumes where it stopped."""
+
+import concurrent.futures
+import os
+
+from bladestab.analyses import ANALYSES
+from bladestab.arguments import command_options, scene_source
+from bladestab.errors import InputError, NumericalError
+from bladestab.study_plan import Plan
+from bladestab.study_store import COMPUTED, FAILED, StudyStore
+from bladestab.study_worker import run_task
+
+
+def _command(analysis):
+    name = getattr(analysis, "__name__", analysis)
+    if name not in command_options():
+        raise InputError(f"analysis {name!r}: not one of {', '.join(ANALYSES)}")
+    return name
+
+
+def _scene_text(scene):
+    """The scene as (name, text): a file is read once here, so workers need no shared files."""
+    name, text = scene_source(scene)
+    if not text:
+        try:
+            with open(name, encoding="utf-8") as fh:
+                text = fh.read()
+        except OSError as error:
+            raise InputError(f"scene {name}: cannot read it: {error.strerror}") from None
+    return name, text
+
+
+def _executor(executor):
+    """(executor, owned): a Dask Client becomes its concurrent.futures executor; none, a pool of
+    local processes (one per core) that the study shuts down."""
+    if executor is None:
+        return concurrent.futures.ProcessPoolExecutor(os.cpu_count()), True
+    if hasattr(executor, "get_executor"):  # dask.distributed.Client
+        return executor.get_executor(), False
+    return executor, False
+
+
+def _workers(executor):
+    if executor is None:
+        return os.cpu_count() or 1
+    if hasattr(executor, "nthreads"):  # dask.distributed.Client
+        return max(1, sum(executor.nthreads().values()))
+    return getattr(executor, "_max_workers", None) or getattr(executor, "num_workers", None) or 1
+
+
+def study(scene, grid, analysis, executor=None, store=None, options=None, chunk=None, progress=None):
+    """`analysis` (a name or a bladestab function) at every point of `grid` ({key: values}: their
+    cartesian product; or a list of {key: value}) over `scene` with `options` (as the analysis
+    takes them), on `executor`; the xarray.Dataset of the answers' scalar fields, one dimension
+    per grid key. With `store` (a Zarr path) the answers are written there chunk by chunk and a
+    study run again against it computes only what it does not hold. `chunk`: points per task;
+    `progress(done, total)` after each task. A point refused or failing its checks is `failed`
+    with its variables missing; a study where every point fails raises the first one's error."""
+    command = _command(analysis)
+    options = dict(options or {})
+    if "--threads" in command_options()[command]:
+        options.setdefault("threads", 1)  # a worker per core: each point on its own one (answers do not depend on it)
+    name, text = _scene_text(scene)
+    plan = Plan(grid, chunk, _workers(executor))
+    description = {"analysis": command, "scene": name, "options": {k: repr(v) for k, v in options.items()},
+                   "grid": {k: repr(plan.coords[k]) for k in plan.keys}, "chunk": plan.chunk}
+    results = StudyStore(store, plan, description)
+    tasks = results.pending()
+    pool, owned = _executor(executor)
+    try:
+        futures = {pool.submit(run_task, command, name, text, options, plan.points(t)): t for t in tasks}
+        done = len(plan.chunks()) - len(tasks)
+        failure = None
+        for future in concurrent.futures.as_completed(futures):
+            answers = future.result()
+            failure = failure or next((a for a in answers if not isinstance(a, dict)), None)
+            results.write(futures[future], answers)
+            done += 1
+            if progress is not None:
+                progress(done, len(plan.chunks()))
+    finally:
+        if owned:
+            pool.shutdown(wait=True, cancel_futures=True)
+    dataset = results.dataset()
+    if failure is not None and bool(dataset[FAILED].all()):  # a bad key or option, not a bad point
+        raise (InputError if failure[0] == "input" else NumericalError)(failure[1])
+    return dataset.drop_vars(COMPUTED)

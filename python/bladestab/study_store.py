@@ -1,0 +1,79 @@
+"""A study's results in a Zarr group (python3-zarr; on disk, or in memory without a store): one
+array per variable over the study's dimensions, chunked as the tasks (study_plan.py), with
+xarray's dimension names, so xarray.open_zarr reads it as the Dataset. Only the caller writes it,
+a task's chunks at a time as its results arrive; `computed` counts how often each point was
+written (1 when the study is complete, 0 where a stopped study has not reached), and a study
+resumed against the store runs only the tasks with points at 0."""
+
+import json
+
+import numpy as np
+import xarray as xr
+import zarr
+
+from bladestab.errors import InputError
+
+COMPUTED = "computed"
+FAILED = "failed"
+
+
+class StudyStore:
+    def __init__(self, store, plan, description):
+        self.plan = plan
+        self.group = zarr.open_group(zarr.MemoryStore() if store is None else store, mode="a")
+        held = self.group.attrs.get("bladestab_study")
+        if held is not None and held != json.loads(json.dumps(description)):
+            raise InputError(f"store {store}: holds another study ({held}); give a new store to start this one")
+        if held is None:
+            self.group.attrs["bladestab_study"] = description
+            for dim, key in zip(plan.dims if plan.dims != ["point"] else [], plan.keys):
+                self._array(key, plan.coordinate(key), [dim])
+            if plan.dims == ["point"]:
+                self._array("point", np.arange(plan.size), ["point"])
+                for key in plan.keys:
+                    self._array(key, plan.coordinate(key), ["point"])
+            self._variable(COMPUTED, np.int8, 0)
+            self._variable(FAILED, bool, False)
+
+    def _array(self, name, values, dims):
+        array = self.group.create_dataset(name, data=values, shape=values.shape, dtype=values.dtype)
+        array.attrs["_ARRAY_DIMENSIONS"] = dims
+
+    def _variable(self, name, dtype, fill):
+        chunks = (1,) * (len(self.plan.shape) - 1) + (self.plan.chunk,)
+        array = self.group.create_dataset(name, shape=self.plan.shape, chunks=chunks, dtype=dtype, fill_value=fill)
+        array.attrs["_ARRAY_DIMENSIONS"] = self.plan.dims
+        return array
+
+    def pending(self):
+        """The tasks with a point not yet written."""
+        computed = self.group[COMPUTED][...]
+        return [task for task in self.plan.chunks() if (computed[self.plan.region(task)] == 0).any()]
+
+    def write(self, task, answers):
+        """A task's answers (study_worker.run_task) into its chunks, then its points' counts."""
+        region = self.plan.region(task)
+        names = dict.fromkeys(k for a in answers if isinstance(a, dict) for k, v in a.items() if v is not None)
+        for name in names:
+            values = [a.get(name) if isinstance(a, dict) else None for a in answers]
+            is_bool = all(isinstance(v, bool) or v is None for v in values)
+            if name not in self.group:
+                self._variable(name, bool if is_bool else float, False if is_bool else np.nan)
+            array = self.group[name]
+            cells = np.array([False if v is None else v for v in values] if array.dtype == bool
+                             else [np.nan if v is None else float(v) for v in values], dtype=array.dtype)
+            array[region] = cells
+        failed = np.array([not isinstance(a, dict) for a in answers])
+        self.group[FAILED][region] = failed
+        self.group[COMPUTED][region] = self.group[COMPUTED][region] + 1
+
+    def dataset(self):
+        return open_study(self.group.store, self.plan.keys)
+
+
+def open_study(store, keys=None):
+    """The Dataset a store holds (complete or not), its variables as written: without xarray's
+    masking of fill values, which would turn a False or a 0 into NaN."""
+    dataset = xr.open_zarr(store, consolidated=False, mask_and_scale=False).load()
+    keys = keys if keys is not None else [k for k in dataset.data_vars if dataset[k].dims == ("point",)]
+    return dataset.set_coords([k for k in keys if k in dataset.data_vars])
