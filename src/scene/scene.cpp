@@ -132,14 +132,6 @@ public:
     used_.insert(key);
   }
 
-  std::string text(const std::string& key) {
-    const toml::node& node = require(key);
-    if (!node.is_string() || node.as_string()->get().empty()) {
-      fail(key, node, "must be a non-empty file name in quotes", Reason::not_numeric);
-    }
-    return node.as_string()->get();
-  }
-
   // A number in `allowed`; `meaning` names the quantity and its unit for the message.
   double number(const std::string& key, const AllowedRange& allowed, const std::string& meaning) {
     const toml::node& node = require(key);
@@ -357,28 +349,6 @@ void check_sections(const toml::table& root, const std::string& source) {
   }
 }
 
-// The section table of blade.sections (a CSV file, its path relative to the scene's directory) or
-// [[blade.section]]; empty without either.
-std::vector<SectionStation> read_sections(SectionReader& blade, const toml::table& root, const std::string& scene_path,
-                                          const std::string& source, const SectionDefaults& defaults) {
-  const toml::table& table = *root.get("blade")->as_table();
-  if (table.contains("sections") && table.contains("section")) {
-    blade.fail_both("sections", "section", "give the section table once: a CSV file or [[blade.section]] tables");
-  }
-  if (const toml::node* inline_tables = table.get("section")) {
-    blade.mark_used("section");
-    if (!inline_tables->is_array()) blade.fail("section", *inline_tables, "must be [[blade.section]] tables");
-    return read_section_tables(*inline_tables->as_array(), source, defaults);
-  }
-  if (!blade.has("sections")) return {};
-  const std::string file = blade.text("sections");
-  const std::string::size_type slash = scene_path.find_last_of('/');
-  const std::string path = file.empty() || file[0] == '/' || slash == std::string::npos
-                               ? file
-                               : scene_path.substr(0, slash + 1) + file;
-  return read_section_file(path, echoed(path, max_path_shown), defaults);
-}
-
 // area and inertia of a uniform blade; with a section table, its root station's.
 void read_uniform_section(SectionReader& blade, BladeSpec& b) {
   b.area = blade.number("area", limits::area_m2, "cross-section area in m^2");
@@ -419,7 +389,10 @@ BladeSpec read_blade(const toml::table& root, const std::string& scene_path, con
     blade.reject_unknown("a uniform blade (no blade.sections)");
     return b;
   }
-  b.sections = read_sections(blade, root, scene_path, source, {b.youngs_modulus, b.density, b.shear_coefficient});
+  blade.mark_used("sections");
+  blade.mark_used("section");
+  b.sections = read_blade_sections(*root.get("blade")->as_table(), scene_path, source,
+                                   {b.youngs_modulus, b.density, b.shear_coefficient});
   // docs/theory.md §9: the root station sets the scales of Λ and d̄.
   b.area = b.sections.front().area;
   b.inertia = b.sections.front().i_flap;

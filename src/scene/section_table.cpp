@@ -229,4 +229,30 @@ std::vector<SectionStation> read_section_tables(const toml::array& tables, const
   return stations;
 }
 
+std::vector<SectionStation> read_blade_sections(const toml::table& blade, const std::string& scene_path,
+                                                const std::string& source, const SectionDefaults& defaults) {
+  if (blade.contains("sections") && blade.contains("section")) {
+    throw InputError(fmt::format("{}: blade.sections and [[blade.section]]: give the section table once, as a CSV "
+                                 "file or as tables", source));
+  }
+  if (const toml::node* tables = blade.get("section")) {
+    if (!tables->is_array()) {
+      throw SceneKeyError(fmt::format("{}: blade.section: must be [[blade.section]] tables", source), "blade.section",
+                          SceneKeyError::Reason::not_numeric);
+    }
+    return read_section_tables(*tables->as_array(), source, defaults);
+  }
+  const toml::node* file = blade.get("sections");
+  if (file == nullptr) return {};
+  if (!file->is_string() || file->as_string()->get().empty()) {
+    throw SceneKeyError(fmt::format("{}: blade.sections: must be a non-empty file name in quotes", source),
+                        "blade.sections", SceneKeyError::Reason::not_numeric);
+  }
+  const std::string name = file->as_string()->get();
+  const std::string::size_type slash = scene_path.find_last_of('/');
+  const std::string path =
+      name[0] == '/' || slash == std::string::npos ? name : scene_path.substr(0, slash + 1) + name;
+  return read_section_file(path, echoed(path, 240), defaults);
+}
+
 }  // namespace bladestab

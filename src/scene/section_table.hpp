@@ -27,6 +27,12 @@ std::vector<SectionStation> read_section_file(const std::string& path, const std
 std::vector<SectionStation> read_section_tables(const toml::array& tables, const std::string& source,
                                                 const SectionDefaults& defaults);
 
+// The section table of a [blade] table: blade.sections (a CSV file, its path relative to the
+// directory of `scene_path`) or [[blade.section]]; empty without either (`source`: the scene's
+// name in messages).
+std::vector<SectionStation> read_blade_sections(const toml::table& blade, const std::string& scene_path,
+                                                const std::string& source, const SectionDefaults& defaults);
+
 // The columns, as the messages list them.
 const std::vector<std::string>& section_columns();
 
