@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # The main job: the paper blade's Campbell diagram, stability maps (the speed plane also for the
 # true pulse train) and frequency sweeps, written to
-# stability_maps/sinha2005/ (or the directory given: scripts/check-outputs-stable.sh). Run from the
-# repository root after building into build/.
+# stability_maps/sinha2005/ (or the directory given: scripts/check-outputs-stable.sh); and the
+# example tapered, pretwisted fan blade's, to stability_maps/fan_blade/ (or fan_blade/ in the
+# directory given). Run from the repository root after building into build/.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scene=stability_maps/sinha2005/blade.toml
@@ -21,3 +22,5 @@ bash scripts/paper-true-pulse.sh "$out/true_pulse"
 ./build/bladestab sweep "$scene" --key blade.slenderness --values 0.005:0.1:20 --count 8 --out "$out" --name sweep_slenderness_300
 ./build/bladestab sweep "$scene" --key operation.tip_compression_over_fcr --values 0:0.999:28 --set operation.speed_rad_s=0 --count 8 --out "$out" --name sweep_compression_rest
 ./build/bladestab sweep "$scene" --key operation.tip_compression_over_fcr --values 0:4.95:23 --count 8 --out "$out" --name sweep_compression_300
+# The tapered, pretwisted fan blade: Campbell diagram (flap and edge families) and speed-plane map.
+bash scripts/fan-blade-charts.sh "${1:+$1/fan_blade}"

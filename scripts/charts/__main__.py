@@ -20,7 +20,7 @@ campbell
       "engine_orders": [int, ...]             optional, e.g. [1, 2, 3],
       "curves": [                             one per tracked mode
         {"mode": int,
-         "family": "bending" | "axial" | "rotation",
+         "family": "bending" | "flap" | "edge" | "axial" | "rotation",
          "frequency_hz": [float|null, ...]}   same length as speeds_rad_s
       ],
       "crossings": [                          optional
@@ -74,7 +74,7 @@ sweep
       "values": [float, ...]                 >= 2 values, strictly monotonic,
       "modes": [                             one per tracked mode
         {"index": int,
-         "family": "bending" | "axial" | "rotation",
+         "family": "bending" | "flap" | "edge" | "axial" | "rotation",
          "families": [str, ...]              optional; the family at each
                                              value (sets each piece's style),
          "frequency_hz": [float, ...],       same length as values, >= 0,

@@ -9,6 +9,8 @@ from chart_common import InputError, RAD_S_TO_RPM, _integer, _number, _numbers, 
 # family -> (label prefix, colormap, linestyle)
 CAMPBELL_FAMILIES = {
     "bending": ("B", "Blues", "-"),
+    "flap": ("F", "Blues", "-"),
+    "edge": ("E", "Purples", "-."),
     "axial": ("A", "Reds", "--"),
     "rotation": ("R", "Greens", ":"),
 }

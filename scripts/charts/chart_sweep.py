@@ -54,7 +54,7 @@ def _sweep_panel(ax, values, modes, series, ylabel):
         # A tracked mode can change family where it veers (e.g. bending to
         # rotation as the blade gets stubby): each piece in its own style.
         for n, (a, b, family) in enumerate(_family_runs(mode["families"])):
-            style = "-" if family == "bending" else "--"
+            style = "-" if family in ("bending", "flap", "edge") else "--"
             ax.plot(values[a:b + 1], mode[series][a:b + 1], linestyle=style,
                     color=mode["color"], linewidth=1.6, zorder=3,
                     label=mode["label"] if n == 0 else None)

@@ -8,29 +8,34 @@
 #include <fmt/format.h>
 
 #include "blade/basis.hpp"
+#include "blade/gram.hpp"
+#include "blade/two_plane_model.hpp"
 #include "bladestab/base/numerical_error.hpp"
 #include "blade/quadrature.hpp"
 #include "bladestab/blade/static_limits.hpp"
 
 namespace bladestab {
 
-DofLayout dof_layout(const ModelSpec& spec) {
+DofLayout dof_layout(const ModelSpec& spec, bool two_planes) {
   DofLayout layout;
-  layout.theta_count = spec.theory == BeamTheory::timoshenko ? spec.terms : 0;
-  layout.lateral_count = spec.terms;
+  layout.planes = two_planes ? 2 : 1;
+  layout.theta_count = spec.theory == BeamTheory::timoshenko ? layout.planes * spec.terms : 0;
+  layout.lateral_count = layout.planes * spec.terms;
   layout.axial_count = spec.axial ? spec.terms : 0;
   return layout;
 }
 
-namespace {
-
-// ∫ c(s) a_i(s) b_j(s) ds  =  aᵀ diag(w ∘ c) b.
-Eigen::MatrixXd gram(const Eigen::VectorXd& weighted_coefficient, const Eigen::MatrixXd& a,
-                     const Eigen::MatrixXd& b) {
-  return a.transpose() * weighted_coefficient.asDiagonal() * b;
+std::vector<std::pair<int, int>> DofLayout::fields() const {
+  std::vector<std::pair<int, int>> out;
+  for (int p = 0; p < planes; ++p) out.emplace_back(theta_offset() + p * theta_count / planes, theta_count / planes);
+  for (int p = 0; p < planes; ++p) {
+    out.emplace_back(lateral_offset() + p * lateral_count / planes, lateral_count / planes);
+  }
+  out.emplace_back(axial_offset(), axial_count);
+  return out;
 }
 
-Eigen::MatrixXd symmetrized(const Eigen::MatrixXd& m) { return 0.5 * (m + m.transpose()); }
+namespace {
 
 // Every matrix finite and the mass positive definite, or a NumericalError that names what the
 // scene gave: within the scene's limits (scene_limits.hpp) this does not happen, and if it does the
@@ -99,20 +104,17 @@ void add_axial_field(BladeModel& model, const FieldQuadrature& q, const BasisSam
   }
 }
 
-BladeModel assemble_blade(const BladeSpec& blade_spec, const ModelSpec& spec) {
-  BladeModel model{BladeProperties(blade_spec), spec, {}, 0, {}, {}, {}, {}, {}, {}, {}, {}, {}};
+// The uniform blade of docs/theory.md §1–2, bending in one plane.
+void assemble_one_plane(BladeModel& model, const ModelSpec& spec) {
   const BladeProperties& b = model.blade;
   const bool timoshenko = spec.theory == BeamTheory::timoshenko;
   const int N = spec.terms;
-
-  const DofLayout& layout = model.layout = dof_layout(spec);
-  const int n = layout.size();
+  const DofLayout& layout = model.layout;
   const int th = layout.theta_offset(), lv = layout.lateral_offset(), ax = layout.axial_offset();
 
   const QuadratureRule rule = gauss_legendre(quadrature_points_needed(spec.basis, N), 0, b.L);
   const Eigen::VectorXd& s = rule.points;
   const Eigen::VectorXd w = rule.weights;
-  const Eigen::VectorXd one = Eigen::VectorXd::Ones(s.size());
   // T_cf(s)/Ω² = ρA [r(L − s) + (L² − s²)/2]   (docs/theory.md §1)
   const Eigen::VectorXd tension1 =
       b.rho * b.A * (b.r * (b.L - s.array()) + 0.5 * (b.L * b.L - s.array().square())).matrix();
@@ -122,17 +124,6 @@ BladeModel assemble_blade(const BladeSpec& blade_spec, const ModelSpec& spec) {
                                       N, b.L, s);
   const BasisSamples V_tip = sample_basis(spec.basis, timoshenko ? FieldRole::lateral : FieldRole::lateral_clamped,
                                           N, b.L, tip);
-
-  model.M = Eigen::MatrixXd::Zero(n, n);
-  model.K_S = Eigen::MatrixXd::Zero(n, n);
-  model.K_C1 = Eigen::MatrixXd::Zero(n, n);
-  model.C_G1 = Eigen::MatrixXd::Zero(n, n);
-  model.G = Eigen::MatrixXd::Zero(n, n);
-  model.P_cf1 = Eigen::VectorXd::Zero(n);
-  model.tip_lateral = Eigen::RowVectorXd::Zero(n);
-  model.tip_axial = Eigen::RowVectorXd::Zero(n);
-  model.tip_slope = Eigen::RowVectorXd::Zero(n);
-
   const double cos_beta = std::cos(b.beta_rad);
 
   // Lateral field v.
@@ -142,6 +133,7 @@ BladeModel assemble_blade(const BladeSpec& blade_spec, const ModelSpec& spec) {
   model.G.block(lv, lv, N, N) = gram(w, V.slope, V.slope);
   model.tip_lateral.segment(lv, N) = V_tip.value.row(0);
   model.tip_slope.segment(lv, N) = V_tip.slope.row(0);
+  model.in_plane_share = cos_beta;
 
   const FieldQuadrature q{b, spec.basis, N, s, w, th, lv, ax};
   if (timoshenko) {
@@ -152,12 +144,49 @@ BladeModel assemble_blade(const BladeSpec& blade_spec, const ModelSpec& spec) {
   }
 
   if (spec.axial) add_axial_field(model, q, V, tip, spec.coriolis);
+}
+
+// The kinetic-energy families of the one-plane blade: its fields' blocks of M.
+void add_one_plane_families(BladeModel& model) {
+  const DofLayout& l = model.layout;
+  const ModeFamily kinds[3] = {ModeFamily::rotation, ModeFamily::bending, ModeFamily::axial};
+  const char* names[3] = {"rotation", "lateral", "axial"};
+  const int offsets[3] = {l.theta_offset(), l.lateral_offset(), l.axial_offset()};
+  const int counts[3] = {l.theta_count, l.lateral_count, l.axial_count};
+  for (int f = 0; f < 3; ++f) {
+    model.families.push_back({kinds[f], names[f], offsets[f], counts[f],
+                              model.M.block(offsets[f], offsets[f], counts[f], counts[f])});
+  }
+}
+
+BladeModel assemble_blade(const BladeSpec& blade_spec, const ModelSpec& spec) {
+  BladeModel model{BladeProperties(blade_spec), spec, dof_layout(spec, blade_spec.two_planes()), 0, {}, {}, {}, {}, {}, {}, {}, {}, {}, 1, {}};
+  const int n = model.layout.size();
+  model.M = Eigen::MatrixXd::Zero(n, n);
+  model.K_S = Eigen::MatrixXd::Zero(n, n);
+  model.K_C1 = Eigen::MatrixXd::Zero(n, n);
+  model.C_G1 = Eigen::MatrixXd::Zero(n, n);
+  model.G = Eigen::MatrixXd::Zero(n, n);
+  model.P_cf1 = Eigen::VectorXd::Zero(n);
+  model.tip_lateral = Eigen::RowVectorXd::Zero(n);
+  model.tip_axial = Eigen::RowVectorXd::Zero(n);
+  model.tip_slope = Eigen::RowVectorXd::Zero(n);
+  if (blade_spec.two_planes()) {
+    assemble_two_planes(model, blade_spec, spec);
+  } else {
+    assemble_one_plane(model, spec);
+  }
 
   // Quadrature sums are symmetric only to rounding; make M, K and G symmetric exactly.
   model.M = symmetrized(model.M);
   model.K_S = symmetrized(model.K_S);
   model.K_C1 = symmetrized(model.K_C1);
   model.G = symmetrized(model.G);
+  if (blade_spec.two_planes()) {
+    add_two_plane_families(model, blade_spec);
+  } else {
+    add_one_plane_families(model);
+  }
   check_model(model, blade_spec);
   return model;
 }

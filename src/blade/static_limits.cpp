@@ -16,19 +16,15 @@ UndampedModes weakest_direction(const BladeModel& model, double speed, double ti
 // The field holding most of the mass of the weakest direction at (Ω, F).
 std::string weakest_field(const BladeModel& model, double speed, double tip_force_n) {
   const Eigen::VectorXd x = weakest_direction(model, speed, tip_force_n, true).shapes.col(0);
-  const DofLayout& l = model.layout;
-  const int offsets[3] = {l.theta_offset(), l.lateral_offset(), l.axial_offset()};
-  const int counts[3] = {l.theta_count, l.lateral_count, l.axial_count};
-  const char* names[3] = {"rotation", "lateral", "axial"};
-  int heaviest = 0;
+  const char* heaviest = "";
   double most = -1;
-  for (int f = 0; f < 3; ++f) {
-    if (counts[f] == 0) continue;
-    const auto xf = x.segment(offsets[f], counts[f]);
-    const double share = xf.dot(model.M.block(offsets[f], offsets[f], counts[f], counts[f]) * xf);
-    if (share > most) most = share, heaviest = f;
+  for (const FieldFamily& family : model.families) {
+    if (family.count == 0) continue;
+    const auto xf = x.segment(family.offset, family.count);
+    const double share = xf.dot(family.mass * xf);
+    if (share > most) most = share, heaviest = family.share_name;
   }
-  return names[heaviest];
+  return heaviest;
 }
 
 // The root of the path's margin between a value within (margin > 0) and one past (margin ≤ 0).

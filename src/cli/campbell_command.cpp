@@ -179,8 +179,8 @@ void check_campbell_work(const Scene& scene, std::size_t speeds, EigenSolverKind
   richer.terms = reference_terms(scene.model.basis, scene.model.terms);
   double flops = 0, bytes = 0;
   for (const ModelSpec& spec : {scene.model, richer}) {
-    flops += solves * eigensolve_flops(dof_layout(spec).size());
-    bytes = std::max(bytes, eigensolve_bytes(dof_layout(spec).size()));
+    flops += solves * eigensolve_flops(dof_layout(spec, scene.blade.two_planes()).size());
+    bytes = std::max(bytes, eigensolve_bytes(dof_layout(spec, scene.blade.two_planes()).size()));
   }
   check_work(fmt::format("--speeds with model.terms = {}", scene.model.terms),
              fmt::format("{:g} whole eigensolves", 2 * solves), flops / dense_flops_per_second, bytes);

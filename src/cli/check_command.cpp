@@ -249,7 +249,7 @@ void check_requirements_work(const Scene& scene) {
   const RequirementsSpec& req = *scene.requirements;
   ModelSpec richer = scene.model;
   richer.terms = reference_terms(scene.model.basis, scene.model.terms);
-  const double n = dof_layout(scene.model).size(), nr = dof_layout(richer).size();
+  const double n = dof_layout(scene.model, scene.blade.two_planes()).size(), nr = dof_layout(richer, scene.blade.two_planes()).size();
   double flops = 0, bytes = 0;
   if (req.frequency_margin) {
     for (const double dofs : {n, nr}) {

@@ -45,7 +45,7 @@ ConvergedModes as_printed(ConvergedModes r, const PrintedDigits& digits) {
     m.frequency_hz = digits.relative(m.frequency_hz, estimate);
     m.lambda = digits.relative(m.lambda, estimate);
     m.damping_ratio = digits.absolute(m.damping_ratio, estimate);
-    for (int f = 0; f < 3; ++f) m.energy_share(f) = digits.unestimated(m.energy_share(f));
+    for (double& share : m.energy_share) share = digits.unestimated(share);
   }
   return r;
 }
@@ -89,8 +89,9 @@ void print_modes(const SceneOptions& options, const Scene& scene, const Converge
                                                      {"damping_ratio", m.damping_ratio},
                                                      {"relative_error", digits.estimate(result.relative_error[k])}});
         write_error_budget(mode, result.budget(k), digits);
-        mode["energy_share"] = {
-            {"rotation", m.energy_share(0)}, {"lateral", m.energy_share(1)}, {"axial", m.energy_share(2)}};
+        for (std::size_t f = 0; f < m.energy_share.size(); ++f) {
+          mode["energy_share"][result.model.families[f].share_name] = m.energy_share[f];
+        }
       }
       print_json_answer(json_text(json));
       break;
@@ -135,9 +136,9 @@ void print_modes(const SceneOptions& options, const Scene& scene, const Converge
 // for the Legendre basis, two for the sine basis, as modes_with_error_estimate solves them), ~25 (2n)³
 // flops for 2n states each. model.terms = 200 is about a minute.
 void check_modes_work(const Scene& scene) {
-  const EigensolveWork work = converged_modes_work(scene.model);
+  const EigensolveWork work = converged_modes_work(scene.model, scene.blade.two_planes());
   check_work(fmt::format("model.terms = {}", scene.model.terms),
-             fmt::format("the eigensolves of {}-dof models", dof_layout(scene.model).size()),
+             fmt::format("the eigensolves of {}-dof models", dof_layout(scene.model, scene.blade.two_planes()).size()),
              work.flops / dense_flops_per_second, work.bytes);
 }
 

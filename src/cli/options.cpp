@@ -118,9 +118,15 @@ std::string describe_model(const BladeModel& model) {
       model.static_tip_force_n == 0
           ? ""
           : fmt::format(", static tip compression {:.6g} F_cr", -model.static_tip_force_n / model.blade.critical_load());
-  return fmt::format("{}, {} basis, {} terms/field ({} dofs), axial {}, coriolis {}{}", to_string(s.theory),
+  // A tabled blade (docs/theory.md §9): two bending planes and its own buckling load as F_cr.
+  const std::string planes =
+      model.layout.planes == 1
+          ? ""
+          : fmt::format(", section table: two bending planes, F_cr = {:.6g} N (its Euler-Bernoulli buckling load at rest)",
+                        model.blade.critical_load());
+  return fmt::format("{}, {} basis, {} terms/field ({} dofs), axial {}, coriolis {}{}{}", to_string(s.theory),
                      to_string(s.basis), s.terms, model.layout.size(), s.axial ? "on" : "off",
-                     s.coriolis ? "on" : "off", compression);
+                     s.coriolis ? "on" : "off", planes, compression);
 }
 
 std::string scene_title(const Scene& scene) {

@@ -137,7 +137,7 @@ void print_table(const Scene& scene, const ParameterSweep& s, const std::vector<
 void check_sweep_work(const Scene& scene, const ParameterSweepOptions& o) {
   ModelSpec spec = scene.model;
   if (o.key == "model.terms") spec.terms = static_cast<int>(*std::max_element(o.values.begin(), o.values.end()));
-  const EigensolveWork work = converged_modes_work(spec);
+  const EigensolveWork work = converged_modes_work(spec, scene.blade.two_planes());
   check_work(fmt::format("--values {} with model.terms = {}", echoed(o.values_text), spec.terms),
              fmt::format("the eigensolves of {} values", o.values.size()),
              o.values.size() * work.flops / dense_flops_per_second, work.bytes);

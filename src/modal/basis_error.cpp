@@ -75,7 +75,7 @@ namespace {
 // base, then the richer ones.
 std::vector<double> compare(const std::vector<ModalSolution>& models, const std::vector<int>& terms) {
   std::vector<double> error;
-  int rank_in_family[3] = {0, 0, 0};
+  int rank_in_family[mode_family_count] = {};
   for (const Mode& m : models[0].modes) {
     const int rank = rank_in_family[static_cast<int>(m.family)]++;
     const bool by_frequency = m.frequency_hz > 0;

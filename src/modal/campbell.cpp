@@ -254,11 +254,9 @@ struct Reference {
 Eigen::MatrixXd embedding(const BladeModel& base, const BladeModel& richer) {
   const DofLayout &a = base.layout, &b = richer.layout;
   Eigen::MatrixXd E = Eigen::MatrixXd::Zero(b.size(), a.size());
-  const int from[3] = {a.theta_offset(), a.lateral_offset(), a.axial_offset()};
-  const int to[3] = {b.theta_offset(), b.lateral_offset(), b.axial_offset()};
-  const int count[3] = {a.theta_count, a.lateral_count, a.axial_count};
-  for (int f = 0; f < 3; ++f) {
-    for (int k = 0; k < count[f]; ++k) E(to[f] + k, from[f] + k) = 1;
+  const std::vector<std::pair<int, int>> from = a.fields(), to = b.fields();
+  for (std::size_t f = 0; f < from.size(); ++f) {
+    for (int k = 0; k < from[f].second; ++k) E(to[f].first + k, from[f].first + k) = 1;
   }
   return E;
 }

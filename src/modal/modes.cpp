@@ -70,6 +70,23 @@ void upper_half_eigenpairs(Eigen::MatrixXcd H, Eigen::VectorXd& values, Eigen::M
   values.conservativeResize(n);
 }
 
+}  // namespace
+
+ModeFamily dominant_family(const BladeModel& model, const Eigen::VectorXcd& q, std::vector<double>& shares) {
+  shares.assign(model.families.size(), 0.0);
+  std::size_t most = 0;
+  for (std::size_t f = 0; f < model.families.size(); ++f) {
+    const FieldFamily& family = model.families[f];
+    if (family.count == 0) continue;
+    const auto qf = q.segment(family.offset, family.count);
+    shares[f] = (qf.adjoint() * family.mass * qf)(0).real();
+    if (shares[f] > shares[most]) most = f;
+  }
+  return model.families[most].family;
+}
+
+namespace {
+
 Mode describe(const BladeModel& model, std::complex<double> lambda, Eigen::VectorXcd q) {
   Mode mode;
   mode.eigenvalue = lambda;
@@ -82,17 +99,7 @@ Mode describe(const BladeModel& model, std::complex<double> lambda, Eigen::Vecto
   Eigen::Index big = 0;
   q.cwiseAbs().maxCoeff(&big);
   q *= std::polar(1.0, -std::arg(q(big)));
-  const DofLayout& l = model.layout;
-  const int offsets[3] = {l.theta_offset(), l.lateral_offset(), l.axial_offset()};
-  const int counts[3] = {l.theta_count, l.lateral_count, l.axial_count};
-  for (int f = 0; f < 3; ++f) {
-    const auto qf = q.segment(offsets[f], counts[f]);
-    mode.energy_share(f) =
-        counts[f] ? (qf.adjoint() * model.M.block(offsets[f], offsets[f], counts[f], counts[f]) * qf)(0).real() : 0;
-  }
-  Eigen::Index family = 0;
-  mode.energy_share.maxCoeff(&family);
-  mode.family = family == 0 ? ModeFamily::rotation : family == 1 ? ModeFamily::bending : ModeFamily::axial;
+  mode.family = dominant_family(model, q, mode.energy_share);
   mode.shape = std::move(q);
   return mode;
 }
@@ -104,6 +111,8 @@ const char* to_string(ModeFamily f) {
     case ModeFamily::bending: return "bending";
     case ModeFamily::axial: return "axial";
     case ModeFamily::rotation: return "rotation";
+    case ModeFamily::flap: return "flap";
+    case ModeFamily::edge: return "edge";
   }
   return "?";
 }

@@ -357,20 +357,10 @@ private:
     absolute_X_ = X_.cwiseAbs();
     spread_.noalias() = absolute_KS_ * absolute_X_;
     spread_.noalias() += (speed * speed) * (absolute_KC1_ * absolute_X_);
-    const DofLayout& l = model_.layout;
-    const int offsets[3] = {l.theta_offset(), l.lateral_offset(), l.axial_offset()};
-    const int counts[3] = {l.theta_count, l.lateral_count, l.axial_count};
     out.family.resize(k);
     out.rounding.resize(k);
     for (int j = 0; j < k; ++j) {
-      Eigen::Vector3d share;
-      for (int f = 0; f < 3; ++f) {
-        share(f) = counts[f] ? X_.col(j).segment(offsets[f], counts[f]).dot(MX_.col(j).segment(offsets[f], counts[f]))
-                             : 0.0;
-      }
-      Eigen::Index family = 0;
-      share.maxCoeff(&family);
-      out.family[j] = family == 0 ? ModeFamily::rotation : family == 1 ? ModeFamily::bending : ModeFamily::axial;
+      out.family[j] = dominant_family(model_, X_.col(j).cast<std::complex<double>>(), shares_);
       // frequency_rounding with |K(Ω)| ≤ |K_S| + Ω²|K_C1|
       out.rounding[j] = std::max(eigensolver_rounding, 10 * std::numeric_limits<double>::epsilon() *
                                                            absolute_X_.col(j).dot(spread_.col(j)) / stiffness_form_(j));
@@ -388,6 +378,7 @@ private:
   Eigen::MatrixXd Kr_, Cr_, H_, Xr_, KrX_, CrX_, K_, Q_, KX_, CX_, MX_, residual_, X_, absolute_X_, spread_;
   Eigen::MatrixXd absolute_KS_, absolute_KC1_;
   Eigen::VectorXd theta_, stiffness_form_, mu_, eps_;
+  std::vector<double> shares_;
   Eigen::LLT<Eigen::MatrixXd> reduced_cholesky_, stiffness_cholesky_;
   SubsetEigensolver eigensolver_;
   InertiaCounter inertia_;

@@ -21,6 +21,7 @@
 #include "bladestab/base/input_error.hpp"
 #include "support/message_text.hpp"
 #include "bladestab/scene/scene_limits.hpp"
+#include "scene/section_table.hpp"
 
 namespace bladestab {
 namespace {
@@ -124,6 +125,12 @@ public:
   }
 
   bool has(const std::string& key) const { return table_->contains(key); }
+
+  // A key read by someone else (a table of tables): known and used.
+  void mark_used(const std::string& key) {
+    known_.insert(key);
+    used_.insert(key);
+  }
 
   // A number in `allowed`; `meaning` names the quantity and its unit for the message.
   double number(const std::string& key, const AllowedRange& allowed, const std::string& meaning) {
@@ -342,12 +349,8 @@ void check_sections(const toml::table& root, const std::string& source) {
   }
 }
 
-BladeSpec read_blade(const toml::table& root, const std::string& source) {
-  SectionReader blade(root, "blade", source);
-  blade.known({"slenderness", "inertia"});
-  BladeSpec b;
-  b.length = blade.number("length", limits::length_m, "span L in m");
-  b.hub_radius = blade.number("hub_radius", limits::hub_radius_m, "hub radius r in m");
+// area and inertia of a uniform blade; with a section table, its root station's.
+void read_uniform_section(SectionReader& blade, BladeSpec& b) {
   b.area = blade.number("area", limits::area_m2, "cross-section area in m^2");
   if (!blade.has("slenderness") && !blade.has("inertia")) {
     blade.fail_missing("slenderness", "give exactly one of blade.slenderness (d̄) and blade.inertia (I in m^4)");
@@ -367,12 +370,35 @@ BladeSpec read_blade(const toml::table& root, const std::string& source) {
                                                 limits::slenderness.text()));
     }
   }
+}
+
+BladeSpec read_blade(const toml::table& root, const std::string& scene_path, const std::string& source) {
+  SectionReader blade(root, "blade", source);
+  blade.known({"slenderness", "inertia", "area", "sections", "section", "twist_scale"});
+  BladeSpec b;
+  b.length = blade.number("length", limits::length_m, "span L in m");
+  b.hub_radius = blade.number("hub_radius", limits::hub_radius_m, "hub radius r in m");
+  const bool tabled = blade.has("sections") || blade.has("section");
+  if (!tabled) read_uniform_section(blade, b);
   b.youngs_modulus = blade.number("youngs_modulus", limits::youngs_modulus_pa, "Young's modulus E in Pa");
   b.density = blade.number("density", limits::density_kg_m3, "density in kg/m^3");
   b.poisson = blade.number("poisson", limits::poisson, "Poisson's ratio");
   b.shear_coefficient = blade.number("shear_coefficient", limits::shear_coefficient, "Timoshenko shear coefficient κ");
   b.stagger_deg = blade.number("stagger_deg", limits::stagger_deg, "stagger angle β in degrees");
-  blade.reject_unknown();
+  if (!tabled) {
+    blade.reject_unknown("a uniform blade (no blade.sections)");
+    return b;
+  }
+  blade.mark_used("sections");
+  blade.mark_used("section");
+  b.sections = read_blade_sections(*root.get("blade")->as_table(), scene_path, source,
+                                   {b.youngs_modulus, b.density, b.shear_coefficient});
+  // docs/theory.md §9: the root station sets the scales of Λ and d̄.
+  b.area = b.sections.front().area;
+  b.inertia = b.sections.front().i_flap;
+  b.twist_scale = blade.optional_number("twist_scale", AllowedRange::closed(-10, 10),
+                                        "factor on every station's twist_deg").value_or(1);
+  blade.reject_unknown("a section table (blade.sections or [[blade.section]])");
   return b;
 }
 
@@ -487,7 +513,7 @@ Scene read_scene(const toml::table& root, const std::string& source_name, const 
   check_sections(root, source);
   Scene scene;
   scene.source = source_name;
-  scene.blade = read_blade(root, source);
+  scene.blade = read_blade(root, source_name, source);
   scene.model = read_model(root, source);
   scene.operation = read_operation(root, source);
   scene.damping = read_damping(root, source, scene.operation.speed_rad_s);

@@ -215,7 +215,7 @@ FrequencyMarginResult check_frequency_margin(const Scene& scene, double toleranc
   options.speeds_rad_s = speed_grid(result.speed_lo_rad_s, result.speed_hi_rad_s, margin_speeds);
   options.engine_orders = req.engine_orders;
   options.closest_approaches = true;
-  const int dofs = dof_layout(scene.model).size();
+  const int dofs = dof_layout(scene.model, scene.blade.two_planes()).size();
   // Track more modes until the highest one tracked stays above the threshold over the whole range.
   for (int count = std::min(4, dofs);; count = std::min(2 * count, dofs)) {
     options.mode_count = count;

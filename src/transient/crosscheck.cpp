@@ -24,7 +24,10 @@ GrowthFit transient_growth(const BladeModel& model, const Scene& scene, double r
   const int n = model.layout.size();
   Eigen::VectorXd x = rotating_equilibrium(model, speed);
   const Eigen::VectorXd mode = undamped_modes(model, speed, 0, 1).shapes.col(0);
-  x.head(n) += 1e-6 / model.tip_lateral.dot(mode) * mode;
+  // A mode without lateral tip motion (an out-of-plane flap of a two-plane blade, docs/theory.md §9)
+  // is scaled by its largest coordinate instead.
+  const double tip = model.tip_lateral.dot(mode);
+  x.head(n) += 1e-6 / (tip != 0 ? tip : mode.cwiseAbs().maxCoeff()) * mode;
   TransientOptions o;
   o.revolutions = revolutions;
   o.tolerance = 1e-8;

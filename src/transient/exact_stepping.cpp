@@ -70,10 +70,10 @@ ExactStepper::ExactStepper(const BladeModel& model, const Scene& scene, double t
   A_free_.block(0, n, n, n) = omega_.asDiagonal();
   A_free_.block(n, 0, n, n) = -Eigen::MatrixXd(omega_.asDiagonal());
   A_free_.block(n, n, n, n) = -C_hat;
-  cos_beta_ = std::cos(model.blade.beta_rad);
-  mu_cos_beta_ = scene.load.friction * cos_beta_;
+  in_plane_share_ = model.in_plane_share;
+  mu_in_plane_ = scene.load.friction * in_plane_share_;
   const Eigen::VectorXd forcing = model.tip_axial.transpose() - model.G * equilibrium_ +
-                                  mu_cos_beta_ * model.tip_lateral.transpose();
+                                  mu_in_plane_ * model.tip_lateral.transpose();
   B_ = Eigen::MatrixXd::Zero(s + 1, s + 1);
   B_.block(n, 0, n, n) = -G_hat * omega_.cwiseInverse().asDiagonal();
   B_.block(n, s, n, 1) = Phi_.transpose() * forcing;
@@ -107,7 +107,7 @@ Eigen::VectorXd ExactStepper::modal(const Eigen::VectorXd& x) const {
 }
 
 double ExactStepper::sliding_speed(const Eigen::VectorXd& z) const {
-  return rim_speed_ + cos_beta_ * tip_lateral_.dot(Phi_ * z.segment(n_, n_));
+  return rim_speed_ + in_plane_share_ * tip_lateral_.dot(Phi_ * z.segment(n_, n_));
 }
 
 const ExactStepper::Piece& ExactStepper::free_piece(double h) {

@@ -73,7 +73,7 @@ TransientSystem::TransientSystem(const BladeModel& model, const Scene& scene, co
   Mi_axial_ = mass.solve(Eigen::VectorXd(model.tip_axial.transpose()));
   Mi_lateral_ = mass.solve(Eigen::VectorXd(model.tip_lateral.transpose()));
   tip_axial_ = model.tip_axial, tip_lateral_ = model.tip_lateral, tip_slope_ = model.tip_slope;
-  mu_ = scene.load.friction, cos_beta_ = std::cos(model.blade.beta_rad);
+  mu_ = scene.load.friction, in_plane_share_ = model.in_plane_share;
   rim_speed_ = speed * model.blade.tip_radius();
   friction_velocity_ = o.friction_velocity;
   follower_ = o.follower;
@@ -87,8 +87,8 @@ double TransientSystem::tip_load(double t, const Eigen::Ref<const Eigen::VectorX
 
 double TransientSystem::friction(double F, const Eigen::Ref<const Eigen::VectorXd>& x) const {
   if (mu_ == 0 || F == 0) return 0.0;
-  const double v_rel = rim_speed_ + cos_beta_ * tip_lateral_.dot(x.segment(n_, n_));
-  return -mu_ * std::abs(F) * cos_beta_ * std::tanh(v_rel / friction_velocity_);
+  const double v_rel = rim_speed_ + in_plane_share_ * tip_lateral_.dot(x.segment(n_, n_));
+  return -mu_ * std::abs(F) * in_plane_share_ * std::tanh(v_rel / friction_velocity_);
 }
 
 TipLoads TransientSystem::tip_loads(double F, const Eigen::Ref<const Eigen::VectorXd>& x) const {

@@ -4,6 +4,9 @@
 // as coefficients so a speed sweep assembles once:
 //
 //   M f̈ + (C_D + Ω C_G1) ḟ + (K_S + Ω² K_C1 + F(t) G) f = Ω² P_cf1 + F(t) p_tip + friction  (23), (40)
+#include <utility>
+#include <vector>
+
 #include <Eigen/Dense>
 
 #include "bladestab/blade/blade_properties.hpp"
@@ -12,17 +15,39 @@
 namespace bladestab {
 
 // Where each field's generalized coordinates sit in f = [X; Y; Z] (θ, v, u). A field that the
-// model drops (θ for Euler–Bernoulli, u without axial motion) has count 0.
+// model drops (θ for Euler–Bernoulli, u without axial motion) has count 0. A blade bending in two
+// planes (docs/theory.md §9) has two rotation and two lateral fields, one per plane (y, then z),
+// each of count/planes coordinates: f = [θ_y; θ_z; y; z; u].
 struct DofLayout {
   int theta_count = 0, lateral_count = 0, axial_count = 0;
+  int planes = 1;
   int theta_offset() const { return 0; }
   int lateral_offset() const { return theta_count; }
   int axial_offset() const { return theta_count + lateral_count; }
   int size() const { return theta_count + lateral_count + axial_count; }
+  // Each field's coordinates (offset, count): the rotation and lateral fields plane by plane, then
+  // the axial one. The bases are hierarchical within each.
+  std::vector<std::pair<int, int>> fields() const;
 };
 
-// The layout of a model of this spec, known before (and without) assembling it.
-DofLayout dof_layout(const ModelSpec& spec);
+// The layout of a model of this spec, known before (and without) assembling it; `two_planes` for a
+// blade with a section table (BladeSpec::two_planes).
+DofLayout dof_layout(const ModelSpec& spec, bool two_planes = false);
+
+// What a mode is, by where its kinetic energy lies (docs/theory.md §9): bending of the one-plane
+// blade; flap (normal to the local chord) or edge (along it) of a two-plane blade; axial; rotation
+// of the sections.
+enum class ModeFamily { bending, axial, rotation, flap, edge };
+constexpr int mode_family_count = 5;
+
+// A family's share of a vector's kinetic energy is qᵀ mass q over the coordinates
+// [offset, offset + count): the families' forms add up to qᵀ M q.
+struct FieldFamily {
+  ModeFamily family = ModeFamily::bending;
+  const char* share_name = "";  // as outputs name the share: "rotation", "lateral", "flap", …
+  int offset = 0, count = 0;
+  Eigen::MatrixXd mass;
+};
 
 struct BladeModel {
   BladeProperties blade;
@@ -38,9 +63,15 @@ struct BladeModel {
   Eigen::MatrixXd C_G1;  // gyroscopic (Coriolis) matrix per Ω, skew-symmetric; zero without coriolis
   Eigen::MatrixXd G;     // geometric stiffness per newton of tip tension: ∫V_i' V_j'
   Eigen::VectorXd P_cf1; // steady centrifugal load per Ω²: ρA ∫(r + s) W_i
-  Eigen::RowVectorXd tip_lateral;  // v(L) = tip_lateral · f
+  // The tip's lateral deflection, along which the tip friction acts: v(L) = tip_lateral · f (one
+  // plane, along the flap normal), or y(L) in the plane of rotation (two planes, docs/theory.md §9).
+  Eigen::RowVectorXd tip_lateral;
   Eigen::RowVectorXd tip_axial;    // u(L) = tip_axial · f
-  Eigen::RowVectorXd tip_slope;    // v'(L) = tip_slope · f, the slope of the deflected axis
+  Eigen::RowVectorXd tip_slope;    // the slope of the deflected axis at the tip along tip_lateral
+  // The in-plane component of a unit tip_lateral deflection: cos β (one plane), 1 (two planes).
+  double in_plane_share = 1;
+  // The kinetic-energy families of modes (modes.hpp): rotation, lateral (or flap and edge), axial.
+  std::vector<FieldFamily> families;
 
   // K_S + Ω² K_C1 + F G: F is a tip tension on top of the static one (a pulse).
   Eigen::MatrixXd stiffness(double speed_rad_s, double tip_force_n = 0) const {

@@ -12,8 +12,7 @@
 
 namespace bladestab {
 
-enum class ModeFamily { bending, axial, rotation };
-const char* to_string(ModeFamily);
+const char* to_string(ModeFamily);  // ModeFamily: model.hpp
 
 enum class EigenSolverKind { automatic, dense, arpack };
 const char* to_string(EigenSolverKind);
@@ -30,7 +29,7 @@ struct Mode {
   double lambda = 0;               // Λ = ω L² sqrt(ρA/(EI)), ω = Im λ
   double damping_ratio = 0;        // −Re λ / |λ|
   ModeFamily family = ModeFamily::bending;
-  Eigen::Vector3d energy_share;    // kinetic-energy share of the θ, v, u fields
+  std::vector<double> energy_share; // kinetic-energy share of each of the model's families
   std::complex<double> eigenvalue; // λ
   Eigen::VectorXcd shape;          // q, M-normalized: qᴴ M q = 1
 };
@@ -54,6 +53,10 @@ constexpr int arpack_threshold_dofs = 120;
 // The lowest `count` modes (all if count ≤ 0).
 ModalSolution solve_modes(const BladeModel& model, const SecondOrderSystem& system, double speed_rad_s, int count,
                           EigenSolverKind solver = EigenSolverKind::automatic);
+
+// The family holding most of q's kinetic energy (model.families), with every family's share
+// qᴴ mass q into `shares` (in the order of model.families).
+ModeFamily dominant_family(const BladeModel& model, const Eigen::VectorXcd& q, std::vector<double>& shares);
 
 // Mass-weighted modal assurance criterion |aᴴ M b|² / ((aᴴ M a)(bᴴ M b)), in [0, 1].
 double modal_assurance(const Eigen::VectorXcd& a, const Eigen::VectorXcd& b, const Eigen::MatrixXd& M);

@@ -9,6 +9,19 @@
 
 namespace bladestab {
 
+// One station of a blade's section table (docs/theory.md §9), SI units; properties are linear
+// between stations.
+struct SectionStation {
+  double span_fraction = 0;      // s/L: 0 at the root … 1 at the tip
+  double area = 0;               // A [m^2]
+  double i_flap = 0;             // I₁ [m^4], minor principal inertia: bending normal to the chord
+  double i_edge = 0;             // I₂ [m^4], major: bending along the chord; I₂ ≥ I₁
+  double twist_deg = 0;          // structural twist, added to the stagger: β(s) = β_root + twist
+  double youngs_modulus = 0;     // E [Pa] (the table's column, else blade.youngs_modulus)
+  double density = 0;            // ρ [kg/m^3] (else blade.density)
+  double shear_coefficient = 0;  // κ (else blade.shear_coefficient)
+};
+
 struct BladeSpec {
   double length = 0;             // L [m]
   double hub_radius = 0;         // r [m]
@@ -19,6 +32,12 @@ struct BladeSpec {
   double poisson = 0;            // ν
   double shear_coefficient = 0;  // κ
   double stagger_deg = 0;        // β [deg]
+  // A section table (blade.sections = "FILE.csv" or [[blade.section]]): the blade of docs/theory.md
+  // §9, bending in two planes. Empty: the uniform blade of §1–2, bending in one plane. With a table,
+  // area and inertia above are the root station's (the scales of Λ and d̄).
+  std::vector<SectionStation> sections;
+  double twist_scale = 1;        // blade.twist_scale: multiplies every station's twist
+  bool two_planes() const { return !sections.empty(); }
 };
 
 enum class BasisKind { sine, legendre };

@@ -62,7 +62,7 @@ public:
   Eigen::VectorXd physical(const Eigen::VectorXd& z) const;
   Eigen::VectorXd modal(const Eigen::VectorXd& x) const;
 
-  // The tip's speed past the casing, ΩR + cos β v̇(L), at the state z.
+  // The tip's speed past the casing, ΩR + c v̇(L) (c = model.in_plane_share: cos β, or 1 with two planes), at the state z.
   double sliding_speed(const Eigen::VectorXd& z) const;
   // The pulse train; where its profile has a kink inside the contact (triangular: at t_c/2).
   const PulseTrain& pulses() const { return pulses_; }
@@ -94,7 +94,7 @@ private:
 
   int n_, dofs_;  // modes kept, and 2n_
   PulseTrain pulses_;
-  double tolerance_, cos_beta_, mu_cos_beta_, rim_speed_;
+  double tolerance_, in_plane_share_, mu_in_plane_, rim_speed_;
   bool damped_;
   Eigen::MatrixXd Phi_, PhiT_M_, A_free_, B_, Q_damping_;
   Eigen::VectorXd omega_, equilibrium_;

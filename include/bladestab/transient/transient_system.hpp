@@ -42,7 +42,8 @@ public:
 
   // The tip load F ≤ 0 at t: the pulse train's, or the casing's force.
   double tip_load(double t, const Eigen::Ref<const Eigen::VectorXd>& x) const;
-  // Coulomb friction on the lateral tip, −μ|F| cos β · tanh(v_rel/ε).
+  // Coulomb friction on the lateral tip, −μ|F| c · tanh(v_rel/ε), c = model.in_plane_share (cos β;
+  // 1 for a two-plane blade, whose tip_lateral is already in the plane of rotation, docs/theory.md §9).
   double friction(double F, const Eigen::Ref<const Eigen::VectorXd>& x) const;
   TipLoads tip_loads(double F, const Eigen::Ref<const Eigen::VectorXd>& x) const;
   // E, the energy the balance is about.
@@ -59,7 +60,7 @@ private:
   Eigen::MatrixXd M_, K_, D_, G_, MiK_, MiC_, MiG_;
   Eigen::VectorXd steady_, Mi_cf_, Mi_axial_, Mi_lateral_;
   Eigen::RowVectorXd tip_axial_, tip_lateral_, tip_slope_;
-  double mu_, cos_beta_, rim_speed_, friction_velocity_;
+  double mu_, in_plane_share_, rim_speed_, friction_velocity_;
   bool follower_, damped_;
   mutable Eigen::VectorXd work_;  // the products of derivative(), without a temporary per evaluation
 };
