@@ -49,11 +49,7 @@ std::vector<int> match_by_shape(const Eigen::MatrixXcd& tracked, const Eigen::Ma
 // where a reduced sweep cannot bound some of them (the dense sweep then serves the estimate).
 SpeedModes certified_modes(SpeedSweep& sweep, double speed) {
   SpeedModes modes = sweep.at(speed, true);
-  for (double bound : modes.bound) {
-    if (!std::isfinite(bound)) {
-      throw ReducedSweepUnavailable(fmt::format("the reduced model's modes could not be certified at {} rad/s", speed));
-    }
-  }
+  require_certified(modes);
   return modes;
 }
 

@@ -158,12 +158,7 @@ public:
         }
       }
     }
-    for (const SpeedModes& m : out) {
-      if (!std::isfinite(worst_bound(m))) {
-        throw ReducedSweepUnavailable(
-            fmt::format("the reduced model's modes could not be certified at {} rad/s", m.speed_rad_s));
-      }
-    }
+    for (const SpeedModes& m : out) require_certified(m);
     return out;
   }
 
@@ -385,6 +380,15 @@ private:
 };
 
 }  // namespace
+
+void require_certified(const SpeedModes& modes) {
+  for (double bound : modes.bound) {
+    if (!std::isfinite(bound)) {
+      throw ReducedSweepUnavailable(
+          fmt::format("the reduced model's modes could not be certified at {} rad/s", modes.speed_rad_s));
+    }
+  }
+}
 
 bool reduced_sweep_applies(const BladeModel& model, const DampingSpec& damping) {
   if (damping.model != DampingModel::none) return false;

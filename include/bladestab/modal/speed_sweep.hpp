@@ -60,6 +60,9 @@ struct ReducedSweepUnavailable : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// Throws ReducedSweepUnavailable where some of `modes`' bounds against the whole model are infinite.
+void require_certified(const SpeedModes& modes);
+
 class SpeedSweep {
 public:
   virtual ~SpeedSweep() = default;
