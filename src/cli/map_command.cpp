@@ -234,6 +234,85 @@ void check_plane_speeds(const BladeModel& model, const std::vector<double>& spee
                                echoed(text), where));
 }
 
+// The options that shape the plane's grids, as given.
+struct PlaneTexts {
+  std::string theta, speeds;
+  int trace;
+};
+
+// The plane's x grid (θ, default ω1/4 to 2.5 ω1, or Ω within the blade's static limits) and the
+// values along which the boundary curves are traced.
+void set_plane_grids(const CLI::App& command, const Scene& scene, const BladeModel& model, const PlaneTexts& texts,
+                     MapOptions& o) {
+  const bool theta_plane = o.plane == MapPlane::theta_fmax;
+  if (theta_plane) {
+    if (command.count("--theta") == 0) {
+      const double speed = scene.operation.speed_rad_s;
+      const Eigen::MatrixXd no_tip_load = Eigen::MatrixXd::Zero(model.layout.size(), model.layout.size());
+      const double w1 = solve_modes(model, system_at(model, speed, no_tip_load), speed, 1, EigenSolverKind::dense)
+                            .modes.at(0).eigenvalue.imag();
+      o.grid_x = parse_range("--theta", fmt::format("{}:{}:41", w1 / 4, 2.5 * w1),
+                             scene_limits::pulse_angular_frequency_rad_s);
+    } else {
+      o.grid_x = parse_range("--theta", texts.theta, scene_limits::pulse_angular_frequency_rad_s);
+    }
+    o.trace = parse_range("--fmax", fmt::format("{}:{}:{}", o.grid_fbar.front(), o.grid_fbar.back(), texts.trace),
+                          scene_limits::fmax_over_fcr);
+  } else {
+    if (command.count("--speeds") == 0) throw InputError("--speeds: required for --plane speed-fmax (start:stop:count in rad/s)");
+    o.grid_x = parse_range("--speeds", texts.speeds, AllowedRange::above(0, scene_limits::speed_rad_s.hi));
+    o.trace = parse_range("--speeds", fmt::format("{}:{}:{}", o.grid_x.front(), o.grid_x.back(), texts.trace),
+                          AllowedRange::above(0, scene_limits::speed_rad_s.hi));
+    check_plane_speeds(model, o.grid_x, texts.speeds);
+  }
+}
+
+// The table for people: the scene, the curves' and the shading's fidelity, the scene's own point.
+void print_map_table(const Scene& scene, const BladeModel& model, const std::string& plane, const MapOptions& o,
+                     const StabilityMap& m, const std::vector<std::string>& files) {
+  const bool theta_plane = o.plane == MapPlane::theta_fmax;
+  int unstable = 0, points = 0;
+  for (Eigen::Index k = 0; k < m.max_abs_multiplier.size(); ++k) {
+    const double v = m.max_abs_multiplier.data()[k];
+    if (!std::isnan(v)) ++points, unstable += v > 1 + std::max(o.tolerance, m.max_error_estimate);
+  }
+  fmt::print("scene     {}\nmodel     {}\nplane     {}{}\n", scene.source, describe_model(model), plane,
+             theta_plane ? fmt::format(" at Ω = {:g} rad/s", scene.operation.speed_rad_s)
+                         : fmt::format(", θ = {}·Ω", o.engine_order));
+  const CurveFidelity& f = m.curve_fidelity;
+  if (!f.drawn) {
+    fmt::print("curves    none: a pulse's own series needs many more harmonics in the boundary equations, not "
+               "monotonically; the shading (Floquet) shows the regions\n");
+  } else {
+    fmt::print("curves    {} boundary curves ({} harmonics per family, {} model{}); error over the window's "
+               "span {}{}\n",
+               m.curves.size(), f.approximation, to_string(f.reduction.kind),
+               f.reduction.kind == ReductionKind::automatic ? fmt::format(", {} vectors per load level", f.reduction.vectors)
+                                                            : "",
+               describe_error_budget(f.budget), f.tolerance_met ? "" : fmt::format(" — above --tolerance {}", o.tolerance));
+  }
+  const ShadingFidelity& sf = m.shading_fidelity;
+  fmt::print("shading   {} of {} grid points unstable; refined to {} × {} cells with {} Floquet points; "
+             "max|ρ| relative error ≤ {:.1e} (method, every point){}\n",
+             unstable, points, m.cells_x, m.cells_y, m.samples.size(), m.max_error_estimate,
+             sf.reduction_vectors > 0
+                 ? fmt::format(" + {:.1e} (reduction to {} vectors per load level, {} grid points checked "
+                               "against twice as many)", sf.reduction_error, sf.reduction_vectors,
+                               sf.checked.size())
+                 : std::string("; the whole Ritz model (fewer vectors missed the tolerance)"));
+  if (m.scene_point) {
+    const MapPoint& p = *m.scene_point;
+    fmt::print("scene     ({:g}, F̄ = {:g}): max|ρ| = {:.6g}{}\n", p.x, p.fbar, p.max_abs_multiplier,
+               p.nearest_boundary ? fmt::format("; nearest boundary along F̄ at {:.6g} ({:+d}, mode {}, order {}), "
+                                                "ΔF̄ = {:+.3g}",
+                                                p.nearest_boundary->fbar, p.nearest_boundary->multiplier,
+                                                p.nearest_boundary->mode, p.nearest_boundary->order,
+                                                p.nearest_boundary->fbar - p.fbar)
+                                  : "; no boundary along F̄ in the window");
+  }
+  fmt::print("written   {}\n", fmt::join(files, ", "));
+}
+
 }  // namespace
 
 Command register_map(CLI::App& app) {
@@ -288,24 +367,7 @@ Command register_map(CLI::App& app) {
     const Scene scene = options->load();
     o.engine_order = *order > 0 ? *order : scene.load.pulses_per_rev;
     const BladeModel model = assemble_model(scene);
-    if (theta_plane) {
-      if (command->count("--theta") == 0) {
-        const double w1 = solve_modes(model, system_at(model, scene.operation.speed_rad_s, Eigen::MatrixXd::Zero(model.layout.size(), model.layout.size())),
-                                      scene.operation.speed_rad_s, 1, EigenSolverKind::dense).modes.at(0).eigenvalue.imag();
-        o.grid_x = parse_range("--theta", fmt::format("{}:{}:41", w1 / 4, 2.5 * w1),
-                               scene_limits::pulse_angular_frequency_rad_s);
-      } else {
-        o.grid_x = parse_range("--theta", *theta, scene_limits::pulse_angular_frequency_rad_s);
-      }
-      o.trace = parse_range("--fmax", fmt::format("{}:{}:{}", o.grid_fbar.front(), o.grid_fbar.back(), *trace),
-                            scene_limits::fmax_over_fcr);
-    } else {
-      if (command->count("--speeds") == 0) throw InputError("--speeds: required for --plane speed-fmax (start:stop:count in rad/s)");
-      o.grid_x = parse_range("--speeds", *speeds, AllowedRange::above(0, scene_limits::speed_rad_s.hi));
-      o.trace = parse_range("--speeds", fmt::format("{}:{}:{}", o.grid_x.front(), o.grid_x.back(), *trace),
-                            AllowedRange::above(0, scene_limits::speed_rad_s.hi));
-      check_plane_speeds(model, o.grid_x, *speeds);
-    }
+    set_plane_grids(*command, scene, model, {*theta, *speeds, *trace}, o);
     check_map_work(model, o);
     const bool for_people = options->output_format() == OutputFormat::table;
     const StabilityMap m = stability_map(scene, o, progress_reporter("map: points", for_people));
@@ -320,48 +382,7 @@ Command register_map(CLI::App& app) {
     switch (options->output_format()) {
       case OutputFormat::json: print_json_answer(json); break;
       case OutputFormat::csv: fmt::print("{}", curves_csv(printed)); break;
-      case OutputFormat::table: {
-        int unstable = 0, points = 0;
-        for (Eigen::Index k = 0; k < m.max_abs_multiplier.size(); ++k) {
-          const double v = m.max_abs_multiplier.data()[k];
-          if (!std::isnan(v)) ++points, unstable += v > 1 + std::max(o.tolerance, m.max_error_estimate);
-        }
-        fmt::print("scene     {}\nmodel     {}\nplane     {}{}\n", scene.source, describe_model(model), *plane,
-                   theta_plane ? fmt::format(" at Ω = {:g} rad/s", scene.operation.speed_rad_s)
-                               : fmt::format(", θ = {}·Ω", o.engine_order));
-        const CurveFidelity& f = m.curve_fidelity;
-        if (!f.drawn) {
-          fmt::print("curves    none: a pulse's own series needs many more harmonics in the boundary equations, not "
-                     "monotonically; the shading (Floquet) shows the regions\n");
-        } else {
-          fmt::print("curves    {} boundary curves ({} harmonics per family, {} model{}); error over the window's "
-                     "span {}{}\n",
-                     m.curves.size(), f.approximation, to_string(f.reduction.kind),
-                     f.reduction.kind == ReductionKind::automatic ? fmt::format(", {} vectors per load level", f.reduction.vectors)
-                                                                  : "",
-                     describe_error_budget(f.budget), f.tolerance_met ? "" : fmt::format(" — above --tolerance {}", o.tolerance));
-        }
-        const ShadingFidelity& sf = m.shading_fidelity;
-        fmt::print("shading   {} of {} grid points unstable; refined to {} × {} cells with {} Floquet points; "
-                   "max|ρ| relative error ≤ {:.1e} (method, every point){}\n",
-                   unstable, points, m.cells_x, m.cells_y, m.samples.size(), m.max_error_estimate,
-                   sf.reduction_vectors > 0
-                       ? fmt::format(" + {:.1e} (reduction to {} vectors per load level, {} grid points checked "
-                                     "against twice as many)", sf.reduction_error, sf.reduction_vectors,
-                                     sf.checked.size())
-                       : std::string("; the whole Ritz model (fewer vectors missed the tolerance)"));
-        if (m.scene_point) {
-          const MapPoint& p = *m.scene_point;
-          fmt::print("scene     ({:g}, F̄ = {:g}): max|ρ| = {:.6g}{}\n", p.x, p.fbar, p.max_abs_multiplier,
-                     p.nearest_boundary ? fmt::format("; nearest boundary along F̄ at {:.6g} ({:+d}, mode {}, order {}), "
-                                                      "ΔF̄ = {:+.3g}",
-                                                      p.nearest_boundary->fbar, p.nearest_boundary->multiplier,
-                                                      p.nearest_boundary->mode, p.nearest_boundary->order,
-                                                      p.nearest_boundary->fbar - p.fbar)
-                                        : "; no boundary along F̄ in the window");
-        }
-        fmt::print("written   {}\n", fmt::join(files, ", "));
-      }
+      case OutputFormat::table: print_map_table(scene, model, *plane, o, m, files); break;
     }
   };
 }

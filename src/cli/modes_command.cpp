@@ -50,52 +50,84 @@ ConvergedModes as_printed(ConvergedModes r, const PrintedDigits& digits) {
   return r;
 }
 
+// The answer as JSON: the scene, the model, the accuracy and each mode with its error budget and
+// energy shares.
+void print_modes_json(const Scene& scene, const ConvergedModes& result, const PrintedDigits& digits) {
+  const ModalSolution& sol = result.solution;
+  const double speed = scene.operation.speed_rad_s;
+  Json json;
+  json["scene"] = scene.source;
+  json["speed_rad_s"] = speed;
+  json["speed_rpm"] = speed * rpm_per_rad_s;
+  json["nondimensional_speed"] = result.model.blade.nondimensional_speed(speed);
+  json["tip_compression_over_fcr"] = scene.operation.tip_compression_over_fcr;
+  json["model"] = {{"theory", to_string(result.model.spec.theory)},
+                   {"basis", to_string(result.model.spec.basis)},
+                   {"terms", result.model.spec.terms},
+                   {"dofs", result.model.layout.size()},
+                   {"axial", result.model.spec.axial},
+                   {"coriolis", result.model.spec.coriolis}};
+  json["damping"] = to_string(scene.damping.model);
+  json["solver"] = to_string(sol.solver);
+  json["accuracy"] = {{"method", result.model.spec.basis == BasisKind::sine
+                                     ? "tail of algebraic convergence from models with N, 2N and 4N terms"
+                                     : "relative change against a richer model"},
+                      {"reference_terms", result.reference_terms},
+                      {"max_relative_error", digits.estimate(result.max_relative_error())}};
+  write_error_budget(json, result.worst_budget(), digits);
+  json["modes"] = Json::array();
+  for (std::size_t k = 0; k < sol.modes.size(); ++k) {
+    const Mode& m = sol.modes[k];
+    Json& mode = json["modes"].emplace_back(Json{{"index", m.index},
+                                                 {"family", to_string(m.family)},
+                                                 {"frequency_hz", m.frequency_hz},
+                                                 {"lambda", m.lambda},
+                                                 {"damping_ratio", m.damping_ratio},
+                                                 {"relative_error", digits.estimate(result.relative_error[k])}});
+    write_error_budget(mode, result.budget(k), digits);
+    for (std::size_t f = 0; f < m.energy_share.size(); ++f) {
+      mode["energy_share"][result.model.families[f].share_name] = m.energy_share[f];
+    }
+  }
+  print_json_answer(json_text(json));
+}
+
+// The table for people: each frequency to the significant digits its error supports.
+void print_modes_table(const Scene& scene, const ConvergedModes& result) {
+  const ModalSolution& sol = result.solution;
+  const double speed = scene.operation.speed_rad_s;
+  fmt::print("scene     {}\n", scene.source);
+  fmt::print("model     {}\n", describe_model(result.model));
+  fmt::print("speed     {:.6g} rad/s = {:.6g} rpm, nondimensional {:.6g}; damping {}; solver {}\n", speed,
+             speed * rpm_per_rad_s, result.model.blade.nondimensional_speed(speed), to_string(scene.damping.model),
+             to_string(sol.solver));
+  fmt::print("accuracy  {} against {}-term models, at most {:.1e}; digits shown are those the error supports\n\n",
+             result.model.spec.basis == BasisKind::sine ? "tail of algebraic convergence" : "relative change",
+             result.model.spec.basis == BasisKind::sine
+                 ? fmt::format("{}- and {}", reference_terms(BasisKind::sine, result.model.spec.terms), result.reference_terms)
+                 : fmt::format("{}", result.reference_terms),
+             result.max_relative_error());
+  fmt::print("{:>4}  {:<9} {:>16} {:>16} {:>10} {:>10}\n", "mode", "family", "frequency [Hz]", "Λ", "ζ",
+             "error");
+  for (std::size_t k = 0; k < sol.modes.size(); ++k) {
+    const Mode& m = sol.modes[k];
+    const ErrorBudget budget = result.budget(k);
+    const int figures = significant_digits(budget.total());
+    // ζ below 1e-12 is rounding in an undamped model's eigenvalues, not damping.
+    const double zeta = std::abs(m.damping_ratio) < 1e-12 ? 0.0 : m.damping_ratio;
+    fmt::print("{:>4}  {:<9} {:>#16.{}g} {:>#16.{}g} {:>10.3g} {:>10.1e}\n", m.index, to_string(m.family),
+               m.frequency_hz, figures, m.lambda, figures, zeta, budget.total());
+  }
+}
+
 void print_modes(const SceneOptions& options, const Scene& scene, const ConvergedModes& converged) {
   require_finite(scene, converged);
   const PrintedDigits digits = options.printed_digits();
   const bool for_people = options.output_format() == OutputFormat::table;
   const ConvergedModes result = for_people ? converged : as_printed(converged, digits);
   const ModalSolution& sol = result.solution;
-  const double speed = scene.operation.speed_rad_s;
   switch (options.output_format()) {
-    case OutputFormat::json: {
-      Json json;
-      json["scene"] = scene.source;
-      json["speed_rad_s"] = speed;
-      json["speed_rpm"] = speed * rpm_per_rad_s;
-      json["nondimensional_speed"] = result.model.blade.nondimensional_speed(speed);
-      json["tip_compression_over_fcr"] = scene.operation.tip_compression_over_fcr;
-      json["model"] = {{"theory", to_string(result.model.spec.theory)},
-                       {"basis", to_string(result.model.spec.basis)},
-                       {"terms", result.model.spec.terms},
-                       {"dofs", result.model.layout.size()},
-                       {"axial", result.model.spec.axial},
-                       {"coriolis", result.model.spec.coriolis}};
-      json["damping"] = to_string(scene.damping.model);
-      json["solver"] = to_string(sol.solver);
-      json["accuracy"] = {{"method", result.model.spec.basis == BasisKind::sine
-                                         ? "tail of algebraic convergence from models with N, 2N and 4N terms"
-                                         : "relative change against a richer model"},
-                          {"reference_terms", result.reference_terms},
-                          {"max_relative_error", digits.estimate(result.max_relative_error())}};
-      write_error_budget(json, result.worst_budget(), digits);
-      json["modes"] = Json::array();
-      for (std::size_t k = 0; k < sol.modes.size(); ++k) {
-        const Mode& m = sol.modes[k];
-        Json& mode = json["modes"].emplace_back(Json{{"index", m.index},
-                                                     {"family", to_string(m.family)},
-                                                     {"frequency_hz", m.frequency_hz},
-                                                     {"lambda", m.lambda},
-                                                     {"damping_ratio", m.damping_ratio},
-                                                     {"relative_error", digits.estimate(result.relative_error[k])}});
-        write_error_budget(mode, result.budget(k), digits);
-        for (std::size_t f = 0; f < m.energy_share.size(); ++f) {
-          mode["energy_share"][result.model.families[f].share_name] = m.energy_share[f];
-        }
-      }
-      print_json_answer(json_text(json));
-      break;
-    }
+    case OutputFormat::json: print_modes_json(scene, result, digits); break;
     case OutputFormat::csv:
       fmt::print("index,family,frequency_hz,lambda,damping_ratio,relative_error\n");
       for (std::size_t k = 0; k < sol.modes.size(); ++k) {
@@ -104,31 +136,7 @@ void print_modes(const SceneOptions& options, const Scene& scene, const Converge
                    digits.estimate(result.relative_error[k]));
       }
       break;
-    case OutputFormat::table: {
-      fmt::print("scene     {}\n", scene.source);
-      fmt::print("model     {}\n", describe_model(result.model));
-      fmt::print("speed     {:.6g} rad/s = {:.6g} rpm, nondimensional {:.6g}; damping {}; solver {}\n", speed,
-                 speed * rpm_per_rad_s, result.model.blade.nondimensional_speed(speed), to_string(scene.damping.model),
-                 to_string(sol.solver));
-      fmt::print("accuracy  {} against {}-term models, at most {:.1e}; digits shown are those the error supports\n\n",
-                 result.model.spec.basis == BasisKind::sine ? "tail of algebraic convergence" : "relative change",
-                 result.model.spec.basis == BasisKind::sine
-                     ? fmt::format("{}- and {}", reference_terms(BasisKind::sine, result.model.spec.terms), result.reference_terms)
-                     : fmt::format("{}", result.reference_terms),
-                 result.max_relative_error());
-      fmt::print("{:>4}  {:<9} {:>16} {:>16} {:>10} {:>10}\n", "mode", "family", "frequency [Hz]", "Λ", "ζ",
-                 "error");
-      for (std::size_t k = 0; k < sol.modes.size(); ++k) {
-        const Mode& m = sol.modes[k];
-        const ErrorBudget budget = result.budget(k);
-        const int figures = significant_digits(budget.total());
-        // ζ below 1e-12 is rounding in an undamped model's eigenvalues, not damping.
-        const double zeta = std::abs(m.damping_ratio) < 1e-12 ? 0.0 : m.damping_ratio;
-        fmt::print("{:>4}  {:<9} {:>#16.{}g} {:>#16.{}g} {:>10.3g} {:>10.1e}\n", m.index, to_string(m.family),
-                   m.frequency_hz, figures, m.lambda, figures, zeta, budget.total());
-      }
-      break;
-    }
+    case OutputFormat::table: print_modes_table(scene, result); break;
   }
 }
 

@@ -100,96 +100,107 @@ void require_finite(const StabilityAnswer& a) {
   }
 }
 
-void print(const SceneOptions& options, const Scene& scene, const StabilityAnswer& a) {
-  require_finite(a);
+// The answer as JSON: the scene, the model and the method chosen, max|ρ| with its error budget, the
+// checks and every multiplier, each to the digits its estimate supports.
+void print_json(const Scene& scene, const StabilityAnswer& a, const PrintedDigits& digits, const PrintedAnswer& shown) {
+  const FloquetResult& r = a.floquet;
+  const LoadSeries& load = a.load;
+  Json json;
+  json["scene"] = scene.source;
+  json["speed_rad_s"] = scene.operation.speed_rad_s;
+  json["fmax_over_fcr"] = scene.load.fmax_over_fcr;
+  json["tip_compression_over_fcr"] = scene.operation.tip_compression_over_fcr;
+  json["theta_rad_s"] = a.theta_rad_s;
+  json["load_approximation"] = to_string(scene.load.approximation);
+  json["load_harmonics"] = load.harmonics();
+  json["load_relative_tail"] = digits.estimate(load.relative_tail);
+  json["terms"] = a.model.terms;
+  json["reference_terms"] = a.reference_terms;
+  json["reduction"] = to_string(a.reduction.kind);
+  json["reduction_vectors"] = a.reduction.vectors;
+  json["reduced_dofs"] = a.reduced_size;
+  json["full_dofs"] = a.full_size;
+  json["method"] = to_string(r.method);
+  json["harmonics"] = r.harmonics;
+  json["steps"] = r.steps;
+  json["max_abs_multiplier"] = shown.rho(r.max_abs_multiplier);
+  json["max_real_exponent"] = shown.real_exponent();
+  json["stable"] = a.stable;
+  json["tolerance_met"] = a.tolerance_met;
+  json["tolerance_unmet"] = a.tolerance_met ? Json(nullptr) : Json("--" + a.tolerance_unmet);
+  write_error_budget(json, a.budget, digits);
+  json["checks"] = checks_json(r.checks, shown);
+  json["multipliers"] = Json::array();
+  for (Eigen::Index k = 0; k < r.multipliers.size(); ++k) {
+    const std::complex<double> rho = r.multipliers(k);
+    json["multipliers"].push_back({{"re", shown.rho(rho.real())}, {"im", shown.rho(rho.imag())}});
+  }
+  json["log_decrements"] = Json::array();
+  for (Eigen::Index k = 0; k < r.multipliers.size(); ++k) json["log_decrements"].push_back(shown.log_decrement(k));
+  print_json_answer(json_text(json));
+}
+
+// The multipliers as CSV, one row each.
+void print_csv(const FloquetResult& r, const PrintedAnswer& shown) {
+  fmt::print("index,re,im,abs,log_decrement\n");
+  for (Eigen::Index k = 0; k < r.multipliers.size(); ++k) {
+    const Json d = shown.log_decrement(k);
+    fmt::print("{},{},{},{},{}\n", k + 1, shown.rho(r.multipliers(k).real()), shown.rho(r.multipliers(k).imag()),
+               shown.rho(std::abs(r.multipliers(k))), d.is_null() ? "" : fmt::format("{}", d.get<double>()));
+  }
+}
+
+// The table for people: the scene, model, reduction, load, method, error and checks, then max|ρ|
+// and each multiplier to the decimals the error estimate supports.
+void print_table(const Scene& scene, const StabilityAnswer& a) {
   const FloquetResult& r = a.floquet;
   const double fbar = scene.load.fmax_over_fcr;
   const double error = a.budget.total();
   const LoadSeries& load = a.load;
+  fmt::print("scene      {}\nmodel      {}, {} basis, {} terms/field (budget against {}), axial {}, coriolis {}\n",
+             scene.source, to_string(a.model.theory), to_string(a.model.basis), a.model.terms, a.reference_terms,
+             a.model.axial ? "on" : "off", a.model.coriolis ? "on" : "off");
+  fmt::print("reduction  {}\n", describe_reduction(a));
+  fmt::print("operation  Ω = {:.6g} rad/s, {}F̄_max = {:.6g}, θ = {:.6g} rad/s; load: {}\n",
+             scene.operation.speed_rad_s,
+             scene.operation.tip_compression_over_fcr == 0
+                 ? std::string()
+                 : fmt::format("static tip compression F_a = {:.6g} F_cr, ", scene.operation.tip_compression_over_fcr),
+             fbar, a.theta_rad_s,
+             load.cosine_approximation ? std::string("cosine approximation (42)")
+            : load.exact_pulse
+                ? fmt::format("the true {} pulse train, integrated through each contact", to_string(scene.load.profile))
+                : fmt::format("{} harmonics of the {} pulse (relative L2 tail {:.1e})", load.harmonics(),
+                              to_string(scene.load.profile), load.relative_tail));
+  fmt::print("method     {}, {}\n", to_string(r.method), truncation(r, load.exact_pulse));
+  fmt::print("error      {} on max|ρ|{}\n", describe_error_budget(a.budget),
+             a.tolerance_met ? "" : "  — --" + a.tolerance_unmet);
+  fmt::print("checks     det Φ vs Liouville {}, reciprocal pairs {}, RKF45 on the dominant vector: multiplier {}, "
+             "residual {}\n\n",
+             check_value(r.checks.determinant_error), check_value(r.checks.reciprocal_error),
+             check_value(r.checks.multiplier_error), check_value(r.checks.residual));
+  const double relative = error / std::max(1.0, r.max_abs_multiplier);
+  fmt::print("max|ρ| = {:.{}g}   max Re λ = {:.4g} 1/s   → {}\n\n", r.max_abs_multiplier,
+             significant_digits(relative), r.max_real_exponent, a.stable ? "stable" : "UNSTABLE");
+  // Decimals the error estimate supports.
+  const int decimals = std::clamp(static_cast<int>(-std::log10(std::max(error, 1e-12))), 1, 10);
+  fmt::print("{:>4} {:>16} {:>16} {:>16} {:>10}\n", "#", "Re ρ", "Im ρ", "|ρ|", "log decr.");
+  for (Eigen::Index k = 0; k < r.multipliers.size(); ++k) {
+    const auto& d = r.log_decrements[k];
+    fmt::print("{:>4} {:>16.{}f} {:>16.{}f} {:>16.{}f} {:>10}\n", k + 1, r.multipliers(k).real(), decimals,
+               r.multipliers(k).imag(), decimals, std::abs(r.multipliers(k)), decimals,
+               d ? fmt::format("{:.4f}", *d + 0.0) : "—");
+  }
+}
+
+void print(const SceneOptions& options, const Scene& scene, const StabilityAnswer& a) {
+  require_finite(a);
   const PrintedDigits digits = options.printed_digits();
   const PrintedAnswer shown(a, digits);
   switch (options.output_format()) {
-    case OutputFormat::json: {
-      Json json;
-      json["scene"] = scene.source;
-      json["speed_rad_s"] = scene.operation.speed_rad_s;
-      json["fmax_over_fcr"] = fbar;
-      json["tip_compression_over_fcr"] = scene.operation.tip_compression_over_fcr;
-      json["theta_rad_s"] = a.theta_rad_s;
-      json["load_approximation"] = to_string(scene.load.approximation);
-      json["load_harmonics"] = load.harmonics();
-      json["load_relative_tail"] = digits.estimate(load.relative_tail);
-      json["terms"] = a.model.terms;
-      json["reference_terms"] = a.reference_terms;
-      json["reduction"] = to_string(a.reduction.kind);
-      json["reduction_vectors"] = a.reduction.vectors;
-      json["reduced_dofs"] = a.reduced_size;
-      json["full_dofs"] = a.full_size;
-      json["method"] = to_string(r.method);
-      json["harmonics"] = r.harmonics;
-      json["steps"] = r.steps;
-      json["max_abs_multiplier"] = shown.rho(r.max_abs_multiplier);
-      json["max_real_exponent"] = shown.real_exponent();
-      json["stable"] = a.stable;
-      json["tolerance_met"] = a.tolerance_met;
-      json["tolerance_unmet"] = a.tolerance_met ? Json(nullptr) : Json("--" + a.tolerance_unmet);
-      write_error_budget(json, a.budget, digits);
-      json["checks"] = checks_json(r.checks, shown);
-      json["multipliers"] = Json::array();
-      for (Eigen::Index k = 0; k < r.multipliers.size(); ++k) {
-        const std::complex<double> rho = r.multipliers(k);
-        json["multipliers"].push_back({{"re", shown.rho(rho.real())}, {"im", shown.rho(rho.imag())}});
-      }
-      json["log_decrements"] = Json::array();
-      for (Eigen::Index k = 0; k < r.multipliers.size(); ++k) json["log_decrements"].push_back(shown.log_decrement(k));
-      print_json_answer(json_text(json));
-      break;
-    }
-    case OutputFormat::csv:
-      fmt::print("index,re,im,abs,log_decrement\n");
-      for (Eigen::Index k = 0; k < r.multipliers.size(); ++k) {
-        const Json d = shown.log_decrement(k);
-        fmt::print("{},{},{},{},{}\n", k + 1, shown.rho(r.multipliers(k).real()), shown.rho(r.multipliers(k).imag()),
-                   shown.rho(std::abs(r.multipliers(k))), d.is_null() ? "" : fmt::format("{}", d.get<double>()));
-      }
-      break;
-    case OutputFormat::table: {
-      fmt::print("scene      {}\nmodel      {}, {} basis, {} terms/field (budget against {}), axial {}, coriolis {}\n",
-                 scene.source, to_string(a.model.theory), to_string(a.model.basis), a.model.terms, a.reference_terms,
-                 a.model.axial ? "on" : "off", a.model.coriolis ? "on" : "off");
-      fmt::print("reduction  {}\n", describe_reduction(a));
-      fmt::print("operation  Ω = {:.6g} rad/s, {}F̄_max = {:.6g}, θ = {:.6g} rad/s; load: {}\n",
-                 scene.operation.speed_rad_s,
-                 scene.operation.tip_compression_over_fcr == 0
-                     ? std::string()
-                     : fmt::format("static tip compression F_a = {:.6g} F_cr, ", scene.operation.tip_compression_over_fcr),
-                 fbar, a.theta_rad_s,
-                 load.cosine_approximation ? std::string("cosine approximation (42)")
-                : load.exact_pulse
-                    ? fmt::format("the true {} pulse train, integrated through each contact", to_string(scene.load.profile))
-                    : fmt::format("{} harmonics of the {} pulse (relative L2 tail {:.1e})", load.harmonics(),
-                                  to_string(scene.load.profile), load.relative_tail));
-      fmt::print("method     {}, {}\n", to_string(r.method), truncation(r, load.exact_pulse));
-      fmt::print("error      {} on max|ρ|{}\n", describe_error_budget(a.budget),
-                 a.tolerance_met ? "" : "  — --" + a.tolerance_unmet);
-      fmt::print("checks     det Φ vs Liouville {}, reciprocal pairs {}, RKF45 on the dominant vector: multiplier {}, "
-                 "residual {}\n\n",
-                 check_value(r.checks.determinant_error), check_value(r.checks.reciprocal_error),
-                 check_value(r.checks.multiplier_error), check_value(r.checks.residual));
-      const double relative = error / std::max(1.0, r.max_abs_multiplier);
-      fmt::print("max|ρ| = {:.{}g}   max Re λ = {:.4g} 1/s   → {}\n\n", r.max_abs_multiplier,
-                 significant_digits(relative), r.max_real_exponent, a.stable ? "stable" : "UNSTABLE");
-      // Decimals the error estimate supports.
-      const int decimals = std::clamp(static_cast<int>(-std::log10(std::max(error, 1e-12))), 1, 10);
-      fmt::print("{:>4} {:>16} {:>16} {:>16} {:>10}\n", "#", "Re ρ", "Im ρ", "|ρ|", "log decr.");
-      for (Eigen::Index k = 0; k < r.multipliers.size(); ++k) {
-        const auto& d = r.log_decrements[k];
-        fmt::print("{:>4} {:>16.{}f} {:>16.{}f} {:>16.{}f} {:>10}\n", k + 1, r.multipliers(k).real(), decimals,
-                   r.multipliers(k).imag(), decimals, std::abs(r.multipliers(k)), decimals,
-                   d ? fmt::format("{:.4f}", *d + 0.0) : "—");
-      }
-      break;
-    }
+    case OutputFormat::json: print_json(scene, a, digits, shown); break;
+    case OutputFormat::csv: print_csv(a.floquet, shown); break;
+    case OutputFormat::table: print_table(scene, a); break;
   }
 }
 

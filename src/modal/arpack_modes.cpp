@@ -31,6 +31,40 @@ std::mutex& arpack_lock() {
   return lock;
 }
 
+// The `count` eigenpairs of least |λ| (Im λ ≥ 0) from ARPACK's `converged` Ritz pairs of OP, whose
+// values are ν = 1/λ; a complex pair occupies columns j, j+1 of Z as real and imaginary parts.
+Eigenpairs lowest_eigenpairs(const std::vector<double>& dr, const std::vector<double>& di, const std::vector<double>& Z,
+                             int converged, int n, int count) {
+  const int dim = 2 * n;
+  std::vector<std::pair<std::complex<double>, Eigen::VectorXcd>> found;
+  for (int j = 0; j < converged; ++j) {
+    const Eigen::Map<const Eigen::VectorXd> re(&Z[static_cast<std::size_t>(j) * dim], dim);
+    Eigen::VectorXcd z = re.cast<std::complex<double>>();
+    const std::complex<double> nu(dr[j], di[j]);
+    if (di[j] != 0) {
+      if (j + 1 >= converged) break;  // half a pair at the end
+      const Eigen::Map<const Eigen::VectorXd> im(&Z[static_cast<std::size_t>(j + 1) * dim], dim);
+      z.imag() = im;
+      ++j;
+    }
+    // λ = 1/ν; keep the member with Im λ ≥ 0, i.e. Im ν ≤ 0 (the conjugate has the conjugate vector).
+    const std::complex<double> lambda = 1.0 / nu;
+    if (lambda.imag() >= 0) {
+      found.emplace_back(lambda, z.head(n));
+    } else {
+      found.emplace_back(std::conj(lambda), z.head(n).conjugate());
+    }
+  }
+  std::sort(found.begin(), found.end(), [](const auto& a, const auto& b) { return std::abs(a.first) < std::abs(b.first); });
+  if (static_cast<int>(found.size()) > count) found.resize(count);
+  Eigenpairs out{Eigen::VectorXcd(found.size()), Eigen::MatrixXcd(n, found.size())};
+  for (std::size_t k = 0; k < found.size(); ++k) {
+    out.values(k) = found[k].first;
+    out.vectors.col(k) = found[k].second;
+  }
+  return out;
+}
+
 }  // namespace
 
 Eigenpairs arpack_eigenpairs(const SecondOrderSystem& sys, int count) {
@@ -85,35 +119,7 @@ Eigenpairs arpack_eigenpairs(const SecondOrderSystem& sys, int count) {
   one_run_at_a_time.unlock();
   if (info != 0) throw std::runtime_error(fmt::format("ARPACK dneupd failed (info {})", info));
 
-  // Ritz pairs of OP: ν = 1/λ. A complex pair occupies columns j, j+1 as real and imaginary parts.
-  std::vector<std::pair<std::complex<double>, Eigen::VectorXcd>> found;
-  const int converged = static_cast<int>(iparam[4]);
-  for (int j = 0; j < converged; ++j) {
-    const Eigen::Map<const Eigen::VectorXd> re(&Z[static_cast<std::size_t>(j) * dim], dim);
-    Eigen::VectorXcd z = re.cast<std::complex<double>>();
-    const std::complex<double> nu(dr[j], di[j]);
-    if (di[j] != 0) {
-      if (j + 1 >= converged) break;  // half a pair at the end
-      const Eigen::Map<const Eigen::VectorXd> im(&Z[static_cast<std::size_t>(j + 1) * dim], dim);
-      z.imag() = im;
-      ++j;
-    }
-    // λ = 1/ν; keep the member with Im λ ≥ 0, i.e. Im ν ≤ 0 (the conjugate has the conjugate vector).
-    const std::complex<double> lambda = 1.0 / nu;
-    if (lambda.imag() >= 0) {
-      found.emplace_back(lambda, z.head(n));
-    } else {
-      found.emplace_back(std::conj(lambda), z.head(n).conjugate());
-    }
-  }
-  std::sort(found.begin(), found.end(), [](const auto& a, const auto& b) { return std::abs(a.first) < std::abs(b.first); });
-  if (static_cast<int>(found.size()) > count) found.resize(count);
-  Eigenpairs out{Eigen::VectorXcd(found.size()), Eigen::MatrixXcd(n, found.size())};
-  for (std::size_t k = 0; k < found.size(); ++k) {
-    out.values(k) = found[k].first;
-    out.vectors.col(k) = found[k].second;
-  }
-  return out;
+  return lowest_eigenpairs(dr, di, Z, static_cast<int>(iparam[4]), n, count);
 }
 
 }  // namespace bladestab
