@@ -116,7 +116,11 @@ void print_json(const BoundaryOutput& o) {
   json["converged"] = o.result.unconverged.empty();
   json["tolerance_met"] = o.result.unconverged.empty() && !o.unmet;
   json["tolerance_unmet"] = o.unmet ? Json(*o.unmet) : Json(nullptr);
-  json["cutoff_hz"] = o.request.cutoff_hz;
+  json["cutoff_hz"] = o.result.reduction.cutoff_hz;
+  json["reduction"] = to_string(o.result.reduction.kind);
+  json["reduction_vectors"] = o.result.reduction.vectors;
+  json["reduced_dofs"] = o.result.reduced_size;
+  json["full_dofs"] = o.result.full_size;
   json["model"] = describe_model(o.model);
   json["max_order"] = o.request.max_order;
   json["window_low"] = o.result.window.first / o.unit;
@@ -190,8 +194,8 @@ void print_csv(const BoundaryOutput& o) {
 }
 
 void print_table(const BoundaryOutput& o) {
-  fmt::print("scene          {}\nmodel          {}{}\n", o.scene.source, describe_model(o.model),
-             o.request.cutoff_hz > 0 ? fmt::format(", modes below {:g} Hz", o.request.cutoff_hz) : "");
+  fmt::print("scene          {}\nmodel          {}\nreduction      {}\n", o.scene.source, describe_model(o.model),
+             describe_reduction(o.result.reduction, o.result.reduced_size, o.result.full_size));
   fmt::print("operation      Ω = {:.6g} rad/s{}\n", o.scene.operation.speed_rad_s,
              o.in_load ? fmt::format(", θ = {:.6g} rad/s", *o.request.theta_rad_s)
                        : fmt::format(", F̄_max = {:.6g}", o.scene.load.fmax_over_fcr));
@@ -264,12 +268,13 @@ void print(const SceneOptions& options, const Scene& scene, const BladeModel& mo
 }
 
 // The boundary eigenproblems' cost before they start: the real balance has H·n unknowns (H
-// harmonics: 2k for the −1 family, 2k + 1 for +1; n modes), linearized to twice that in θ. Every
-// run solves both families at k and k + 2 on the scene's model and at k on the richer basis: a
-// lower bound of the work, with dgeev's ~26 N³ flops and its matrices (~32 N² bytes) for each.
+// harmonics: 2k for the −1 family, 2k + 1 for +1; n dofs of the reduced model), linearized to
+// twice that in θ. Every run solves both families at k and k + 2 on the scene's model and at k on
+// the richer basis: a lower bound of the work, with dgeev's ~26 N³ flops and its matrices (~32 N²
+// bytes) for each.
 void check_boundary_work(const Scene& scene, const BladeModel& model, const BoundaryRequest& request) {
   const PeriodicSystem sys =
-      periodic_system(model, scene, load_series(scene), {ReductionKind::modal, 0, request.cutoff_hz});
+      periodic_system(model, scene, load_series(scene), boundary_reduction(model, scene, request));
   const double richer = static_cast<double>(reference_terms(scene.model.basis, scene.model.terms)) / scene.model.terms;
   const double linearized = request.theta_rad_s ? 1 : 2;
   double flops = 0, bytes = 0;
@@ -282,7 +287,7 @@ void check_boundary_work(const Scene& scene, const BladeModel& model, const Boun
     }
   }
   check_work(fmt::format("--approximation {} with model.terms = {}", request.first_approximation, scene.model.terms),
-             fmt::format("the boundary equations of {} modes", sys.kept_modes), flops / dense_flops_per_second, bytes);
+             fmt::format("the boundary equations of {} dofs", sys.kept_modes), flops / dense_flops_per_second, bytes);
 }
 
 // --at-theta θ puts the pulses at θ (boundaries.hpp); the scene's contact, t̄_c of a revolution at
@@ -298,8 +303,9 @@ void check_pulse_fits(const Scene& scene, double theta) {
   }
 }
 
-// --tolerance bounds the harmonics' part, which k is raised to meet; the basis, the reduction and
-// the load series are the scene's and the options' and are reported, not raised. Where the whole
+// --tolerance bounds the harmonics' part, which k is raised to meet, and the automatic reduction's
+// part, whose vectors are raised to meet half of it; the basis, a reduction the scene or
+// --cutoff-hz sets and the load series are reported, not raised. Where the whole
 // estimate of the converged boundaries is above the tolerance, one line says which part, and for
 // the basis whether more terms could reach it (basis_can_reach, as `stability` raises them).
 std::optional<std::string> tolerance_unmet(const Scene& scene, const BoundaryRequest& request,
@@ -315,7 +321,9 @@ std::optional<std::string> tolerance_unmet(const Scene& scene, const BoundaryReq
                            ? "raise model.terms"
                            : "more terms cannot reach it; use model.basis = \"legendre\"");
   } else if (total.reduction >= std::max(total.load, total.method)) {
-    part = fmt::format("its reduction part {:.1e}: raise --cutoff-hz", total.reduction);
+    part = fmt::format("its reduction part {:.1e}: {}", total.reduction,
+                       analysis.reduction.kind == ReductionKind::modal ? "raise --cutoff-hz (or model.cutoff_hz)"
+                                                                       : "raise model.reduction_vectors");
   } else if (total.load >= total.method) {
     part = fmt::format("its load part {:.1e}: the pulse's series (load.approximation = \"fourier\")", total.load);
   } else {

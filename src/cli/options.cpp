@@ -112,6 +112,20 @@ int significant_digits(double error) {
   return std::clamp(static_cast<int>(std::floor(-std::log10(std::max(error, 1e-15)))) + 1, 3, 12);
 }
 
+std::string describe_reduction(const ReductionSpec& reduction, int reduced_dofs, int full_dofs) {
+  switch (reduction.kind) {
+    case ReductionKind::automatic:
+      return fmt::format("automatic: {} modes at F = 0 and at the peak load + gyroscopic corrections → {} of {} dofs",
+                         reduction.vectors, reduced_dofs, full_dofs);
+    case ReductionKind::modal:
+      return reduction.cutoff_hz > 0 ? fmt::format("modal: {} modes below {:g} Hz of {} dofs", reduced_dofs,
+                                                   reduction.cutoff_hz, full_dofs)
+                                     : fmt::format("modal: all {} modes", full_dofs);
+    case ReductionKind::none: return fmt::format("none: all {} dofs", full_dofs);
+  }
+  return "";
+}
+
 std::string describe_model(const BladeModel& model) {
   const ModelSpec& s = model.spec;
   const std::string compression =

@@ -73,6 +73,10 @@ int significant_digits(double error);
 // with ", static tip compression 0.5 F_cr" when the scene has one.
 std::string describe_model(const BladeModel& model);
 
+// The reduction a periodic system is built on, e.g. "automatic: 3 modes at F = 0 and at the peak load +
+// gyroscopic corrections → 9 of 48 dofs".
+std::string describe_reduction(const ReductionSpec& reduction, int reduced_dofs, int full_dofs);
+
 // "sinha2005/blade" for stability_maps/sinha2005/blade.toml: the scene's name in chart titles.
 std::string scene_title(const Scene& scene);
 

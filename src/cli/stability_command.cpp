@@ -40,20 +40,6 @@ std::string truncation(const FloquetResult& r, bool exact_pulse) {
                                               : fmt::format("q = {} harmonics", r.harmonics);
 }
 
-std::string describe_reduction(const StabilityAnswer& a) {
-  switch (a.reduction.kind) {
-    case ReductionKind::automatic:
-      return fmt::format("automatic: {} modes at F = 0 and at the peak load + gyroscopic corrections → {} of {} dofs",
-                         a.reduction.vectors, a.reduced_size, a.full_size);
-    case ReductionKind::modal:
-      return a.reduction.cutoff_hz > 0 ? fmt::format("modal: {} modes below {:g} Hz of {} dofs", a.reduced_size,
-                                                     a.reduction.cutoff_hz, a.full_size)
-                                         : fmt::format("modal: all {} modes", a.full_size);
-    case ReductionKind::none: return fmt::format("none: all {} dofs", a.full_size);
-  }
-  return "";
-}
-
 // "2.1e-13", or "not informative" for NaN.
 std::string check_value(double v) { return std::isnan(v) ? "n/a" : fmt::format("{:.1e}", v); }
 
@@ -160,7 +146,7 @@ void print_table(const Scene& scene, const StabilityAnswer& a) {
   fmt::print("scene      {}\nmodel      {}, {} basis, {} terms/field (budget against {}), axial {}, coriolis {}\n",
              scene.source, to_string(a.model.theory), to_string(a.model.basis), a.model.terms, a.reference_terms,
              a.model.axial ? "on" : "off", a.model.coriolis ? "on" : "off");
-  fmt::print("reduction  {}\n", describe_reduction(a));
+  fmt::print("reduction  {}\n", describe_reduction(a.reduction, a.reduced_size, a.full_size));
   fmt::print("operation  Ω = {:.6g} rad/s, {}F̄_max = {:.6g}, θ = {:.6g} rad/s; load: {}\n",
              scene.operation.speed_rad_s,
              scene.operation.tip_compression_over_fcr == 0

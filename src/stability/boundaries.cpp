@@ -5,6 +5,7 @@
 #include <functional>
 #include <limits>
 #include <map>
+#include <optional>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -25,6 +26,9 @@ constexpr double check_monodromy_tolerance = 1e-10;  // on Φ(T) of the multipli
 // fastest kept frequency times the period (≈ 2π·check_reach·order radians a period); at 20 the
 // paper blade's boundary at θ = 300 rad/s lost its Coriolis-coupled axial mode (1280 Hz) and moved 2 %.
 constexpr double check_reach = 200;
+// The automatic reduction is also compared with the whole model at this k (or the answer's, if
+// lower): a few whole-model levels cost about as much as all the reduced ones.
+constexpr int whole_model_approximation = 4;
 
 double value_of(const Boundary& b, bool in_load) { return in_load ? b.peak_force_n : b.theta_rad_s; }
 
@@ -312,80 +316,209 @@ void compare_part(BoundaryAnalysis& result, BoundarySolver& other, bool in_load,
 
 }  // namespace
 
-BoundaryAnalysis boundaries_with_error_estimate(const Scene& scene_in, const BoundaryRequest& r) {
+namespace {
+
+// The window of θ (or F_max): the request's, else θ/2 to 2θ of the scene's θ (0 to 2 F_max).
+std::pair<double, double> window_of(const BoundaryRequest& r, double peak, double theta) {
+  if (r.window) return *r.window;
+  return r.theta_rad_s ? std::make_pair(0.0, 2 * peak) : std::make_pair(theta / 2, 2 * theta);
+}
+
+// The reduction's next step: twice the vectors, or the whole model once they would be as many.
+ReductionSpec doubled(const ReductionSpec& reduction, int dofs) {
+  const int vectors = 2 * reduction.vectors;
+  return reduction_keeps_whole(vectors, dofs) ? ReductionSpec{ReductionKind::none, 0, 0}
+                                              : ReductionSpec{ReductionKind::automatic, vectors, 0};
+}
+
+// k raised from `first` in steps of 2 on one model until every boundary of the window of order
+// ≤ max_order moves by at most the tolerance at k + 2 and the multiplier check passes, or k + 2
+// would need more than max_approximation harmonics: the result's approximation, boundaries (with
+// their method part), unconverged ones and checks. `at_level(k)` is told each k tried.
+void converge_in_harmonics(BoundarySolver& solver, const BoundaryRequest& r, int first,
+                           const std::function<BoundarySolver(double)>& checker,
+                           const std::function<void(int)>& at_level, BoundaryAnalysis& result) {
   const bool in_load = r.theta_rad_s.has_value();
-  Scene scene = scene_in;
-  if (in_load && scene.load.fmax_over_fcr == 0) scene.load.fmax_over_fcr = 1;  // only the load's shape matters
-  // The pulses come at the θ asked for: a pulse series (not the cosine approximation) depends on it
-  // through the duty t_c/T.
-  if (in_load) scene.load.pulse_frequency_hz = *r.theta_rad_s / two_pi;
-  const BladeModel model = assemble_model(scene);
+  for (int k = first;; k += 2) {
+    at_level(k);
+    const bool last = k + 6 > r.max_approximation;  // k + 2 would need k + 6 harmonics
+    std::vector<Compared> compared = compare_at(solver, k, in_load, result.window, r.max_order);
+    double worst = 0;
+    for (const Compared& c : compared) worst = std::max(worst, method_part(c));
+    if (worst > r.tolerance && !last) continue;
+    result.approximation = k;
+    result.checks = check_lowest(compared, r.tolerance, r.cutoff_hz, in_load, checker);
+    const bool passed = std::none_of(compared.begin(), compared.end(), [](const Compared& c) { return c.check_failed; });
+    if (!passed && !last) continue;
+    split_by_tolerance(compared, r.tolerance, in_load, result);
+    return;
+  }
+}
+
+// The reduction part from the whole model at a low k (the reduction's error hardly depends on k,
+// the whole model's eigenproblems grow like its dofs·k): each reported boundary matched to the
+// reduced model at `k_low`, that one to the whole model there, the part raised to twice their
+// change (its change with k is not known).
+// A boundary without counterparts keeps its part from the other comparison.
+void compare_whole_at(BoundaryAnalysis& result, BoundarySolver& reduced, BoundarySolver& whole, int k_low,
+                      bool in_load) {
+  std::vector<Boundary> reported;
+  for (const EstimatedBoundary& e : result.boundaries) reported.push_back(e.boundary);
+  const std::vector<Boundary>& here = reduced.at(k_low);
+  const std::vector<int> to_here = match(reported, here, in_load);
+  const std::vector<int> to_whole = match(here, whole.at(k_low), in_load);
+  for (std::size_t i = 0; i < reported.size(); ++i) {
+    const int j = to_here[i];
+    if (j < 0 || to_whole[j] < 0) continue;
+    double& part = result.boundaries[i].budget.reduction;
+    part = std::max(part, 2 * relative_change(here[j], whole.at(k_low)[to_whole[j]], in_load));
+  }
+}
+
+}  // namespace
+
+ReductionSpec boundary_reduction(const BladeModel& model, const Scene& scene, const BoundaryRequest& r) {
+  if (r.cutoff_hz > 0) return {ReductionKind::modal, 0, r.cutoff_hz};
+  const ReductionSpec& asked = scene.model.reduction;
+  if (asked.kind != ReductionKind::automatic) return asked;
+  if (asked.vectors > 0) return asked;
   const double peak = scene.load.fmax_over_fcr * model.blade.critical_load();
-  const LoadSeries load = load_series(scene);
+  const double theta = r.theta_rad_s ? *r.theta_rad_s : pulse_train(scene).angular_frequency();
+  const double theta_max = r.theta_rad_s ? theta : window_of(r, peak, theta).second;
+  const int vectors = tongue_vectors(model, scene, theta_max, r.max_order);
+  return reduction_keeps_whole(vectors, model.layout.size()) ? ReductionSpec{ReductionKind::none, 0, 0}
+                                                             : ReductionSpec{ReductionKind::automatic, vectors, 0};
+}
+
+namespace {
+
+// One run of boundaries_with_error_estimate: the scene's model and load, the solvers of the models
+// compared, and the progress over their harmonic levels.
+class BoundaryRun {
+public:
+  BoundaryRun(const Scene& scene, const BoundaryRequest& request)
+      : r_(request), in_load_(request.theta_rad_s.has_value()), scene_(at_request(scene, request)),
+        model_(assemble_model(scene_)), peak_(scene_.load.fmax_over_fcr * model_.blade.critical_load()),
+        load_(load_series(scene_)) {}
+
+  BoundaryAnalysis run() {
+    BoundaryAnalysis result;
+    result.window = window_of(r_, peak_, load_.angular_frequency);
+    result.reduction = boundary_reduction(model_, scene_, r_);
+    BoundarySolver solver = solver_for(model_, load_, result.reduction);
+    ladder_ = &solver;
+    const bool automatic = result.reduction.kind == ReductionKind::automatic;
+    const bool cut = result.reduction.kind == ReductionKind::modal && solver.system().kept_modes < solver.system().all_modes;
+    comparisons_left_ = 1 + automatic + cut + !load_.cosine_approximation;
+    converge(solver, r_.first_approximation, result);
+    if (automatic) raise_reduction(solver, result);
+    if (cut) {
+      BoundarySolver full = solver_for(model_, load_, {ReductionKind::none, 0, 0});
+      compare(result, full, 1, &ErrorBudget::reduction, "reduction: no counterpart with all modes");
+    }
+    result.reduced_size = solver.system().kept_modes;
+    result.full_size = solver.system().all_modes;
+    ModelSpec richer = scene_.model;
+    richer.terms = reference_terms(richer.basis, richer.terms);
+    BoundarySolver richer_solver = solver_for(assemble_model(scene_, richer), load_, result.reduction);
+    compare(result, richer_solver, basis_tail_factor(richer.basis), &ErrorBudget::basis,
+            "basis: no counterpart with a richer basis");
+    if (!load_.cosine_approximation) {
+      const LoadSeries longer_series = load_series(scene_, load_.relative_tail / 10, 10 * (load_.harmonics() + 1));
+      BoundarySolver longer = solver_for(model_, longer_series, result.reduction);
+      compare(result, longer, 1, &ErrorBudget::load, "load: no counterpart with a longer series");
+    }
+    if (r_.progress) r_.progress(done_, done_);
+    return result;
+  }
+
+private:
+  // The pulses come at the θ asked for: a pulse series (not the cosine approximation) depends on
+  // it through the duty t_c/T; for boundaries in F_max only the load's shape matters.
+  static Scene at_request(Scene scene, const BoundaryRequest& r) {
+    if (!r.theta_rad_s) return scene;
+    if (scene.load.fmax_over_fcr == 0) scene.load.fmax_over_fcr = 1;
+    scene.load.pulse_frequency_hz = *r.theta_rad_s / two_pi;
+    return scene;
+  }
+
   // Progress: one step per harmonic level of a model. What remains if the current k converges, at
   // most: its levels k, k + 2, k + 4 not yet solved (k + 4 only where a boundary first appears at
-  // k + 2) and one level of each comparison model below.
-  int done = 0, level = r.first_approximation, comparisons_left = 0;
-  const BoundarySolver* ladder = nullptr;
-  const auto report = [&] {
-    int pending = comparisons_left;
-    for (int k : {level, level + 2, level + 4}) pending += ladder == nullptr || !ladder->has(k);
-    if (r.progress) r.progress(done, done + pending);
-  };
-  const auto solver_for = [&](const BladeModel& m, const LoadSeries& series, double cutoff_hz, bool counted = true) {
+  // k + 2) and one level of each comparison model still to come.
+  void report() const {
+    int pending = std::max(0, comparisons_left_);
+    for (int k : {level_, level_ + 2, level_ + 4}) pending += ladder_ == nullptr || !ladder_->has(k);
+    if (r_.progress) r_.progress(done_, done_ + pending);
+  }
+
+  BoundarySolver solver_for(const BladeModel& m, const LoadSeries& series, const ReductionSpec& reduction,
+                            bool counted = true) {
     std::function<void()> solved;
-    if (counted) solved = [&] { ++done, report(); };
-    return BoundarySolver(periodic_system(m, scene, series, {ReductionKind::modal, 0, cutoff_hz}), peak, r.theta_rad_s,
-                          r.threads, std::move(solved));
-  };
+    if (counted) solved = [this] { ++done_, report(); };
+    return BoundarySolver(periodic_system(m, scene_, series, reduction), peak_, r_.theta_rad_s, r_.threads,
+                          std::move(solved));
+  }
+
+  void converge(BoundarySolver& solver, int first, BoundaryAnalysis& result) {
+    const auto checker = [this](double cutoff_hz) {
+      return solver_for(model_, load_, {ReductionKind::modal, 0, cutoff_hz}, false);
+    };
+    converge_in_harmonics(solver, r_, first, checker, [this](int k) { level_ = k; }, result);
+  }
+
+  void compare(BoundaryAnalysis& result, BoundarySolver& other, double factor, double ErrorBudget::*part,
+               const char* missing) {
+    compare_part(result, other, in_load_, factor, part, missing);
+    --comparisons_left_;
+  }
+
+  // The automatic reduction's part: twice the change against twice the vectors, or the change
+  // against the whole model where that is next, and twice the change against the whole model at a
+  // low k. Vectors the program chose (not the scene, not --cutoff-hz) are doubled, and k converged
+  // again from where it was, while the part is above half the tolerance.
+  void raise_reduction(BoundarySolver& solver, BoundaryAnalysis& result) {
+    const ReductionSpec& asked = scene_.model.reduction;
+    const bool chosen = r_.cutoff_hz == 0 && asked.kind == ReductionKind::automatic && asked.vectors == 0;
+    BoundarySolver whole = solver_for(model_, load_, {ReductionKind::none, 0, 0});
+    for (;;) {
+      const ReductionSpec next = doubled(result.reduction, model_.layout.size());
+      const bool next_whole = next.kind == ReductionKind::none;
+      std::optional<BoundarySolver> twice;
+      if (!next_whole) twice.emplace(solver_for(model_, load_, next));
+      BoundarySolver& other = next_whole ? whole : *twice;
+      compare(result, other, next_whole ? 1 : 2, &ErrorBudget::reduction,
+              "reduction: no counterpart with twice the vectors");
+      if (!next_whole) {
+        compare_whole_at(result, solver, whole, std::min(result.approximation, whole_model_approximation), in_load_);
+      }
+      if (result.total().reduction <= r_.tolerance / 2 || !chosen) return;
+      result.reduction = next;
+      solver = std::move(other);
+      ++comparisons_left_;
+      converge(solver, result.approximation, result);
+      if (next_whole) return;
+    }
+  }
+
+  const BoundaryRequest& r_;
+  bool in_load_;
+  Scene scene_;
+  BladeModel model_;
+  double peak_;
+  LoadSeries load_;
+  int done_ = 0, level_ = 0, comparisons_left_ = 0;
+  const BoundarySolver* ladder_ = nullptr;
+};
+
+}  // namespace
+
+BoundaryAnalysis boundaries_with_error_estimate(const Scene& scene, const BoundaryRequest& r) {
   if (r.first_approximation < 1 || r.first_approximation + 4 > r.max_approximation) {
     throw std::invalid_argument(fmt::format("boundaries: the first approximation {} must be in [1, {}] (the maximum "
                                             "{} less the two levels it is compared with)", r.first_approximation,
                                             r.max_approximation - 4, r.max_approximation));
   }
-  BoundarySolver solver = solver_for(model, load, r.cutoff_hz);
-  ladder = &solver;
-  comparisons_left = 1 + (solver.system().kept_modes < solver.system().all_modes) + !load.cosine_approximation;
-  const double centre = in_load ? peak : load.angular_frequency;
-  const std::pair<double, double> window = r.window.value_or(std::make_pair(in_load ? 0.0 : centre / 2, 2 * centre));
-
-  BoundaryAnalysis result;
-  result.window = window;
-  for (int k = r.first_approximation;; k += 2) {
-    level = k;
-    const bool last = k + 6 > r.max_approximation;  // k + 2 would need k + 6 harmonics
-    std::vector<Compared> compared = compare_at(solver, k, in_load, window, r.max_order);
-    double worst = 0;
-    for (const Compared& c : compared) worst = std::max(worst, method_part(c));
-    if (worst > r.tolerance && !last) continue;
-    result.approximation = k;
-    result.checks = check_lowest(compared, r.tolerance, r.cutoff_hz, in_load,
-                                 [&](double cutoff_hz) { return solver_for(model, load, cutoff_hz, false); });
-    const bool passed = std::none_of(compared.begin(), compared.end(), [](const Compared& c) { return c.check_failed; });
-    if (!passed && !last) continue;
-    split_by_tolerance(compared, r.tolerance, in_load, result);
-    break;
-  }
-
-  // The other parts of each budget, at the approximation each boundary comes from.
-  const auto compare = [&](BoundarySolver& other, double factor, double ErrorBudget::*part, const char* missing) {
-    compare_part(result, other, in_load, factor, part, missing);
-    --comparisons_left;
-  };
-  ModelSpec richer = scene.model;
-  richer.terms = reference_terms(richer.basis, richer.terms);
-  BoundarySolver richer_solver = solver_for(assemble_model(scene, richer), load, r.cutoff_hz);
-  compare(richer_solver, basis_tail_factor(richer.basis), &ErrorBudget::basis, "basis: no counterpart with a richer basis");
-  if (solver.system().kept_modes < solver.system().all_modes) {
-    BoundarySolver full = solver_for(model, load, 0);
-    compare(full, 1, &ErrorBudget::reduction, "reduction: no counterpart with all modes");
-  }
-  if (!load.cosine_approximation) {
-    BoundarySolver longer = solver_for(model, load_series(scene, load.relative_tail / 10, 10 * (load.harmonics() + 1)), r.cutoff_hz);
-    compare(longer, 1, &ErrorBudget::load, "load: no counterpart with a longer series");
-  }
-  if (r.progress) r.progress(done, done);
-  return result;
+  return BoundaryRun(scene, r).run();
 }
 
 }  // namespace bladestab

@@ -17,7 +17,7 @@ namespace bladestab {
 // Boundaries with an estimate of their whole error against the continuum model of the scene.
 struct BoundaryRequest {
   std::optional<double> theta_rad_s;  // set: boundary F_max at this θ; unset: boundary θ at the scene's F_max
-  double cutoff_hz = 0;               // keep only the modes below (0: all)
+  double cutoff_hz = 0;               // keep only the modes below (0: the scene's model.reduction)
   // The window of θ [rad/s] (or of F_max [N] with theta_rad_s) whose boundaries are reported and
   // converged; unset: θ/2 to 2θ of the scene's θ (0 to 2 F_max of the scene). The set of
   // boundaries is infinite (orders n → ∞ accumulate at θ → 0, thin high-order tongues at every
@@ -60,6 +60,8 @@ struct UnconvergedBoundary {
 };
 
 struct BoundaryAnalysis {
+  ReductionSpec reduction;  // the model's reduction the boundaries come from
+  int reduced_size = 0, full_size = 0;  // its dofs, and the Ritz model's
   int approximation = 0;  // the chosen k: boundaries of k (and, those that appear only there, of k + 2)
   std::pair<double, double> window;  // the window used
   std::vector<EstimatedBoundary> boundaries;  // converged to the tolerance; sorted by θ or F_max
@@ -67,6 +69,11 @@ struct BoundaryAnalysis {
   std::vector<BoundaryCheck> checks;
   ErrorBudget total() const;  // each part the largest over the (converged) boundaries
 };
+
+// The reduction the boundaries start from: modes below request.cutoff_hz if set, else the scene's
+// model.reduction; where that leaves the vectors to the program, the automatic reduction with
+// tongue_vectors for the window's highest θ (or the request's θ) and max_order.
+ReductionSpec boundary_reduction(const BladeModel& model, const Scene& scene, const BoundaryRequest& request);
 
 // Raises k from request.first_approximation in steps of 2 until every boundary found at k in the
 // window, of order ≤ max_order, moves by at most request.tolerance (relative) at k + 2 — boundaries
@@ -79,7 +86,10 @@ struct BoundaryAnalysis {
 // The error budget of each boundary (docs/theory.md §2–§4):
 //   basis      change against the richer Ritz basis reference_terms(basis, N) (for the sine basis
 //              times basis_tail_factor)
-//   reduction  change against all modes kept (with a cut-off)
+//   reduction  with a cut-off: the change against all modes kept; with the automatic reduction:
+//              twice the change against twice the vectors (the change against the whole model
+//              where that is next), the vectors doubled (and k converged again from where it was)
+//              while this part is above half the tolerance, unless the scene sets them
 //   load       change against a series with a 10 times smaller tail (load.approximation =
 //              "fourier"); 0 for the cosine approximation (42), which is the scene's load
 //   method     twice the change from k to k + 2 harmonics (or k + 2 to k + 4), plus the
