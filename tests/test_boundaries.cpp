@@ -233,6 +233,43 @@ TEST_CASE("boundaries: where the stiffness touches zero (F̄ = 1) the pinched to
   }
 }
 
+TEST_CASE("boundaries: a work limit stops the raising of k, and the edges that converged are still the answer",
+          "[boundaries][mathieu]") {
+  // Mathieu at F̄ = 1 as above, where the pinched tongues would raise k to its largest: a budget of
+  // the work up to k = 10 stops there, and the order-1 and order-2 edges (converged by then) are
+  // Mathieu's; whatever k reached is the same with one thread or two.
+  const Scene s = mathieu_scene(1.0);
+  const BladeModel m = assemble_model(s);
+  const double w0 = std::sqrt(m.K_S(0, 0) / m.M(0, 0));
+  const double a1 = reference::mathieu_blade_boundary(MathieuKind::a_odd, 0, 1.0, w0, 0.01, 60.0);
+  const double b2 = reference::mathieu_blade_boundary(MathieuKind::b_even, 0, 1.0, w0, 2.0, 80.0);
+  double budget = 0;
+  for (int k = 2; k <= 14; k += 2) budget += boundary_level_flops(k, 1, true);
+  std::vector<BoundaryAnalysis> runs;
+  for (int threads : {1, 2}) {
+    BoundaryRequest r;
+    r.window = std::make_pair(10.0, 400.0);
+    r.work_flops = budget;
+    r.threads = threads;
+    runs.push_back(boundaries_with_error_estimate(s, r));
+  }
+  const BoundaryAnalysis& a = runs[0];
+  CHECK(a.work_limited);
+  CHECK(a.approximation <= 10);
+  CHECK(!a.unconverged.empty());
+  CHECK(runs[1].approximation == a.approximation);
+  CHECK(runs[1].boundaries.size() == a.boundaries.size());
+  for (double theta : {a1, b2}) {
+    const EstimatedBoundary* best = nullptr;
+    for (const EstimatedBoundary& e : a.boundaries) {
+      if (!best || std::abs(e.boundary.theta_rad_s - theta) < std::abs(best->boundary.theta_rad_s - theta)) best = &e;
+    }
+    REQUIRE(best != nullptr);
+    INFO("Mathieu θ = " << theta << ", found " << best->boundary.theta_rad_s << " at k = " << a.approximation);
+    CHECK(std::abs(best->boundary.theta_rad_s / theta - 1) <= 1e-8);
+  }
+}
+
 TEST_CASE("boundaries: the families side by side give the answer of one thread, and progress counts to its end",
           "[boundaries][slow][parallel]") {
   const Scene s = paper_scene({"model.terms=3"});

@@ -112,6 +112,7 @@ void print_json(const BoundaryOutput& o) {
   json["fmax_over_fcr"] = o.scene.load.fmax_over_fcr;
   json["approximation"] = o.result.approximation;
   json["max_approximation"] = o.request.max_approximation;
+  json["work_limited"] = o.result.work_limited;
   json["tolerance"] = o.request.tolerance;
   json["converged"] = o.result.unconverged.empty();
   json["tolerance_met"] = o.result.unconverged.empty() && !o.unmet;
@@ -193,6 +194,14 @@ void print_csv(const BoundaryOutput& o) {
   }
 }
 
+// How far the harmonics went for the boundaries that did not converge: the largest k allowed, or
+// the largest the work limit (BoundaryRequest::work_flops, from --max-seconds) affords.
+std::string harmonics_reached(const BoundaryAnalysis& result, const BoundaryRequest& request) {
+  if (!result.work_limited) return fmt::format("with up to {} harmonics per family", request.max_approximation);
+  return fmt::format("with up to {} harmonics per family, all that the work --max-seconds {:g} allows affords",
+                     result.approximation + 2, work_limits().seconds);
+}
+
 void print_table(const BoundaryOutput& o) {
   fmt::print("scene          {}\nmodel          {}\nreduction      {}\n", o.scene.source, describe_model(o.model),
              describe_reduction(o.result.reduction, o.result.reduced_size, o.result.full_size));
@@ -204,9 +213,8 @@ void print_table(const BoundaryOutput& o) {
              o.result.approximation, o.result.unconverged.empty() ? "every" : "each listed", o.request.max_order,
              o.in_load ? "F̄_max" : "θ", o.result.window.first / o.unit, o.result.window.second / o.unit, o.request.tolerance);
   if (!o.result.unconverged.empty()) {
-    fmt::print("not converged  {} more did not converge with up to {} harmonics per family (listed after the "
-               "boundaries)\n",
-               o.result.unconverged.size(), o.request.max_approximation);
+    fmt::print("not converged  {} more did not converge {} (listed after the boundaries)\n",
+               o.result.unconverged.size(), harmonics_reached(o.result, o.request));
   }
   fmt::print("error          {} relative on {}, largest over the boundaries{}\n",
              describe_error_budget(o.result.total()), o.in_load ? "F̄_max" : "θ",
@@ -275,19 +283,17 @@ void print(const SceneOptions& options, const Scene& scene, const BladeModel& mo
 void check_boundary_work(const Scene& scene, const BladeModel& model, const BoundaryRequest& request) {
   const PeriodicSystem sys =
       periodic_system(model, scene, load_series(scene), boundary_reduction(model, scene, request));
-  const double richer = static_cast<double>(reference_terms(scene.model.basis, scene.model.terms)) / scene.model.terms;
-  const double linearized = request.theta_rad_s ? 1 : 2;
-  double flops = 0, bytes = 0;
-  for (const auto& [k, modes] : {std::pair{request.first_approximation, 1.0}, {request.first_approximation + 2, 1.0},
-                                 {request.first_approximation, richer}}) {
-    for (const int harmonics : {2 * k, 2 * k + 1}) {
-      const double unknowns = linearized * harmonics * modes * sys.kept_modes;
-      flops += 26 * unknowns * unknowns * unknowns;
-      bytes = std::max(bytes, 32 * unknowns * unknowns);
-    }
-  }
-  check_work(fmt::format("--approximation {} with model.terms = {}", request.first_approximation, scene.model.terms),
-             fmt::format("the boundary equations of {} dofs", sys.kept_modes), flops / dense_flops_per_second, bytes);
+  const int k = request.first_approximation, n = sys.kept_modes;
+  const int richer = sys.kept_modes == sys.all_modes
+                         ? n * reference_terms(scene.model.basis, scene.model.terms) / scene.model.terms
+                         : n;
+  const bool in_theta = !request.theta_rad_s;
+  const double flops = boundary_level_flops(k, n, in_theta) + boundary_level_flops(k + 2, n, in_theta) +
+                       boundary_level_flops(k, richer, in_theta);
+  const double largest = (in_theta ? 2 : 1) * (2 * k + 5) * static_cast<double>(std::max(n, richer));
+  check_work(fmt::format("--approximation {} with model.terms = {}", k, scene.model.terms),
+             fmt::format("the boundary equations of {} dofs", n), flops / dense_flops_per_second,
+             32 * largest * largest);
 }
 
 // --at-theta θ puts the pulses at θ (boundaries.hpp); the scene's contact, t̄_c of a revolution at
@@ -329,7 +335,7 @@ std::optional<std::string> tolerance_unmet(const Scene& scene, const BoundaryReq
   } else {
     part = fmt::format("its method part {:.1e}", total.method);
   }
-  return fmt::format("the whole estimate {:.1e} is above --tolerance {:g}, which bounds the harmonics' part only; "
+  return fmt::format("the whole estimate {:.1e} is above --tolerance {:g}, which bounds the harmonics' and the automatic reduction's parts; "
                      "mostly {}", total.total(), request.tolerance, part);
 }
 
@@ -342,13 +348,18 @@ void report_shortfalls(const BoundaryAnalysis& analysis, const BoundaryRequest& 
   std::vector<std::string> parts;
   if (!analysis.unconverged.empty()) {
     const bool none = analysis.boundaries.empty();
-    parts.push_back(fmt::format("{} of the {} boundaries in the window {} to --tolerance {:g} with up to {} harmonics "
-                                "per family (listed as not converged)",
+    parts.push_back(fmt::format("{} of the {} boundaries in the window {} to --tolerance {:g} {} (listed as not "
+                                "converged)",
                                 none ? "none" : std::to_string(analysis.unconverged.size()),
                                 analysis.unconverged.size() + analysis.boundaries.size(),
-                                none ? "converged" : "did not converge", request.tolerance, request.max_approximation));
+                                none ? "converged" : "did not converge", request.tolerance,
+                                harmonics_reached(analysis, request)));
   }
   if (unmet) parts.push_back(*unmet);
+  if (analysis.work_limited && analysis.unconverged.empty()) {
+    parts.push_back(fmt::format("the reduction was not raised further: more would exceed the work --max-seconds {:g} "
+                                "allows", work_limits().seconds));
+  }
   if (parts.empty()) return;
   const std::string line = fmt::format("boundaries: {}", fmt::join(parts, "; "));
   if (analysis.boundaries.empty() && !analysis.unconverged.empty()) throw AnswerIsNegative{line};
@@ -405,6 +416,7 @@ Command register_boundaries(CLI::App& app) {
       request->window = std::make_pair(window->first * unit, window->second * unit);
     }
     check_boundary_work(scene, model, *request);
+    request->work_flops = work_limits().seconds * dense_flops_per_second;
     request->progress = progress_reporter("boundaries: harmonic levels solved", options->output_format() == OutputFormat::table);
     const BoundaryAnalysis analysis = boundaries_with_error_estimate(scene, *request);
     const std::optional<std::string> unmet = tolerance_unmet(scene, *request, analysis);

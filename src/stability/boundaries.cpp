@@ -119,11 +119,11 @@ std::vector<int> match(const std::vector<Boundary>& base, const std::vector<Boun
 
 // The boundaries of one model of the scene, cached per approximation k. The two multiplier
 // signs are independent eigenproblems of equal size: with two threads the +1 sign's runs beside the −1's.
-// `solved` is called after each new k.
+// `solved(k)` is called after each new k.
 class BoundarySolver {
 public:
   BoundarySolver(PeriodicSystem system, double peak, std::optional<double> theta, int threads,
-                 std::function<void()> solved)
+                 std::function<void(int)> solved)
       : system_(std::move(system)), peak_(peak), theta_(theta), threads_(threads), solved_(std::move(solved)) {}
   const std::vector<Boundary>& at(int k) {
     auto it = cache_.find(k);
@@ -140,7 +140,7 @@ public:
         return value_of(a, theta_.has_value()) < value_of(b, theta_.has_value());
       });
       it = cache_.emplace(k, std::move(both)).first;
-      if (solved_) solved_();
+      if (solved_) solved_(k);
     }
     return it->second;
   }
@@ -153,7 +153,7 @@ private:
   double peak_;
   std::optional<double> theta_;
   int threads_;
-  std::function<void()> solved_;
+  std::function<void(int)> solved_;
   std::map<int, std::vector<Boundary>> cache_;
 };
 
@@ -333,15 +333,18 @@ ReductionSpec doubled(const ReductionSpec& reduction, int dofs) {
 
 // k raised from `first` in steps of 2 on one model until every boundary of the window of order
 // ≤ max_order moves by at most the tolerance at k + 2 and the multiplier check passes, or k + 2
-// would need more than max_approximation harmonics: the result's approximation, boundaries (with
-// their method part), unconverged ones and checks. `at_level(k)` is told each k tried.
+// would need more than max_approximation harmonics, or more work than `affordable(k + 2)` allows
+// (then result.work_limited): the result's approximation, boundaries (with their method part),
+// unconverged ones and checks. `at_level(k)` is told each k tried.
 void converge_in_harmonics(BoundarySolver& solver, const BoundaryRequest& r, int first,
                            const std::function<BoundarySolver(double)>& checker,
-                           const std::function<void(int)>& at_level, BoundaryAnalysis& result) {
+                           const std::function<void(int)>& at_level, const std::function<bool(int)>& affordable,
+                           BoundaryAnalysis& result) {
   const bool in_load = r.theta_rad_s.has_value();
   for (int k = first;; k += 2) {
     at_level(k);
-    const bool last = k + 6 > r.max_approximation;  // k + 2 would need k + 6 harmonics
+    const bool within_harmonics = k + 6 <= r.max_approximation;  // k + 2 would need k + 6 harmonics
+    const bool last = !within_harmonics || !affordable(k + 2);
     std::vector<Compared> compared = compare_at(solver, k, in_load, result.window, r.max_order);
     double worst = 0;
     for (const Compared& c : compared) worst = std::max(worst, method_part(c));
@@ -351,6 +354,7 @@ void converge_in_harmonics(BoundarySolver& solver, const BoundaryRequest& r, int
     const bool passed = std::none_of(compared.begin(), compared.end(), [](const Compared& c) { return c.check_failed; });
     if (!passed && !last) continue;
     split_by_tolerance(compared, r.tolerance, in_load, result);
+    result.work_limited = within_harmonics && !result.unconverged.empty();
     return;
   }
 }
@@ -376,6 +380,13 @@ void compare_whole_at(BoundaryAnalysis& result, BoundarySolver& reduced, Boundar
 }
 
 }  // namespace
+
+double boundary_level_flops(int k, int dofs, bool in_theta) {
+  const double linearized = in_theta ? 2 : 1;
+  double flops = 0;
+  for (const int harmonics : {2 * k, 2 * k + 1}) flops += 26 * std::pow(linearized * harmonics * dofs, 3);
+  return flops;
+}
 
 ReductionSpec boundary_reduction(const BladeModel& model, const Scene& scene, const BoundaryRequest& r) {
   if (r.cutoff_hz > 0) return {ReductionKind::modal, 0, r.cutoff_hz};
@@ -453,17 +464,44 @@ private:
 
   BoundarySolver solver_for(const BladeModel& m, const LoadSeries& series, const ReductionSpec& reduction,
                             bool counted = true) {
-    std::function<void()> solved;
-    if (counted) solved = [this] { ++done_, report(); };
-    return BoundarySolver(periodic_system(m, scene_, series, reduction), peak_, r_.theta_rad_s, r_.threads,
-                          std::move(solved));
+    PeriodicSystem system = periodic_system(m, scene_, series, reduction);
+    const int dofs = system.kept_modes;
+    std::function<void(int)> solved = [this, dofs, counted](int k) {
+      spent_ += boundary_level_flops(k, dofs, !in_load_);
+      if (counted) ++done_, report();
+    };
+    return BoundarySolver(std::move(system), peak_, r_.theta_rad_s, r_.threads, std::move(solved));
+  }
+
+  // Whether the work spent, one more level (k + 4) of `dofs` and the comparisons at k (two levels
+  // each of the richer basis, the reduction's next step and the longer load series; the whole
+  // model at k ≤ 4) fit in request.work_flops.
+  bool affordable(int k, int dofs, const ReductionSpec& reduction) const {
+    const int all = model_.layout.size();
+    const auto levels = [&](int n) {
+      return boundary_level_flops(k, n, !in_load_) + boundary_level_flops(k + 2, n, !in_load_);
+    };
+    const int richer = reduction.kind == ReductionKind::none
+                           ? dofs * reference_terms(scene_.model.basis, scene_.model.terms) / scene_.model.terms
+                           : dofs;
+    double work = spent_ + boundary_level_flops(k + 4, dofs, !in_load_) + levels(richer);
+    if (reduction.kind == ReductionKind::automatic) {
+      work += levels(std::min(2 * dofs, all)) + boundary_level_flops(std::min(k, whole_model_approximation), all, !in_load_);
+    }
+    if (reduction.kind == ReductionKind::modal && dofs < all) work += levels(all);
+    if (!load_.cosine_approximation) work += levels(dofs);
+    return work <= r_.work_flops;
   }
 
   void converge(BoundarySolver& solver, int first, BoundaryAnalysis& result) {
     const auto checker = [this](double cutoff_hz) {
       return solver_for(model_, load_, {ReductionKind::modal, 0, cutoff_hz}, false);
     };
-    converge_in_harmonics(solver, r_, first, checker, [this](int k) { level_ = k; }, result);
+    const int dofs = solver.system().kept_modes;
+    const ReductionSpec reduction = result.reduction;
+    converge_in_harmonics(
+        solver, r_, first, checker, [this](int k) { level_ = k; },
+        [this, dofs, reduction](int k) { return affordable(k, dofs, reduction); }, result);
   }
 
   void compare(BoundaryAnalysis& result, BoundarySolver& other, double factor, double ErrorBudget::*part,
@@ -492,6 +530,11 @@ private:
         compare_whole_at(result, solver, whole, std::min(result.approximation, whole_model_approximation), in_load_);
       }
       if (result.total().reduction <= r_.tolerance / 2 || !chosen) return;
+      const int dofs = other.system().kept_modes;
+      if (!affordable(result.approximation, dofs, next)) {
+        result.work_limited = true;
+        return;
+      }
       result.reduction = next;
       solver = std::move(other);
       ++comparisons_left_;
@@ -507,6 +550,7 @@ private:
   double peak_;
   LoadSeries load_;
   int done_ = 0, level_ = 0, comparisons_left_ = 0;
+  double spent_ = 0;  // boundary_level_flops of the levels solved
   const BoundarySolver* ladder_ = nullptr;
 };
 

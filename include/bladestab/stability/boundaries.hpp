@@ -3,6 +3,7 @@
 // continuum model of the scene (docs/theory.md §4): the boundary equations (ltp/boundary_equations.hpp)
 // on the scene's periodic system, converged in the harmonics, checked by the multipliers.
 #include <functional>
+#include <limits>
 #include <optional>
 #include <utility>
 #include <vector>
@@ -30,6 +31,10 @@ struct BoundaryRequest {
   double tolerance = 1e-6;            // on the harmonics' part, relative on θ or F_max
   int first_approximation = 2;        // k to start from
   int max_approximation = 40;
+  // The work the run may take, in dense eigensolver flops (boundary_level_flops): k, and the
+  // automatic reduction's vectors, are raised only while the next step and the comparisons after
+  // it fit (else BoundaryAnalysis::work_limited). Deterministic, unlike a clock.
+  double work_flops = std::numeric_limits<double>::infinity();
   int threads = 1;                    // the two multiplier signs' eigenproblems side by side (0: one per core)
   // progress(done, total) after each harmonic level of each model: `total` is what the answer needs
   // if the current k converges (an upper bound), so it grows when k is raised; (done, done) at the end.
@@ -67,8 +72,16 @@ struct BoundaryAnalysis {
   std::vector<EstimatedBoundary> boundaries;  // converged to the tolerance; sorted by θ or F_max
   std::vector<UnconvergedBoundary> unconverged;  // not converged by max_approximation; sorted likewise
   std::vector<BoundaryCheck> checks;
+  // k (or the reduction) was not raised further because request.work_flops would not allow it:
+  // the unconverged boundaries (or a reduction part above the tolerance) are what that left.
+  bool work_limited = false;
   ErrorBudget total() const;  // each part the largest over the (converged) boundaries
 };
+
+// The dense eigensolver work of harmonic level k of the boundary equations on `dofs` dofs: both
+// multiplier signs (2k and 2k + 1 harmonics), each a real eigenproblem of harmonics·dofs unknowns,
+// doubled by the linearization in θ (in_theta), at dgeev's ~26 N³ flops.
+double boundary_level_flops(int k, int dofs, bool in_theta);
 
 // The reduction the boundaries start from: modes below request.cutoff_hz if set, else the scene's
 // model.reduction; where that leaves the vectors to the program, the automatic reduction with
