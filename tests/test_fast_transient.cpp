@@ -65,6 +65,32 @@ TEST_CASE("fast transient: the history of RKF45 at rtol 1e-12 within 1e-10 of th
   }
 }
 
+TEST_CASE("fast transient: one pulse in a period of many revolutions is RKF45's history", "[transient][fast]") {
+  // pulse_frequency_hz = 1.5e-45: one contact at t = 0, then free flight for the rest of the run.
+  // Times are told apart on their own scale (a free flight's length, an offset within the contact),
+  // not on the pulse period's 6.5e44 s, which would take every interval for the first one.
+  const Scene scene = paper_scene({"model.terms=4", "load.pulse_frequency_hz=1.5e-45"});
+  const TransientResult fast = run(scene, TransientMethod::fast, 1e-12, 1);
+  const TransientResult reference = run(scene, TransientMethod::rkf45, 1e-12, 1);
+  CHECK(fast.method == TransientMethod::fast);
+  CHECK(history_difference(fast, reference) < 1e-9);
+}
+
+TEST_CASE("fast transient: a run stopped within the self-check's stretch is checked to where it stopped",
+          "[transient][fast]") {
+  // A thick blade (slenderness 0.1) under F̄ = 5 leaves the elastic range within 0.005 revolution,
+  // before the self-check's end at 0.03: the check compares with RKF45 at the stop instead.
+  const Scene scene = paper_scene({"model.terms=4", "blade.slenderness=0.1", "model.coriolis=false"});
+  TransientOptions o;
+  o.revolutions = 0.3;
+  const TransientResult r = run_transient(assemble_model(scene), scene, o);
+  REQUIRE(r.stopped);
+  CHECK(r.stopped->revolution < 0.03);
+  REQUIRE(r.self_check);
+  CHECK(r.self_check->until_revolutions == Approx(r.stopped->revolution).epsilon(1e-12));
+  CHECK(r.self_check->difference <= r.self_check->allowed);
+}
+
 TEST_CASE("fast transient: free vibration of a one-term model is the exact cosine", "[transient][fast]") {
   // No load, no Coriolis coupling: each undamped mode swings as cos ωt about the equilibrium.
   const Scene scene = paper_scene({"model.terms=1", "model.coriolis=false", "load.fmax_over_fcr=0"});

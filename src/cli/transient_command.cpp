@@ -27,8 +27,8 @@ namespace bladestab::cli {
 namespace {
 
 struct Summary {
-  Spectrum lateral, axial;
-  double lateral_hz = 0, axial_hz = 0;
+  Spectrum lateral, axial;  // empty for a history of fewer than 4 samples (a run stopped at once)
+  std::optional<double> lateral_hz, axial_hz;
   double peak_lateral_m = 0, peak_axial_m = 0, mean_axial_m = 0;
   TransientChecks checks;
 };
@@ -42,14 +42,19 @@ std::vector<double> column(const TransientResult& r, Field field) {
   return out;
 }
 
+// A value, or null where there is none.
+Json optional_json(const std::optional<double>& value) { return value ? Json(*value) : Json(nullptr); }
+
 Summary summarize(const TransientResult& r, double sample_rate) {
   Summary s;
   const std::vector<double> lat = column(r, &TransientSample::tip_lateral_m),
                             ax = column(r, &TransientSample::tip_axial_m);
-  s.lateral = amplitude_spectrum(lat, sample_rate);
-  s.axial = amplitude_spectrum(ax, sample_rate);
-  s.lateral_hz = dominant_frequency(s.lateral);
-  s.axial_hz = dominant_frequency(s.axial);
+  if (lat.size() >= 4) {
+    s.lateral = amplitude_spectrum(lat, sample_rate);
+    s.axial = amplitude_spectrum(ax, sample_rate);
+    s.lateral_hz = dominant_frequency(s.lateral);
+    s.axial_hz = dominant_frequency(s.axial);
+  }
   for (std::size_t k = 0; k < lat.size(); ++k) {
     s.peak_lateral_m = std::max(s.peak_lateral_m, std::abs(lat[k]));
     s.peak_axial_m = std::max(s.peak_axial_m, std::abs(ax[k]));
@@ -114,8 +119,8 @@ TransientResult as_printed(TransientResult r, const PrintedRun& shown) {
 Summary as_printed(Summary s, const PrintedRun& shown) {
   s.lateral.amplitude = shown.series(s.lateral.amplitude);
   s.axial.amplitude = shown.series(s.axial.amplitude);
-  s.lateral_hz = shown.digits.unestimated(s.lateral_hz);
-  s.axial_hz = shown.digits.unestimated(s.axial_hz);
+  if (s.lateral_hz) s.lateral_hz = shown.digits.unestimated(*s.lateral_hz);
+  if (s.axial_hz) s.axial_hz = shown.digits.unestimated(*s.axial_hz);
   s.peak_lateral_m = shown.value(s.peak_lateral_m);
   s.peak_axial_m = shown.value(s.peak_axial_m);
   s.mean_axial_m = shown.value(s.mean_axial_m);
@@ -157,7 +162,7 @@ void method_fields(Json& json, const TransientResult& r) {
 
 void summary_fields(Json& json, const TransientResult& r, const Summary& s, bool adaptive) {
   method_fields(json, r);
-  json["dominant_frequency_hz"] = {{"tip_lateral", s.lateral_hz}, {"tip_axial", s.axial_hz}};
+  json["dominant_frequency_hz"] = {{"tip_lateral", optional_json(s.lateral_hz)}, {"tip_axial", optional_json(s.axial_hz)}};
   json["peak_tip_lateral_m"] = s.peak_lateral_m;
   json["peak_tip_axial_m"] = s.peak_axial_m;
   json["mean_tip_axial_m"] = s.mean_axial_m;
@@ -234,7 +239,7 @@ std::string summary_json(const Scene& scene, const BladeModel& model, const Tran
     json["axial_force_n"] = column(r, &TransientSample::axial_force_n);
     json["spectrum"] = {
         {"frequency_hz", s.lateral.frequency_hz}, {"lateral", s.lateral.amplitude}, {"axial", s.axial.amplitude}};
-    json["dominant"] = {{"lateral_hz", s.lateral_hz}, {"axial_hz", s.axial_hz}};
+    json["dominant"] = {{"lateral_hz", optional_json(s.lateral_hz)}, {"axial_hz", optional_json(s.axial_hz)}};
   }
   return json_text(json);
 }
@@ -302,10 +307,11 @@ void print_table(const Scene& scene, const BladeModel& model, const TransientOpt
                                         "its parasitic growth ×{:.4g}",
                                         r.fixed.step_s, r.fixed.steps_per_period, r.fixed.parasitic_growth),
                r.steps.accepted, r.steps.rejected, r.steps.evaluations, r.steps.smallest_step, r.steps.largest_step);
-    fmt::print("tip        lateral peak {:.6g} mm, dominant {:.5g} Hz; axial mean {:.6g} mm (static {:.6g} mm), "
-               "peak {:.6g} mm, dominant {:.5g} Hz\n",
-               1e3 * s.peak_lateral_m, s.lateral_hz, 1e3 * s.mean_axial_m, 1e3 * r.static_tip_axial_m,
-               1e3 * s.peak_axial_m, s.axial_hz);
+    const auto hz = [](const std::optional<double>& f) { return f ? fmt::format("{:.5g} Hz", *f) : std::string("n/a"); };
+    fmt::print("tip        lateral peak {:.6g} mm, dominant {}; axial mean {:.6g} mm (static {:.6g} mm), "
+               "peak {:.6g} mm, dominant {}\n",
+               1e3 * s.peak_lateral_m, hz(s.lateral_hz), 1e3 * s.mean_axial_m, 1e3 * r.static_tip_axial_m,
+               1e3 * s.peak_axial_m, hz(s.axial_hz));
     if (r.contact) {
       fmt::print("casing     {} contacts, {:.6g} ms in all; peak force {:.6g} kN (F̄ = {:.4g}) at the deepest overlap "
                  "{:.4g} µm of the penalty wall (k = {:.4g} N/m)\n",

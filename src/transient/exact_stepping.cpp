@@ -30,6 +30,8 @@ double map_distance(const Eigen::MatrixXd& X, const Eigen::MatrixXd& Y) {
   return std::max(homogeneous, forcing);
 }
 
+// Two times equal up to rounding on the scale of their own stretch: a free flight's length, or an
+// offset within the contact (never the pulse period, which may be many revolutions long).
 bool same_time(double a, double b, double scale) { return std::abs(a - b) <= 1e-12 * scale; }
 
 // Φ and ω²: the modes of the whole model, or of the reduced one in the span of its basis V
@@ -112,7 +114,7 @@ double ExactStepper::sliding_speed(const Eigen::VectorXd& z) const {
 
 const ExactStepper::Piece& ExactStepper::free_piece(double h) {
   for (const Piece& p : free_) {
-    if (same_time(p.end, h, pulses_.period_s)) return p;
+    if (same_time(p.end, h, std::max(p.end, h))) return p;
   }
   const int s = dofs_;
   Piece piece{0, h, {}, {}};
@@ -137,7 +139,7 @@ const ExactStepper::Piece& ExactStepper::free_piece(double h) {
 
 const ExactStepper::Piece* ExactStepper::cached_contact(double start, double end) const {
   for (const Piece& p : contact_) {
-    if (same_time(p.start, start, pulses_.period_s) && same_time(p.end, end, pulses_.period_s)) return &p;
+    if (same_time(p.start, start, pulses_.contact_time_s) && same_time(p.end, end, pulses_.contact_time_s)) return &p;
   }
   return nullptr;
 }
@@ -201,7 +203,8 @@ void ExactStepper::prepare(const std::vector<double>& landings, int threads) {
     const auto offsets = contact_offsets(landings[k - 1], landings[k]);
     if (!offsets || cached_contact(offsets->first, offsets->second)) continue;
     const bool listed = std::any_of(missing.begin(), missing.end(), [&](const std::pair<double, double>& m) {
-      return same_time(m.first, offsets->first, pulses_.period_s) && same_time(m.second, offsets->second, pulses_.period_s);
+      return same_time(m.first, offsets->first, pulses_.contact_time_s) &&
+             same_time(m.second, offsets->second, pulses_.contact_time_s);
     });
     if (!listed) missing.push_back(*offsets);
   }

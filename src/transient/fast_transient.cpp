@@ -20,8 +20,9 @@ struct Landing {
 };
 
 // Every output time, whole revolution, pulse edge and kink of [0, t_end], and the check time, in
-// order; landings closer than 1e-9 of a pulse period are one (an output time that falls on a pulse
-// edge up to rounding must not leave a sliver of an interval).
+// order; landings closer than 1e-9 of a pulse period (or of a revolution, if that is shorter) are
+// one (an output time that falls on a pulse edge up to rounding must not leave a sliver of an
+// interval).
 std::vector<Landing> landings(const ExactStepper& stepper, const RunStart& begin, const TransientOptions& o,
                               double check_time) {
   std::vector<Landing> all;
@@ -42,7 +43,7 @@ std::vector<Landing> landings(const ExactStepper& stepper, const RunStart& begin
   std::sort(all.begin(), all.end(), [](const Landing& a, const Landing& b) { return a.t < b.t; });
   std::vector<Landing> merged;
   for (const Landing& l : all) {
-    if (!merged.empty() && l.t - merged.back().t <= 1e-9 * pulses.period_s) {
+    if (!merged.empty() && l.t - merged.back().t <= 1e-9 * std::min(pulses.period_s, begin.revolution)) {
       Landing& m = merged.back();
       if (l.edge && !m.edge) m.t = l.t;
       m.output |= l.output, m.whole_revolution |= l.whole_revolution, m.check |= l.check, m.edge |= l.edge;
