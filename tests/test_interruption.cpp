@@ -120,3 +120,20 @@ TEST_CASE("outputs: a chart that cannot be written is refused as every output fi
   CHECK(o.err.find("matplotlib") == std::string::npos);
   CHECK(files_in(out).empty());
 }
+
+TEST_CASE("outputs: a stderr that cannot take the whole line still ends the run with its status",
+          "[interruption]") {
+  // The same limit on stderr's file as on the outputs (60 bytes): the output file fails, and the
+  // one line about it is cut at the limit; the run exits 2 as it would with the whole line.
+  RunOptions options;
+  options.max_file_bytes = 60;
+  const fs::path out = scratch() / "stderr_too_small";
+  std::vector<std::string> args = drawing("transient", out);
+  args.insert(args.end(), {"--chart", "none"});
+  const Outcome o = run_bladestab(args, options);
+  INFO(o.command << "\n" << describe(o) << "\nstderr: " << o.err);
+  CHECK((WIFEXITED(o.wait_status) && WEXITSTATUS(o.wait_status) == 2));
+  CHECK(o.err == std::string("bladestab: error: " + (out / "transient.csv").string() + ": cannot write this file")
+                     .substr(0, 60));
+  CHECK(files_in(out).empty());
+}
