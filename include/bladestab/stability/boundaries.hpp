@@ -77,8 +77,8 @@ struct BoundaryAnalysis {
 // orders at low θ, or a load whose stiffness touches zero) does not sink the rest. (The method
 // part is twice the change, so "converged" means 2·change + rounding ≤ tolerance.)
 // The error budget of each boundary (docs/theory.md §2–§4):
-//   basis      change against the richer Ritz basis reference_terms(basis, N) (for the sine basis
-//              times basis_tail_factor)
+//   basis      change against the richer Ritz basis reference_terms(basis, N), times
+//              basis_tail_factor (basis_convergence: sine basis, section tables)
 //   reduction  change against all modes kept (with a cut-off)
 //   load       change against a series with a 10 times smaller tail (load.approximation =
 //              "fourier"); 0 for the cosine approximation (42), which is the scene's load
