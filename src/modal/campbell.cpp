@@ -80,6 +80,7 @@ Tracked track(SpeedSweep& sweep, const BladeModel& model, const CampbellOptions&
   d.sample_speeds_rad_s = sweep.sample_speeds();
   for (CampbellCurve& c : d.curves) {
     c.frequency_hz.reserve(ns);
+    c.families.reserve(ns);
     c.damping_ratio.reserve(ns);
     c.correlation.reserve(ns);
     c.reduction_bound.reserve(ns);
@@ -105,6 +106,7 @@ Tracked track(SpeedSweep& sweep, const BladeModel& model, const CampbellOptions&
       CampbellCurve& c = d.curves[i];
       t.pick[i][s] = pick[i];
       c.frequency_hz.push_back(here.frequency_hz[pick[i]]);
+      c.families.push_back(here.family[pick[i]]);
       c.damping_ratio.push_back(here.damping_ratio[pick[i]]);
       c.correlation.push_back(mac[i]);
       c.reduction_bound.push_back(here.bound[pick[i]]);
