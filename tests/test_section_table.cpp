@@ -8,6 +8,7 @@
 #include "bladestab/base/input_error.hpp"
 #include "bladestab/scene/scene.hpp"
 #include "support/run_cli.hpp"
+#include "support/scene_text.hpp"
 
 using namespace bladestab;
 using testing_support::expect_rejected;
@@ -24,14 +25,7 @@ shear_coefficient = 0.833
 stagger_deg = -30.0
 )";
 
-const std::string other_sections = R"(
-[model]
-basis = "legendre"
-terms = 8
-theory = "timoshenko"
-axial = true
-coriolis = true
-[operation]
+const std::string other_sections = "\n" + testing_support::legendre_model_section + R"([operation]
 speed_rad_s = 300.0
 [damping]
 model = "none"
