@@ -57,6 +57,7 @@ void print_modes(const SceneOptions& options, const Scene& scene, const Converge
   const ConvergedModes result = for_people ? converged : as_printed(converged, digits);
   const ModalSolution& sol = result.solution;
   const double speed = scene.operation.speed_rad_s;
+  const BasisConvergence convergence = basis_convergence(scene.blade, result.model.spec.basis);
   switch (options.output_format()) {
     case OutputFormat::json: {
       Json json;
@@ -73,9 +74,11 @@ void print_modes(const SceneOptions& options, const Scene& scene, const Converge
                        {"coriolis", result.model.spec.coriolis}};
       json["damping"] = to_string(scene.damping.model);
       json["solver"] = to_string(sol.solver);
-      json["accuracy"] = {{"method", result.model.spec.basis == BasisKind::sine
+      json["accuracy"] = {{"method", convergence == BasisConvergence::sine
                                          ? "tail of algebraic convergence from models with N, 2N and 4N terms"
-                                         : "relative change against a richer model"},
+                                         : convergence == BasisConvergence::kinked
+                                               ? "tail of algebraic convergence (a section table, rate 2) from a richer model"
+                                               : "relative change against a richer model"},
                           {"reference_terms", result.reference_terms},
                           {"max_relative_error", digits.estimate(result.max_relative_error())}};
       write_error_budget(json, result.worst_budget(), digits);
@@ -111,7 +114,7 @@ void print_modes(const SceneOptions& options, const Scene& scene, const Converge
                  speed * rpm_per_rad_s, result.model.blade.nondimensional_speed(speed), to_string(scene.damping.model),
                  to_string(sol.solver));
       fmt::print("accuracy  {} against {}-term models, at most {:.1e}; digits shown are those the error supports\n\n",
-                 result.model.spec.basis == BasisKind::sine ? "tail of algebraic convergence" : "relative change",
+                 convergence == BasisConvergence::exponential ? "relative change" : "tail of algebraic convergence",
                  result.model.spec.basis == BasisKind::sine
                      ? fmt::format("{}- and {}", reference_terms(BasisKind::sine, result.model.spec.terms), result.reference_terms)
                      : fmt::format("{}", result.reference_terms),
