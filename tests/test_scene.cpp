@@ -2,6 +2,7 @@
 #include <catch2/catch.hpp>
 
 #include "bladestab/base/input_error.hpp"
+#include "support/scene_text.hpp"
 #include "support/scenes.hpp"
 
 using namespace bladestab;
@@ -45,13 +46,7 @@ density = 7800
 poisson = 0.3
 shear_coefficient = 0.85
 stagger_deg = 0
-[model]
-basis = "legendre"
-terms = 8
-theory = "timoshenko"
-axial = true
-coriolis = true
-[operation]
+)" + testing_support::legendre_model_section + R"([operation]
 speed_rad_s = 0
 [damping]
 model = "rayleigh"

@@ -6,8 +6,10 @@
 #include <string>
 
 #include "bladestab/base/input_error.hpp"
+#include "bladestab/blade/model.hpp"
 #include "bladestab/scene/scene.hpp"
 #include "support/run_cli.hpp"
+#include "support/scene_text.hpp"
 
 using namespace bladestab;
 using testing_support::expect_rejected;
@@ -24,14 +26,7 @@ shear_coefficient = 0.833
 stagger_deg = -30.0
 )";
 
-const std::string other_sections = R"(
-[model]
-basis = "legendre"
-terms = 8
-theory = "timoshenko"
-axial = true
-coriolis = true
-[operation]
+const std::string other_sections = "\n" + testing_support::legendre_model_section + R"([operation]
 speed_rad_s = 300.0
 [damping]
 model = "none"
@@ -133,4 +128,60 @@ TEST_CASE("The program refuses a bad section table with exit 2 and one line", "[
   const std::string path =
       scene_with_table("cli.csv", "span_fraction,area,i_flap,i_edge,twist_deg\n0,1e-3,1e-7,1e-6,0\n1,1e-3,2e-6,1e-6,0\n");
   expect_rejected({"modes", path}, {"cli.csv: row 2 (line 3), column i_edge = 1e-06", "at least i_flap"});
+}
+
+namespace {
+
+// An NREL BModes section file (BModes user's guide, NREL/TP-500-39133) of a uniform, untwisted
+// titanium section, A = 2e-3 m², I_flap = 1e-7 m⁴, I_edge = 1e-5 m⁴, E = 117 GPa, ρ = 4466 kg/m³:
+// ρA = 8.932 kg/m, EA = 2.34e8 N, EI = 11700 and 1.17e6 N m²; `row2` replaces its second row.
+std::string bmodes_file(const std::string& row2 = "0.5\t0.0\t0.0\t8.932\t0.1\t0.1\t11700\t1.17e6\t5000\t2.34e8\t0.0\t0.0\t0.0") {
+  return "Uniform titanium test section\n"
+         "  3     n_secs:     number of blade or tower sections at which properties are specified (-)\n"
+         "\n"
+         "sec_loc  str_tw  tw_iner  mass_den  flp_iner  edge_iner  flp_stff  edge_stff  tor_stff  axial_stff  cg_offst  sc_offst  tc_offst\n"
+         "  (-)    (deg)    (deg)    (kg/m)    (kg-m)    (kg-m)     (Nm^2)     (Nm^2)     (Nm^2)      (N)        (m)       (m)      (m)\n"
+         "0.0     0.0     0.0     8.932     0.1      0.1      11700     1.17e6     5000      2.34e8      0.0       0.0       0.0\n" +
+         row2 + "\n" +
+         "1.0     0.0     0.0     8.932     0.1      0.1      11700     1.17e6     5000      2.34e8      0.0       0.0       0.0\n";
+}
+
+}  // namespace
+
+TEST_CASE("An NREL BModes section file is read by its format", "[section-table][bmodes]") {
+  const Scene scene = load_scene(scene_with_table("blade.dat", bmodes_file()));
+  REQUIRE(scene.blade.sections.size() == 3);
+  for (const SectionStation& s : scene.blade.sections) {
+    CHECK(s.area == Approx(2e-3).epsilon(1e-14));
+    CHECK(s.youngs_modulus == Approx(117e9).epsilon(1e-14));
+    CHECK(s.i_flap == Approx(1e-7).epsilon(1e-14));
+    CHECK(s.i_edge == Approx(1e-5).epsilon(1e-14));
+    CHECK(s.density == 4466);
+    CHECK(s.twist_deg == 0);
+  }
+  CHECK(scene.blade.sections[1].span_fraction == 0.5);
+  // The uniform untwisted blade buckles at π²EI_flap/(4L²), EI_flap the file's flp_stff.
+  const double pi = 3.14159265358979323846, L = scene.blade.length;
+  CHECK(assemble_model(scene).blade.critical_load() == Approx(pi * pi * 11700 / (4 * L * L)).epsilon(1e-10));
+}
+
+TEST_CASE("Bad BModes section files: one line naming the file, the row and the BModes column", "[section-table][bmodes]") {
+  const auto refused = [](const std::string& name, const std::string& text) -> std::string {
+    try {
+      load_scene(scene_with_table(name, text));
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "accepted";
+  };
+  CHECK_THAT(refused("offset.dat", bmodes_file("0.5 0 0 8.932 0.1 0.1 11700 1.17e6 5000 2.34e8 0.01 0 0")),
+             Catch::Contains("offset.dat: row 2 (line 7), column cg_offst = 0.01") && Catch::Contains("must be 0"));
+  CHECK_THAT(refused("twist.dat", bmodes_file("0.5 10 12 8.932 0.1 0.1 11700 1.17e6 5000 2.34e8 0 0 0")),
+             Catch::Contains("row 2 (line 7), column tw_iner = 12") && Catch::Contains("str_tw = 10"));
+  CHECK_THAT(refused("edge.dat", bmodes_file("0.5 0 0 8.932 0.1 0.1 11700 1000 5000 2.34e8 0 0 0")),
+             Catch::Contains("row 2 (line 7), column edge_stff / E") && Catch::Contains("at least i_flap"));
+  CHECK_THAT(refused("short.dat", bmodes_file("0.5 0 0 8.932")),
+             Catch::Contains("row 2 (line 7): has 4 values for the 13 BModes columns"));
+  CHECK_THAT(refused("order.dat", bmodes_file("1.5 0 0 8.932 0.1 0.1 11700 1.17e6 5000 2.34e8 0 0 0")),
+             Catch::Contains("row 2 (line 7), column sec_loc = 1.5"));
 }

@@ -323,9 +323,12 @@ std::optional<std::string> tolerance_unmet(const Scene& scene, const BoundaryReq
     const ModelSpec& spec = scene.model;
     part = fmt::format("its basis part {:.1e} with model.basis = \"{}\" and {} terms per field: {}", total.basis,
                        to_string(spec.basis), spec.terms,
-                       basis_can_reach(spec.basis, spec.terms, total.basis, request.tolerance)
+                       basis_can_reach(basis_convergence(scene.blade, spec.basis), spec.terms, total.basis,
+                                       request.tolerance)
                            ? "raise model.terms"
-                           : "more terms cannot reach it; use model.basis = \"legendre\"");
+                           : spec.basis == BasisKind::sine ? "more terms cannot reach it; use model.basis = \"legendre\""
+                                                           : "more terms cannot reach it (a section table converges "
+                                                             "algebraically); a looser tolerance");
   } else if (total.reduction >= std::max(total.load, total.method)) {
     part = fmt::format("its reduction part {:.1e}: {}", total.reduction,
                        analysis.reduction.kind == ReductionKind::modal ? "raise --cutoff-hz (or model.cutoff_hz)"

@@ -86,8 +86,11 @@ std::string campbell_json(const Scene& scene, const CampbellWithErrors& r, const
   json["curves"] = Json::array();
   for (std::size_t i = 0; i < d.curves.size(); ++i) {
     const CampbellCurve& c = d.curves[i];
+    std::vector<std::string> families;
+    for (ModeFamily f : c.families) families.push_back(to_string(f));
     json["curves"].push_back({{"mode", c.mode},
                               {"family", to_string(c.family)},
+                              {"families", families},
                               {"frequency_hz", c.frequency_hz},
                               {"damping_ratio", c.damping_ratio},
                               {"correlation", c.correlation},
@@ -130,6 +133,15 @@ std::string crossings_csv(const CampbellWithErrors& r, const PrintedDigits& digi
   return csv;
 }
 
+// A curve's families along the speeds, each change shown: "flap", or "edge>flap" where it veers.
+std::string family_path(const CampbellCurve& c) {
+  std::string path = to_string(c.family);
+  for (std::size_t s = 1; s < c.families.size(); ++s) {
+    if (c.families[s] != c.families[s - 1]) path += std::string(">") + to_string(c.families[s]);
+  }
+  return path;
+}
+
 void print_table(const Scene& scene, const CampbellWithErrors& r, const std::vector<std::string>& files) {
   const CampbellDiagram& d = r.diagram;
   const ErrorBudget worst = r.worst();
@@ -153,7 +165,7 @@ void print_table(const Scene& scene, const CampbellWithErrors& r, const std::vec
     for (double m : c.correlation) lowest = std::min(lowest, m);
     for (const ErrorBudget& b : r.budget[i]) error = std::max(error, b.total());
     const int digits = significant_digits(error);
-    fmt::print("{:>4}  {:<9} {:>#16.{}g} {:>#16.{}g} {:>9.3f} {:>9.1e}\n", c.mode, to_string(c.family),
+    fmt::print("{:>4}  {:<9} {:>#16.{}g} {:>#16.{}g} {:>9.3f} {:>9.1e}\n", c.mode, family_path(c),
                c.frequency_hz.front(), digits, c.frequency_hz.back(), digits, lowest, error);
   }
   fmt::print("\nengine-order crossings ({}):\n", d.crossings.size());

@@ -61,7 +61,8 @@ void print_table(const Scene& scene, const std::vector<CrosscheckPoint>& result,
              "the run (the forced periodic response cancels in the change), its estimate twice the fit's standard\n"
              "error plus the contact propagators' own. The transients run the fast method on the reduced model the\n"
              "Floquet multipliers use (model.reduction), so both share its basis and reduction error and differ in\n"
-             "their methods only. Floquet: auto method for the cosine load, monodromy for the pulse series.\n");
+             "their methods only. Floquet: auto method for the cosine load, monodromy for the pulse series, whose\n"
+             "estimate holds its truncation: the distance to the true train's own multipliers.\n");
 }
 
 // The points as JSON and CSV print them (printed_digits.hpp): each Floquet max|ρ| to its estimate,
@@ -71,6 +72,7 @@ std::vector<CrosscheckPoint> as_printed(std::vector<CrosscheckPoint> points, con
   for (CrosscheckPoint& p : points) {
     p.floquet_cosine_error = digits.estimate(p.floquet_cosine_error);
     p.floquet_pulse_error = digits.estimate(p.floquet_pulse_error);
+    p.floquet_pulse_load_error = digits.estimate(p.floquet_pulse_load_error);
     p.floquet_cosine = digits.absolute(p.floquet_cosine, p.floquet_cosine_error);
     p.floquet_pulse = digits.absolute(p.floquet_pulse, p.floquet_pulse_error);
     p.pulse_series_tail = digits.estimate(p.pulse_series_tail);
@@ -140,6 +142,7 @@ Command register_crosscheck(CLI::App& app) {
                {"true_pulse",
                 {{"floquet_max_abs_multiplier", p.floquet_pulse},
                  {"floquet_error_estimate", p.floquet_pulse_error},
+                 {"floquet_load_error_estimate", p.floquet_pulse_load_error},
                  {"load_harmonics", p.pulse_harmonics},
                  {"load_relative_tail", p.pulse_series_tail},
                  {"transient_growth_per_revolution", p.transient_pulse_growth},

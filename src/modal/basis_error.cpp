@@ -25,6 +25,8 @@ constexpr double min_rate = 0.05, max_rate = 40, max_trusted_rate = 0.9;
 // paper blade's boundaries (N = 8 against 12, truth N = 14): 0.9985–0.9999 of the true error.
 // 10 % margin.
 constexpr double exponential_margin = 1.1;
+// The rate a kinked table's estimate trusts (basis_convergence): below the measured 2.5–4.
+constexpr double kinked_trusted_rate = 2;
 
 ModalSolution modes_of(const BladeModel& model, const Scene& scene, int count, EigenSolverKind solver) {
   const double speed = scene.operation.speed_rad_s;
@@ -50,8 +52,12 @@ std::optional<double> counterpart(const ModalSolution& reference, ModeFamily fam
 // tail by 1/(1 − (n₁/n₂)^p), 1.4–2× for the sine basis; p comes from the ratio of the two
 // differences (at most max_trusted_rate) and f₁ − f_∞ ≈ (f₁ − f₂) / (1 − (n₁/n₂)^p).
 // Exponential convergence (Legendre): exponential_margin · |f₁ − f₂|.
-BasisTail basis_tail(const std::vector<double>& f, const std::vector<int>& n) {
+BasisTail basis_tail(const std::vector<double>& f, const std::vector<int>& n, BasisConvergence convergence) {
   const double d1 = f[0] - f[1];
+  if (convergence == BasisConvergence::kinked) {
+    const double factor = 1 / (1 - std::pow(static_cast<double>(n[0]) / n[1], kinked_trusted_rate));
+    return {factor * std::abs(d1) / std::abs(f[1]), factor};
+  }
   if (f.size() == 2 || d1 == 0) return {exponential_margin * std::abs(d1) / std::abs(f[1]), exponential_margin};
   double p = max_trusted_rate;  // the richest model is capped (n[2] = n[1])
   if (n[2] > n[1]) {
@@ -73,7 +79,8 @@ namespace {
 
 // Frequencies (|eigenvalue| for non-oscillating modes) and terms of the models compared: the
 // base, then the richer ones.
-std::vector<double> compare(const std::vector<ModalSolution>& models, const std::vector<int>& terms) {
+std::vector<double> compare(const std::vector<ModalSolution>& models, const std::vector<int>& terms,
+                            BasisConvergence convergence) {
   std::vector<double> error;
   int rank_in_family[mode_family_count] = {};
   for (const Mode& m : models[0].modes) {
@@ -83,7 +90,7 @@ std::vector<double> compare(const std::vector<ModalSolution>& models, const std:
     for (std::size_t k = 1; k < models.size(); ++k) {
       if (const std::optional<double> c = counterpart(models[k], m.family, rank, by_frequency)) f.push_back(*c);
     }
-    error.push_back(f.size() == models.size() ? basis_tail(f, terms).relative : 1.0);  // no counterpart: nothing is known
+    error.push_back(f.size() == models.size() ? basis_tail(f, terms, convergence).relative : 1.0);  // no counterpart: nothing is known
   }
   return error;
 }
@@ -118,20 +125,30 @@ int reference_terms(BasisKind basis, int terms) {
   return std::min(richer, max_terms + 40);
 }
 
-double basis_tail_factor(BasisKind basis) {
-  return basis == BasisKind::legendre ? exponential_margin : 1 / (1 - std::pow(2.0, -max_trusted_rate));
+BasisConvergence basis_convergence(const BladeSpec& blade, BasisKind basis) {
+  if (basis == BasisKind::sine) return BasisConvergence::sine;
+  return blade.sections.size() > 2 ? BasisConvergence::kinked : BasisConvergence::exponential;
 }
 
-bool basis_can_reach(BasisKind basis, int terms, double estimate, double tolerance) {
+double basis_tail_factor(BasisConvergence convergence) {
+  switch (convergence) {
+    case BasisConvergence::exponential: return exponential_margin;
+    case BasisConvergence::kinked: return 1 / (1 - std::pow(2.0 / 3, kinked_trusted_rate));
+    case BasisConvergence::sine: break;
+  }
+  return 1 / (1 - std::pow(2.0, -max_trusted_rate));
+}
+
+bool basis_can_reach(BasisConvergence convergence, int terms, double estimate, double tolerance) {
   if (terms >= max_terms) return false;
-  // Algebraic convergence: the estimate falls like N^−p, p ≤ 1 asymptotically (v'(0) = 0 is an
-  // O(1/N) error). If even p = 2 would need more than max_terms, raising is futile.
-  return basis != BasisKind::sine || terms * std::sqrt(estimate / tolerance) <= max_terms;
+  // Algebraic convergence: the estimate falls like N^−p (sine: p ≤ 1 asymptotically, v'(0) = 0 is
+  // an O(1/N) error; kinked: about 3). If even p = 2 would need more than max_terms, raising is futile.
+  return convergence == BasisConvergence::exponential || terms * std::sqrt(estimate / tolerance) <= max_terms;
 }
 
-std::optional<int> terms_for_tolerance(BasisKind basis, int terms, double estimate, double tolerance) {
-  if (!basis_can_reach(basis, terms, estimate, tolerance)) return std::nullopt;
-  return std::min(max_terms, basis == BasisKind::sine ? 2 * terms : terms + 2);
+std::optional<int> terms_for_tolerance(BasisConvergence convergence, int terms, double estimate, double tolerance) {
+  if (!basis_can_reach(convergence, terms, estimate, tolerance)) return std::nullopt;
+  return std::min(max_terms, convergence == BasisConvergence::sine ? 2 * terms : terms + 2);
 }
 
 
@@ -180,14 +197,15 @@ ConvergedModes modes_with_error_estimate(const Scene& scene, int count, EigenSol
     for (const Mode& m : solution.modes) {
       rounding.push_back(frequency_rounding(absolute, m.shape.cwiseAbs(), (m.shape.adjoint() * K * m.shape)(0).real()));
     }
-    ConvergedModes result{std::move(model), std::move(solution), terms.back(), compare(models, terms),
-                          std::move(rounding)};
+    ConvergedModes result{std::move(model), std::move(solution), terms.back(),
+                          compare(models, terms, basis_convergence(scene.blade, spec.basis)), std::move(rounding)};
     // The whole estimate of every mode (basis + method), as printed, must meet the tolerance.
     const double estimate = result.worst_budget().total();
     if (!tolerance || estimate <= *tolerance) return result;
     const double rounded = *std::max_element(result.rounding.begin(), result.rounding.end());
     if (rounded > *tolerance) throw tolerance_below_rounding(*tolerance, rounded);
-    const std::optional<int> next = terms_for_tolerance(spec.basis, spec.terms, estimate, *tolerance);
+    const std::optional<int> next = terms_for_tolerance(basis_convergence(scene.blade, spec.basis), spec.terms, estimate,
+                                                             *tolerance);
     if (!next) throw tolerance_not_met(*tolerance, spec, estimate);
     spec.terms = *next;
   }

@@ -80,6 +80,7 @@ Tracked track(SpeedSweep& sweep, const BladeModel& model, const CampbellOptions&
   d.sample_speeds_rad_s = sweep.sample_speeds();
   for (CampbellCurve& c : d.curves) {
     c.frequency_hz.reserve(ns);
+    c.families.reserve(ns);
     c.damping_ratio.reserve(ns);
     c.correlation.reserve(ns);
     c.reduction_bound.reserve(ns);
@@ -105,6 +106,7 @@ Tracked track(SpeedSweep& sweep, const BladeModel& model, const CampbellOptions&
       CampbellCurve& c = d.curves[i];
       t.pick[i][s] = pick[i];
       c.frequency_hz.push_back(here.frequency_hz[pick[i]]);
+      c.families.push_back(here.family[pick[i]]);
       c.damping_ratio.push_back(here.damping_ratio[pick[i]]);
       c.correlation.push_back(mac[i]);
       c.reduction_bound.push_back(here.bound[pick[i]]);
@@ -267,7 +269,7 @@ Eigen::MatrixXcd coordinate_map(const SpeedSweep& base, const BladeModel& base_m
 // not oscillate (frequency 0, heavy damping), as `modes` does.
 ErrorBudget point_budget(const SpeedModes& here, int j, const Eigen::VectorXcd& shape,
                          const std::vector<Reference>& refs, const std::vector<const SpeedModes*>& at,
-                         const std::vector<int>& terms) {
+                         const std::vector<int>& terms, BasisConvergence convergence) {
   const bool oscillates = here.frequency_hz[j] > 0;
   const auto value = [&](const SpeedModes& m, int k) { return oscillates ? m.frequency_hz[k] : m.natural_hz[k]; };
   ErrorBudget b;
@@ -287,7 +289,7 @@ ErrorBudget point_budget(const SpeedModes& here, int j, const Eigen::VectorXcd& 
     if (r == 0) f1_bound = f.back() * at[r]->bound[k];
   }
   // |f_N − f_ref| of the whole models is at most the reduced values' difference plus both bounds.
-  const BasisTail tail = basis_tail(f, terms);
+  const BasisTail tail = basis_tail(f, terms, convergence);
   b.basis = tail.relative + tail.factor * (f0 * b0 + f1_bound) / std::abs(f[1]);
   return b;
 }
@@ -343,7 +345,8 @@ public:
   EstimateRound(const Scene& scene, const ModelSpec& spec, const CampbellOptions& options, bool dense)
       : scene_(scene), options_(options), dense_(dense),
         model_(std::make_unique<BladeModel>(assemble_model_at_any_speed(scene, spec))),
-        limits_(campbell_speeds(*model_, options)), terms_{spec.terms} {
+        limits_(campbell_speeds(*model_, options)), terms_{spec.terms},
+        convergence_(basis_convergence(scene.blade, spec.basis)) {
     // The speeds within the static limits of the model the curves belong to.
     options_.speeds_rad_s.assign(options.speeds_rad_s.begin() + limits_.first, options.speeds_rad_s.begin() + limits_.end);
     count_ = solve_count(*model_, options_);
@@ -380,7 +383,7 @@ public:
       for (Reference& r : refs_) richer.push_back(certified_modes(*r.sweep, speed));
       for (int j = 0; j < tracked_; ++j) {
         if (here.frequency_hz[j] > 0) {
-          const ErrorBudget b = point_budget(here, j, here.shapes.col(j), refs_, pointers(richer), terms_);
+          const ErrorBudget b = point_budget(here, j, here.shapes.col(j), refs_, pointers(richer), terms_, convergence_);
           s.worst = std::max(s.worst, b.total());
           s.rounding = std::max(s.rounding, b.method);
         }
@@ -411,7 +414,7 @@ public:
       const SpeedModes& here = d.tracked.modes[s];
       for (int i = 0; i < tracked_; ++i) {
         const int j = d.tracked.pick[i][s];
-        d.budget[i][s] = point_budget(here, j, here.shapes.col(j), refs_, at, terms_);
+        d.budget[i][s] = point_budget(here, j, here.shapes.col(j), refs_, at, terms_, convergence_);
       }
     }
     return d;
@@ -470,7 +473,7 @@ private:
     std::vector<SpeedModes> there;
     for (Reference& r : refs_) there.push_back(certified_modes(*r.sweep, speed));
     const int j = most_like(here, shape);
-    return point_budget(here, j, here.shapes.col(j), refs_, pointers(there), terms_);
+    return point_budget(here, j, here.shapes.col(j), refs_, pointers(there), terms_, convergence_);
   }
   // A frequency's basis and method parts times `factor`, and the given reduction part.
   static ErrorBudget scaled(const ErrorBudget& f, double factor, double reduction) {
@@ -488,6 +491,7 @@ private:
   PathWithinLimits limits_;
   int count_ = 0, tracked_ = 0;
   std::vector<int> terms_;  // the base model's and each richer model's
+  BasisConvergence convergence_;
   std::vector<Reference> refs_;
   std::unique_ptr<SpeedSweep> base_;
 };
@@ -523,7 +527,8 @@ CampbellWithErrors campbell_with_error_estimate(const Scene& scene, const Campbe
   ModelSpec spec = scene.model;
   bool dense = false;  // set when a reduced sweep could not certify some speed
   const auto raise = [&](double estimate) {
-    const std::optional<int> next = terms_for_tolerance(spec.basis, spec.terms, estimate, tolerance);
+    const std::optional<int> next = terms_for_tolerance(basis_convergence(scene.blade, spec.basis), spec.terms,
+                                                         estimate, tolerance);
     if (!next) throw tolerance_not_met(tolerance, spec, estimate);
     spec.terms = *next;
   };

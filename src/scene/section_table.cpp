@@ -143,6 +143,96 @@ std::map<std::string, std::size_t> header_columns(const std::vector<std::string>
   return at;
 }
 
+
+// NREL BModes section-property files (Bir, "User's Guide to BModes", NREL/TP-500-39133): a title
+// line; a line "n_secs  n_secs: number of … sections"; a blank line; the headings sec_loc str_tw
+// tw_iner mass_den flp_iner edge_iner flp_stff edge_stff tor_stff axial_stff cg_offst sc_offst
+// tc_offst; their units; then n_secs rows of these 13 numbers, separated by blanks or tabs.
+const std::vector<std::string> bmodes_headings{"sec_loc",  "str_tw",   "tw_iner",   "mass_den", "flp_iner",
+                                               "edge_iner", "flp_stff", "edge_stff", "tor_stff", "axial_stff",
+                                               "cg_offst", "sc_offst", "tc_offst"};
+
+std::vector<std::string> split_blanks(const std::string& line) {
+  std::vector<std::string> words;
+  std::stringstream in(line);
+  for (std::string word; in >> word;) words.push_back(word);
+  return words;
+}
+
+// Whether `lines` (the file's) are a BModes section file: its second line names n_secs.
+bool is_bmodes_file(const std::vector<std::string>& lines) {
+  if (lines.size() < 2) return false;
+  const std::vector<std::string> words = split_blanks(lines[1]);
+  return words.size() >= 2 && words[1].rfind("n_secs", 0) == 0;
+}
+
+// A BModes table as stations: sec_loc the span fraction, str_tw the twist; with [blade]'s density
+// ρ, A = mass_den/ρ, E = axial_stff/A, I_flap = flp_stff/E, I_edge = edge_stff/E, so that ρA, EA and
+// both EI are the file's. The model has no offsets and one twist: cg, sc and tc offsets must be 0
+// and tw_iner = str_tw; flp_iner, edge_iner and tor_stff are not used (the rotary inertia is ρI).
+std::vector<SectionStation> read_bmodes(const std::vector<std::string>& lines, const std::string& shown,
+                                        const SectionDefaults& defaults) {
+  const std::optional<double> count = parsed_number(split_blanks(lines[1])[0]);
+  if (!count || *count < 2 || *count != std::floor(*count) || *count + 5 > static_cast<double>(lines.size())) {
+    throw InputError(fmt::format("{}: line 2, n_secs = {}: must be a whole number of sections, at least 2, with "
+                                 "that many rows after the headings and units (lines 4 and 5)",
+                                 shown, echoed(split_blanks(lines[1])[0])));
+  }
+  if (split_blanks(lines[3]) != bmodes_headings) {
+    throw InputError(fmt::format("{}: line 4: must be the BModes headings {}", shown, fmt::join(bmodes_headings, " ")));
+  }
+  std::vector<SectionStation> stations;
+  for (int row = 1; row <= static_cast<int>(*count); ++row) {
+    const int number = row + 5;
+    const std::vector<std::string> words = split_blanks(lines[number - 1]);
+    const auto where_in_file = [&](const std::string& heading) {
+      return fmt::format("{}: row {} (line {}), column {}", shown, row, number, heading);
+    };
+    if (words.size() != bmodes_headings.size()) {
+      throw InputError(fmt::format("{}: row {} (line {}): has {} values for the {} BModes columns", shown, row, number,
+                                   words.size(), bmodes_headings.size()));
+    }
+    std::vector<double> v;
+    for (std::size_t k = 0; k < words.size(); ++k) {
+      const std::optional<double> x = parsed_number(words[k]);
+      if (!x || !std::isfinite(*x)) {
+        throw InputError(fmt::format("{} = {}: must be a finite number", where_in_file(bmodes_headings[k]),
+                                     echoed(words[k])));
+      }
+      v.push_back(*x);
+    }
+    for (std::size_t k : {10, 11, 12}) {
+      if (v[k] != 0) {
+        throw InputError(fmt::format("{} = {}: must be 0 (the model's mass centre, shear centre and tension centre "
+                                     "lie on the elastic axis)", where_in_file(bmodes_headings[k]), words[k]));
+      }
+    }
+    if (v[2] != v[1]) {
+      throw InputError(fmt::format("{} = {}: must equal str_tw = {} (the model has one twist)",
+                                   where_in_file("tw_iner"), words[2], words[1]));
+    }
+    const double area = v[3] / defaults.density, modulus = v[9] / area;
+    const std::map<std::string, std::pair<std::string, double>> cells{
+        {"span_fraction", {"sec_loc", v[0]}},          {"twist_deg", {"str_tw", v[1]}},
+        {"area", {"mass_den / blade.density", area}},  {"youngs_modulus", {"axial_stff / area", modulus}},
+        {"i_flap", {"flp_stff / E", v[6] / modulus}}, {"i_edge", {"edge_stff / E", v[7] / modulus}}};
+    const CellAt cell_at = [&](const Column& c) {
+      const auto it = cells.find(c.name);
+      if (it == cells.end()) return Cell{};
+      return Cell{true, fmt::format("{:g}", it->second.second), it->second.second};
+    };
+    const Where where = [&](const Column& c) {
+      const auto it = cells.find(c.name);
+      return where_in_file(it == cells.end() ? c.name : it->second.first);
+    };
+    stations.push_back(station(cell_at, where, defaults));
+  }
+  check_order(stations, [&](std::size_t k) {
+    return fmt::format("{}: row {} (line {}), column sec_loc", shown, k + 1, k + 6);
+  }, shown);
+  return stations;
+}
+
 }  // namespace
 
 const std::vector<std::string>& section_columns() {
@@ -158,13 +248,15 @@ std::vector<SectionStation> read_section_file(const std::string& path, const std
                                               const SectionDefaults& defaults) {
   std::ifstream in(path);
   if (!in) throw InputError(fmt::format("{}: cannot read the section table (blade.sections)", shown));
+  std::vector<std::string> file;
+  for (std::string line; std::getline(in, line);) file.push_back(line);
+  if (is_bmodes_file(file)) return read_bmodes(file, shown, defaults);
   std::vector<SectionStation> stations;
   std::vector<int> lines;
   std::map<std::string, std::size_t> at;
   bool have_header = false;
-  std::string line;
-  for (int number = 1; std::getline(in, line); ++number) {
-    const std::string text = trimmed(line);
+  for (int number = 1; number <= static_cast<int>(file.size()); ++number) {
+    const std::string text = trimmed(file[number - 1]);
     if (text.empty() || text[0] == '#') continue;
     const std::vector<std::string> cells = split_csv(text);
     if (!have_header) {

@@ -19,7 +19,8 @@ struct SectionDefaults {
 // The CSV file at `path` (`shown`: its name in messages): a header row naming the columns
 // span_fraction, area, i_flap, i_edge, twist_deg and optionally youngs_modulus, density,
 // shear_coefficient, in any order; then one row per station. Blank lines and lines starting with
-// '#' are skipped.
+// '#' are skipped. Or, recognised by its second line naming n_secs, an NREL BModes section file
+// (its mass, axial and bending stiffnesses and twist per station; [blade]'s density gives the area).
 std::vector<SectionStation> read_section_file(const std::string& path, const std::string& shown,
                                               const SectionDefaults& defaults);
 

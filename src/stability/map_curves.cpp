@@ -119,8 +119,8 @@ private:
 //   reduction  the whole Ritz model — the check that shares nothing with the reduction — at
 //              min(K, 4) harmonics (its boundary equations grow like dofs·K; the reduction's error
 //              hardly depends on K), and twice the change to twice the vectors at K
-//   basis      the reduced model of the richer basis reference_terms(basis, N) (sine: times
-//              basis_tail_factor)
+//   basis      the reduced model of the richer basis reference_terms(basis, N), times
+//              basis_tail_factor
 //   method     K + 2 harmonics, twice the change (the tail of a convergence at least geometric
 //              with ratio 1/2, as for `boundaries`)
 //   load       0: curves are drawn for the cosine approximation (42) only, the scene's load
@@ -141,7 +141,7 @@ CurveFidelity check_curves(const Scene& scene, const CurveWindow& w, const Curve
     double ErrorBudget::*part;
   };
   std::vector<Variant> variants{
-      {{&richer, m.reduction, m.approximation}, m, basis_tail_factor(scene.model.basis), &ErrorBudget::basis},
+      {{&richer, m.reduction, m.approximation}, m, basis_tail_factor(basis_convergence(scene.blade, scene.model.basis)), &ErrorBudget::basis},
       {{m.model, m.reduction, m.approximation + 2}, m, 2, &ErrorBudget::method}};
   if (reduced) {
     variants.push_back({{m.model, {ReductionKind::none, 0, 0}, whole_k}, {m.model, m.reduction, whole_k}, 1,

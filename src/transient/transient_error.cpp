@@ -54,7 +54,7 @@ TransientErrorEstimate estimate_transient_error(const Scene& scene, const Transi
       // The response to a concentrated tip load converges algebraically in the basis: the
       // difference gets the algebraic tail at the slowest trusted rate (basis_tail's richest model
       // "capped": n[2] = n[1]).
-      q.budget.basis = basis_tail({q.value, match->value, match->value}, terms).relative * std::abs(match->value);
+      q.budget.basis = basis_tail({q.value, match->value, match->value}, terms, BasisConvergence::sine).relative * std::abs(match->value);
     } else {
       q.budget.unbounded.push_back("basis: the richer model reports no " + q.name);
     }

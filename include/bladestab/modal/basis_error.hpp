@@ -46,31 +46,43 @@ double frequency_rounding(const Eigen::MatrixXd& absolute_stiffness, const Eigen
 // the rate of convergence.
 int reference_terms(BasisKind basis, int terms);
 
+// How fast the Ritz basis converges on a blade, which sets how far one comparison |f_N − f_ref|
+// understates the error and whether more terms can reach a tolerance:
+//   exponential  Legendre on smooth properties (the uniform blade, or a table of two stations);
+//   kinked       Legendre on a section table with stations inside the span: linear between the
+//                stations, the properties have kinks there, the modes' third derivatives jump,
+//                and the frequencies converge algebraically, about like N^−3 (measured on the
+//                example fan blade, N = 16…60: rates 2.5–4); the estimate trusts N^−2;
+//   sine         the sine basis (its V_n force v'(0) = 0: an O(1/N) error at a Timoshenko root).
+enum class BasisConvergence { exponential, kinked, sine };
+
+BasisConvergence basis_convergence(const BladeSpec& blade, BasisKind basis);
+
 // How much a single comparison |f_N − f_ref| (ref: reference_terms) understates the error of an
-// N-term result: 1.1 for Legendre (exponential convergence; the margin covers the richer model's
-// own error); for sine (f_N − f_∞ ∝ N^−p, p → 1)
-// 1/(1 − 2^−0.9) = 2.15, the rate its modes' estimate trusts at most.
-double basis_tail_factor(BasisKind basis);
+// N-term result: 1.1 for exponential convergence (the margin covers the richer model's own
+// error); 1/(1 − (2/3)²) = 1.8 for a kinked table at the trusted rate 2 (N against ≥ 1.5 N); for
+// sine (f_N − f_∞ ∝ N^−p, p → 1) 1/(1 − 2^−0.9) = 2.15, the rate its modes' estimate trusts at most.
+double basis_tail_factor(BasisConvergence convergence);
 
 // Relative basis error of f[0] (n[0] terms) from the same mode in richer models: f[1] (n[1]
 // terms) and, for the sine basis' algebraic convergence, f[2] (n[2] terms). `relative` is
-// `factor` · |f[0] − f[1]| / |f[1]|: 1.1 for exponential convergence, 1/(1 − (n₀/n₁)^p) for
-// algebraic convergence at the measured rate p (at most 0.9).
+// `factor` · |f[0] − f[1]| / |f[1]|: 1.1 for exponential convergence, 1/(1 − (n₀/n₁)²) for a
+// kinked table, 1/(1 − (n₀/n₁)^p) for the sine basis at the measured rate p (at most 0.9).
 struct BasisTail {
   double relative = 0;
   double factor = 1;
 };
-BasisTail basis_tail(const std::vector<double>& f, const std::vector<int>& n);
+BasisTail basis_tail(const std::vector<double>& f, const std::vector<int>& n, BasisConvergence convergence);
 
 // Whether raising the terms from N can bring a basis error `estimate` within `tolerance`: not when
-// N is at the limit of 200, nor for the sine basis when even a convergence like N^−2 (its
-// asymptotic rate is 1) would need more than 200 terms. Every analysis that raises the terms asks
-// this before it does, so a tolerance out of the basis' reach is said at once.
-bool basis_can_reach(BasisKind basis, int terms, double estimate, double tolerance);
+// N is at the limit of 200, nor for algebraic convergence (sine, kinked) when even a convergence
+// like N^−2 would need more than 200 terms. Every analysis that raises the terms asks this before
+// it does, so a tolerance out of the basis' reach is said at once.
+bool basis_can_reach(BasisConvergence convergence, int terms, double estimate, double tolerance);
 
-// The terms to try next for `tolerance` when an N-term model's estimate is `estimate`: Legendre
-// N + 2, sine 2N (at most 200); none where basis_can_reach says raising is futile.
-std::optional<int> terms_for_tolerance(BasisKind basis, int terms, double estimate, double tolerance);
+// The terms to try next for `tolerance` when an N-term model's estimate is `estimate`: sine 2N,
+// Legendre N + 2 (at most 200); none where basis_can_reach says raising is futile.
+std::optional<int> terms_for_tolerance(BasisConvergence convergence, int terms, double estimate, double tolerance);
 
 // ParameterError on `tolerance` unless 0 < tolerance < 1 and tolerance > 1e-12, the
 // eigensolver's rounding that every estimate includes.

@@ -31,6 +31,9 @@ struct CampbellOptions {
 struct CampbellCurve {
   int mode = 0;                           // 1-based, by frequency at the first speed
   ModeFamily family = ModeFamily::bending; // at the first speed
+  // At each speed, by the point's own kinetic-energy shares (dominant_family): where a flap and an
+  // edge mode veer, the curve followed by shape changes family.
+  std::vector<ModeFamily> families;
   std::vector<double> frequency_hz;       // one per speed
   std::vector<double> damping_ratio;
   std::vector<double> correlation;        // MAC with the previous speed's shape (1 at the first)

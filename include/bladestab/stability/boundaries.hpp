@@ -97,8 +97,8 @@ ReductionSpec boundary_reduction(const BladeModel& model, const Scene& scene, co
 // orders at low θ, or a load whose stiffness touches zero) does not sink the rest. (The method
 // part is twice the change, so "converged" means 2·change + rounding ≤ tolerance.)
 // The error budget of each boundary (docs/theory.md §2–§4):
-//   basis      change against the richer Ritz basis reference_terms(basis, N) (for the sine basis
-//              times basis_tail_factor)
+//   basis      change against the richer Ritz basis reference_terms(basis, N), times
+//              basis_tail_factor (basis_convergence: sine basis, section tables)
 //   reduction  with a cut-off: the change against all modes kept; with the automatic reduction:
 //              twice the change against twice the vectors (the change against the whole model
 //              where that is next), the vectors doubled (and k converged again from where it was)

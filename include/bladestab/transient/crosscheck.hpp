@@ -24,7 +24,10 @@ struct CrosscheckPoint {
   double rkf45_max_abs_multiplier = 0;   // from the RKF45 monodromy at rtol 1e-8
   double monodromy_difference = 0;       // ‖Φ_RKF45 − Φ_Magnus‖ / ‖Φ_Magnus‖ (Frobenius)
   // True pulse train.
+  // floquet_pulse_error: the series' monodromy's own error plus floquet_pulse_load_error, the
+  // series' truncation: |max|ρ| − the true train's max|ρ|| plus that one's error.
   double floquet_pulse = 0, floquet_pulse_error = 0, transient_pulse_growth = 0, transient_pulse_error = 0;
+  double floquet_pulse_load_error = 0;
   int pulse_harmonics = 0;
   double pulse_series_tail = 0;
   bool cosine_agrees() const;

@@ -1,0 +1,245 @@
+// The example fan blade (stability_maps/fan_blade: a tapered, pretwisted section table bending in two
+// planes, docs/theory.md §9) through stability, boundaries, transient, crosscheck and check, each
+// against a reference computed here by another method or at a much tighter setting, and its error
+// budget against a richer model.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "bladestab/blade/damping.hpp"
+#include "bladestab/blade/model.hpp"
+#include "bladestab/blade/undamped_modes.hpp"
+#include "bladestab/modal/basis_error.hpp"
+#include "bladestab/modal/campbell.hpp"
+#include "bladestab/modal/modes.hpp"
+#include "bladestab/stability/boundaries.hpp"
+#include "bladestab/stability/periodic_system.hpp"
+#include "bladestab/stability/requirements_check.hpp"
+#include "bladestab/stability/stability_analysis.hpp"
+#include "bladestab/transient/crosscheck.hpp"
+#include "bladestab/transient/transient.hpp"
+
+using namespace bladestab;
+
+namespace {
+
+constexpr double two_pi = 6.28318530717958647692;
+
+Scene fan_blade(const std::vector<std::string>& overrides = {}) {
+  return load_scene(std::string(BLADESTAB_SOURCE_DIR) + "/stability_maps/fan_blade/blade.toml", overrides);
+}
+
+// The fan blade at Ω = 250 rad/s under the cosine load F̄ = 1.75: max|ρ| = 4.93, well inside a region.
+std::vector<std::string> unstable_point(int terms) {
+  return {"operation.speed_rad_s=250", "load.fmax_over_fcr=1.75", "model.terms=" + std::to_string(terms)};
+}
+
+// All modes of the whole Ritz model of `terms` terms at the scene's speed, by a dense solve.
+std::vector<Mode> dense_modes(const Scene& scene, int terms, double speed) {
+  ModelSpec spec = scene.model;
+  spec.terms = terms;
+  const BladeModel model = assemble_model(scene, spec);
+  return solve_modes(model, system_at(model, speed, damping_matrix(model, scene.damping, speed)), speed, 0,
+                     EigenSolverKind::dense)
+      .modes;
+}
+
+// The `rank`-th mode (from 0) of `family` among `modes`.
+const Mode& of_family(const std::vector<Mode>& modes, ModeFamily family, int rank) {
+  for (const Mode& m : modes) {
+    if (m.family == family && rank-- == 0) return m;
+  }
+  FAIL("no mode of rank " << rank << " in its family");
+  return modes.front();
+}
+
+}  // namespace
+
+TEST_CASE("fan blade: the budget of 16 terms covers the difference to 28 terms (modes and stability)",
+          "[fan-blade][budget][parallel]") {
+  SECTION("modes: the ten lowest frequencies") {
+    const Scene scene = fan_blade();
+    const ConvergedModes m = modes_with_error_estimate(scene, 10, EigenSolverKind::dense);
+    REQUIRE(m.model.spec.terms == 16);
+    const std::vector<Mode> rich = dense_modes(scene, 28, scene.operation.speed_rad_s);
+    std::vector<int> rank(mode_family_count, 0);
+    for (std::size_t k = 0; k < m.solution.modes.size(); ++k) {
+      const Mode& mode = m.solution.modes[k];
+      const Mode& other = of_family(rich, mode.family, rank[static_cast<int>(mode.family)]++);
+      const double difference = std::abs(mode.frequency_hz - other.frequency_hz) / other.frequency_hz;
+      INFO("mode " << k + 1 << " (" << to_string(mode.family) << ") " << mode.frequency_hz << " Hz: |f16 − f28|/f28 = "
+                   << difference << ", estimate " << m.budget(k).total());
+      CHECK(difference <= m.budget(k).total());
+      // And the estimate is not vacuous: within 3× of that difference.
+      CHECK(m.budget(k).total() <= 3 * difference + 1e-12);
+    }
+  }
+  SECTION("stability: max|ρ| at 250 rad/s, F̄ = 1.75") {
+    const StabilityAnswer a = analyse_stability(fan_blade(unstable_point(16)), {FloquetMethod::automatic, 0, 1e-3});
+    REQUIRE(a.model.terms == 16);
+    const StabilityAnswer rich = analyse_stability(fan_blade(unstable_point(28)), {FloquetMethod::automatic, 0, 1e-3});
+    REQUIRE(rich.model.terms == 28);
+    const double difference = std::abs(a.floquet.max_abs_multiplier - rich.floquet.max_abs_multiplier);
+    INFO("max|ρ| 16 terms " << a.floquet.max_abs_multiplier << ", 28 terms " << rich.floquet.max_abs_multiplier
+                            << ", estimate " << a.budget.total() << " (basis " << a.budget.basis << ")");
+    CHECK(a.floquet.max_abs_multiplier > 4.9);
+    CHECK(difference <= a.budget.total());
+    CHECK(a.budget.total() <= 3 * difference);
+  }
+}
+
+TEST_CASE("fan blade: stability at once says a tolerance its table's basis cannot reach", "[fan-blade][stability][parallel]") {
+  // The table's kinks make the Legendre basis converge algebraically: 1e-6 would take ~250 terms
+  // at N^−2; the answer at 16 terms stands with its estimate instead of raising the terms for minutes.
+  const StabilityAnswer a = analyse_stability(fan_blade(unstable_point(16)), {FloquetMethod::automatic, 0, 1e-6});
+  CHECK_FALSE(a.tolerance_met);
+  CHECK(a.model.terms == 16);
+  CHECK(a.tolerance_unmet.find("not met with 16 terms") != std::string::npos);
+}
+
+TEST_CASE("fan blade: Floquet max|ρ| against the growth per revolution of an RKF45 transient", "[fan-blade][transient][slow]") {
+  // Ω = 400 rad/s, the cosine load of F̄ = 2.5 over the whole revolution (the same function as the
+  // approximation (42)), the whole 6-term Ritz model: the multipliers by the Magnus monodromy,
+  // the transient by RKF45 at rtol 1e-8 from 1 µm of the first mode, without the small-deflection
+  // stop. Same model, two methods.
+  const Scene scene = fan_blade({"operation.speed_rad_s=400", "load.fmax_over_fcr=2.5", "model.terms=6",
+                                 "load.profile=\"cosine\"", "load.contact_time_rev=1"});
+  const BladeModel model = assemble_model(scene);
+  const FloquetResult f =
+      floquet_multipliers(periodic_system(model, scene, load_series(scene), {ReductionKind::none, 0, 0}),
+                          {FloquetMethod::monodromy, 0, 1e-8});
+  const double speed = scene.operation.speed_rad_s;
+  TransientOptions o;
+  o.method = TransientMethod::rkf45;
+  o.revolutions = 10;
+  o.tolerance = 1e-8;
+  o.max_lateral_over_length = HUGE_VAL;
+  const Eigen::VectorXd mode = undamped_modes(model, speed, 0, 1).shapes.col(0);
+  Eigen::VectorXd x = rotating_equilibrium(model, speed);  // [f; ḟ]
+  x.head(model.layout.size()) += 1e-6 / mode.cwiseAbs().maxCoeff() * mode;
+  o.initial_state = x;
+  const TransientResult r = run_transient(model, scene, o);
+  REQUIRE(r.growth.omitted.empty());
+  const double rho = f.max_abs_multiplier;
+  INFO("Floquet max|ρ| " << rho << " ± " << f.error_estimate << ", transient growth " << r.growth.growth << " ± "
+                         << r.growth.error_estimate);
+  CHECK(rho > 2);
+  CHECK(std::abs(r.growth.growth - rho) <= f.error_estimate + r.growth.error_estimate);
+  // The fit is informative: its estimate well below the growth's distance from 1.
+  CHECK(r.growth.error_estimate < 1e-2 * rho);
+}
+
+TEST_CASE("fan blade: a boundary in F̄ against where stability's max|ρ| leaves 1, by bisection", "[fan-blade][boundaries][slow]") {
+  // θ = Ω = 500 rad/s, 8 terms: the −1 region of mode 1, order 1 opens near F̄ = 3.555. (The +1
+  // region of order 2 below it opens at 2.40 inside a combination region, which `boundaries` does
+  // not trace: max|ρ| = 1.12 at F̄ = 2.38 already.)
+  const Scene scene = fan_blade({"model.terms=8"});
+  const double fcr = assemble_model(scene).blade.critical_load();
+  BoundaryRequest request;
+  request.theta_rad_s = 500;
+  request.max_order = 2;
+  request.window = std::make_pair(3.4 * fcr, 3.7 * fcr);
+  const BoundaryAnalysis b = boundaries_with_error_estimate(scene, request);
+  const auto opening = std::find_if(b.boundaries.begin(), b.boundaries.end(), [](const EstimatedBoundary& e) {
+    return e.boundary.multiplier == -1 && e.boundary.mode == 1 && e.boundary.order == 1;
+  });
+  REQUIRE(opening != b.boundaries.end());
+  const double boundary = opening->boundary.peak_force_n / fcr;
+  // Stable (every |ρ| = 1: undamped) below, unstable above: bisection to 1e-7 relative of
+  // `stability` at its own fidelity (it raises the terms where its tolerance asks).
+  const auto unstable = [&](double fbar) {
+    Scene at = scene;
+    at.load.fmax_over_fcr = fbar;
+    const StabilityAnswer a = analyse_stability(at, {FloquetMethod::automatic, 0, 1e-2});
+    UNSCOPED_INFO("F̄ " << fbar << ": max|ρ| " << a.floquet.max_abs_multiplier << " (" << a.model.terms << " terms)");
+    return a.floquet.max_abs_multiplier > 1 + 1e-6;
+  };
+  // The crossing lies within the boundary's estimate (twice it, or 1e-3, either side).
+  const double bracket = std::max(1e-3, 2 * opening->budget.total());
+  double lo = boundary * (1 - bracket), hi = boundary * (1 + bracket);
+  REQUIRE_FALSE(unstable(lo));
+  REQUIRE(unstable(hi));
+  while (hi - lo > 1e-7 * hi) (unstable(0.5 * (lo + hi)) ? hi : lo) = 0.5 * (lo + hi);
+  const double crossing = 0.5 * (lo + hi);
+  INFO("boundary F̄ " << boundary << " ± " << opening->budget.total() << " (relative), bisection of stability "
+                      << crossing);
+  CHECK(std::abs(crossing / boundary - 1) <= opening->budget.total() + 1e-7);
+}
+
+TEST_CASE("fan blade: crosscheck at 4 terms, F̄ = 2: the pulse series' estimate holds its truncation",
+          "[fan-blade][crosscheck][slow]") {
+  // The 400-harmonic series opens a thin tongue (max|ρ| 1.00067) that the true pulse train, and so
+  // the transient, does not have (1 within 5e-6).
+  CrosscheckOptions o;
+  o.fmax_over_fcr = {2};
+  const CrosscheckPoint p = crosscheck(fan_blade({"model.terms=4"}), o).at(0);
+  INFO("pulse: Floquet " << p.floquet_pulse << " ± " << p.floquet_pulse_error << " (truncation "
+                         << p.floquet_pulse_load_error << "), transient " << p.transient_pulse_growth << " ± "
+                         << p.transient_pulse_error);
+  CHECK(p.cosine_agrees());
+  CHECK(p.pulse_agrees());
+  CHECK(std::abs(p.transient_pulse_growth - 1) <= 1e-5);
+  CHECK(p.floquet_pulse_load_error >= std::abs(p.floquet_pulse - 1));
+}
+
+TEST_CASE("fan blade: check's Campbell margin against dense solves of the two-plane model", "[fan-blade][check][parallel]") {
+  // Mode 1 (flap) meets the engine order 2 line near 253 rad/s: margin 0 at the root of
+  // f₁(Ω) − 2Ω/2π, found here by bisection of dense whole-model solves.
+  Scene scene = fan_blade();
+  RequirementsSpec req;
+  req.speed_lo_rad_s = 200;
+  req.speed_hi_rad_s = 350;
+  req.engine_orders = {1, 2, 3};
+  req.frequency_margin = 0.1;
+  scene.requirements = req;
+  const FrequencyMarginResult m = check_frequency_margin(scene, 1e-5);
+  REQUIRE_FALSE(m.passed);
+  REQUIRE(m.worst.distance == 0);
+  const double line = m.worst.engine_order / two_pi;
+  const auto g = [&](double speed) {
+    return dense_modes(scene, m.terms, speed).at(m.worst.mode - 1).frequency_hz - line * speed;
+  };
+  double a = req.speed_lo_rad_s, b = req.speed_hi_rad_s;
+  REQUIRE(g(a) * g(b) < 0);
+  while (b - a > 1e-9 * b) {
+    const double c = 0.5 * (a + b);
+    (g(a) * g(c) <= 0 ? b : a) = c;
+  }
+  INFO("mode " << m.worst.mode << ", engine order " << m.worst.engine_order << ": check " << m.worst.speed_rad_s
+               << " rad/s, bisection " << 0.5 * (a + b));
+  CHECK(m.worst.mode == 1);
+  CHECK(m.worst.engine_order == 2);
+  CHECK(m.worst.speed_rad_s == Approx(0.5 * (a + b)).epsilon(1e-8));
+  CHECK(m.worst.frequency_hz == Approx(line * 0.5 * (a + b)).epsilon(1e-8));
+}
+
+TEST_CASE("fan blade: campbell labels each point by its own energy shares, so veerings show", "[fan-blade][campbell]") {
+  // Each point's family against the mode of a dense whole-model solve at that speed nearest in
+  // frequency (its family from its own kinetic-energy shares, as `modes` gives it).
+  const Scene scene = fan_blade();
+  const BladeModel model = assemble_model_at_any_speed(scene, scene.model);
+  std::vector<double> speeds;
+  for (int k = 0; k <= 10; ++k) speeds.push_back(100.0 * k);
+  const CampbellDiagram d = campbell_diagram(model, scene.damping, {speeds, {}, 8});
+  int changes = 0;
+  for (std::size_t s = 0; s < speeds.size(); ++s) {
+    const std::vector<Mode> modes = dense_modes(scene, scene.model.terms, speeds[s]);
+    for (const CampbellCurve& c : d.curves) {
+      REQUIRE(c.families.size() == speeds.size());
+      const auto nearest = std::min_element(modes.begin(), modes.end(), [&](const Mode& a, const Mode& b) {
+        return std::abs(a.frequency_hz - c.frequency_hz[s]) < std::abs(b.frequency_hz - c.frequency_hz[s]);
+      });
+      INFO("curve " << c.mode << " at " << speeds[s] << " rad/s, " << c.frequency_hz[s] << " Hz");
+      CHECK(std::abs(nearest->frequency_hz / c.frequency_hz[s] - 1) < 1e-6);
+      CHECK(c.families[s] == nearest->family);
+      if (s > 0 && c.families[s] != c.families[s - 1]) ++changes;
+    }
+    CHECK(d.curves.front().families.front() == d.curves.front().family);
+  }
+  // The second mode turns from flap at rest to edge in rotation (the twist couples the planes).
+  CHECK(changes >= 1);
+  CHECK(d.curves[1].families.front() != d.curves[1].families.back());
+}
