@@ -418,12 +418,13 @@ TEST_CASE("bad input: issue 11, work and memory beyond the limits (bad_input)", 
     expect_rejected({"stability", valid_scene, "--method", "hill", "--harmonics", "60"}, {"--harmonics 60", "rows", "1200"});
   }
   SECTION("a run that outlasts --max-seconds is stopped there, with one line and no output") {
-    const auto o = testing_support::run_bladestab({"stability", valid_scene, "--max-seconds", "0.001"});
+    // 0.5 s of CPU at --tolerance 1e-9, whose estimate is far below the limit.
+    const auto o = testing_support::run_bladestab({"stability", valid_scene, "--tolerance", "1e-9", "--max-seconds", "0.1"});
     INFO(o.command << "\n" << describe(o) << "\n" << o.err);
     CHECK((WIFEXITED(o.wait_status) && WEXITSTATUS(o.wait_status) == 1));
     CHECK(o.out.empty());
     CHECK(std::count(o.err.begin(), o.err.end(), '\n') == 1);
-    CHECK(o.err.find("--max-seconds 0.001") != std::string::npos);
+    CHECK(o.err.find("--max-seconds 0.1") != std::string::npos);
   }
   SECTION("Ctrl-C stops a long run with one line and no files") {
     const fs::path dir = scratch() / "interrupted";

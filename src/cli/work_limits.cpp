@@ -32,8 +32,10 @@ WorkLimits& work_limits() {
 
 void add_work_limit_options(CLI::App& command) {
   WorkLimits& limits = work_limits();
-  add_number_option(command, "--max-seconds", limits.seconds, AllowedRange::above(0, 1e7),
-                    "refuse work estimated to take longer, and stop a run that does (default 600)");
+  // Below 0.1 s the program's own start (a few ms, more on a loaded machine) could outlast the
+  // limit before a refusal is printed: such a limit is refused as a value instead.
+  add_number_option(command, "--max-seconds", limits.seconds, AllowedRange::closed(0.1, 1e7),
+                    "refuse work estimated to take longer, and stop a run that does (default 600, at least 0.1)");
   add_number_option(command, "--max-memory", limits.megabytes, AllowedRange::above(0, 1e7),
                     "refuse work estimated to need more memory, in MB (default 1024)");
 }
