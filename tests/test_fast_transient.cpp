@@ -190,3 +190,54 @@ TEST_CASE("transient error estimate: the 12-term run's stated basis error covers
     CHECK(e.quantities[k].budget.total() < 30 * difference + 1e-12 * std::abs(truth[k].value));
   }
 }
+
+namespace {
+
+// max |a − b| over the samples of the tip's lateral deflection and of its axial vibration (about
+// the static stretch), each relative to its peak in b (μ = 0 leaves the lateral tip at rest).
+double clearance_history_difference(const TransientResult& a, const TransientResult& b) {
+  REQUIRE(a.samples.size() == b.samples.size());
+  double lateral = 0, axial = 0, lateral_peak = 0, axial_peak = 0;
+  for (std::size_t k = 0; k < a.samples.size(); ++k) {
+    const TransientSample &p = a.samples[k], &q = b.samples[k];
+    REQUIRE(p.time_s == Approx(q.time_s).epsilon(1e-12));
+    lateral = std::max(lateral, std::abs(p.tip_lateral_m - q.tip_lateral_m));
+    axial = std::max(axial, std::abs(p.tip_axial_m - q.tip_axial_m));
+    lateral_peak = std::max(lateral_peak, std::abs(q.tip_lateral_m));
+    axial_peak = std::max(axial_peak, std::abs(q.tip_axial_m - b.static_tip_axial_m));
+  }
+  return std::max(lateral_peak > 0 ? lateral / lateral_peak : lateral, axial / axial_peak);
+}
+
+}  // namespace
+
+TEST_CASE("fast transient in clearance mode: the history of RKF45 at rtol 1e-10 within 1e-6 of the peak",
+          "[transient][fast][clearance][slow]") {
+  // Appendix C's rub (3 mm clearance, 3.03 mm half-sine distortion once per revolution) through two
+  // contacts, at 8 and at the scene's 16 terms, without and with friction.
+  for (const std::string terms : {"8", "16"}) {
+    for (const std::string friction : {"0", "0.2"}) {
+      const Scene scene = paper_scene({"model.terms=" + terms, "load.mode=clearance", "load.intrusion=3.03e-3",
+                                       "load.friction=" + friction});
+      const BladeModel model = assemble_model(scene);
+      TransientOptions o;
+      o.revolutions = 1.5;
+      const TransientResult fast = run_transient(model, scene, o);
+      o.method = TransientMethod::rkf45;
+      o.tolerance = 1e-10;
+      const TransientResult reference = run_transient(model, scene, o);
+      CAPTURE(terms, friction);
+      REQUIRE(fast.method == TransientMethod::fast);
+      REQUIRE(fast.self_check);
+      CHECK(fast.self_check->difference <= fast.self_check->allowed);
+      const double difference = clearance_history_difference(fast, reference);
+      WARN("clearance, " << terms << " terms, μ = " << friction << ": history within " << difference
+                         << " of the peak; peak force " << fast.contact->peak_force_n << " against "
+                         << reference.contact->peak_force_n << " N");
+      CHECK(difference < 1e-6);
+      CHECK(fast.contact->closures == reference.contact->closures);
+      CHECK(fast.contact->peak_force_n == Approx(reference.contact->peak_force_n).epsilon(1e-6));
+      CHECK(fast.contact->contact_time_s == Approx(reference.contact->contact_time_s).epsilon(1e-6));
+    }
+  }
+}

@@ -435,7 +435,7 @@ TEST_CASE("clearance mode: bouncing on a still casing conserves the energy with 
   const BladeModel m = assemble_model(s);
   TransientOptions o;
   o.revolutions = 1;
-  o.tolerance = 1e-10;
+  o.tolerance = o.contact_tolerance = 1e-10;
   o.initial_state = perturbed_equilibrium(m, 300, 0, -1e-4);
   const TransientResult r = run_transient(m, s, o);
   const auto [drift, swing] = energy_drift(r);
@@ -487,7 +487,8 @@ TEST_CASE("a fractional number of revolutions is sampled evenly to its end, and 
     worst = std::max(worst, std::abs(r.samples[k].time_s - r.samples[k - 1].time_s - dt));
   }
   CHECK(worst < 1e-9 * dt);
-  CHECK(r.samples.back().revolutions == Approx(10.5).epsilon(1e-12));
+  CHECK(r.samples.back().revolutions == 10.5);
+  CHECK(r.samples[320].revolutions == 5);  // the sample grid, exactly
   std::vector<double> tip;
   for (const TransientSample& x : r.samples) tip.push_back(x.tip_lateral_m);
   const double f1 = solve_modes(m, system_at(m, 300, Eigen::MatrixXd::Zero(m.layout.size(), m.layout.size())), 300, 1,
@@ -496,4 +497,20 @@ TEST_CASE("a fractional number of revolutions is sampled evenly to its end, and 
                         .frequency_hz;
   // The run holds 14 periods of mode 1; the peak, refined by its parabola, within 1 % of it.
   CHECK(dominant_frequency(amplitude_spectrum(tip, 1 / dt)) == Approx(f1).epsilon(0.01));
+}
+
+TEST_CASE("60 revolutions at 300 rad/s end at revolution 60 exactly, by both methods", "[transient]") {
+  // t = 60 · 2π/300 carries rounding (t·Ω/2π = 59.99999999999999); the count comes from the
+  // sample grid.
+  const Scene s = paper_scene({"model.terms=4"});
+  const BladeModel m = assemble_model(s);
+  for (TransientMethod method : {TransientMethod::fast, TransientMethod::rkf45}) {
+    TransientOptions o;
+    o.method = method;
+    o.revolutions = method == TransientMethod::fast ? 60 : 3;
+    o.samples_per_revolution = 7;
+    const TransientResult r = run_transient(m, s, o);
+    CHECK(r.samples.back().revolutions == o.revolutions);
+    for (std::size_t k = 0; k < r.samples.size(); ++k) CHECK(r.samples[k].revolutions == static_cast<double>(k) / 7);
+  }
 }

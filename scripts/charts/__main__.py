@@ -3,7 +3,10 @@
 Usage: the program pipes the package, its modules joined into one script (CMakeLists.txt), to the
 interpreter, or from the source tree:
 
-    /usr/bin/python3 scripts/charts <chart-kind> <input.json> <output.png|output.svg>
+    /usr/bin/python3 scripts/charts <chart-kind> <input.json> <output.png|output.svg> [<input.json> <output> ...]
+
+More than one input and output pair draws each chart in turn in the same interpreter (a script
+drawing many charts pays for Python and matplotlib once); the first bad input ends the run.
 
 Modules: chart_common (setup, input checks, labels), chart_campbell, chart_map, chart_transient,
 chart_sweep, and this one (dispatch). They import each other by plain name, one line each.
@@ -176,12 +179,13 @@ def render(kind, input_path, output_path):
 
 
 def main(argv):
-    if len(argv) != 3:
-        print("usage: charts <chart-kind> <input.json> <output.png|.svg>",
-              file=sys.stderr)
+    if len(argv) < 3 or len(argv) % 2 == 0:
+        print("usage: charts <chart-kind> <input.json> <output.png|.svg>"
+              " [<input.json> <output> ...]", file=sys.stderr)
         return 2
     try:
-        render(*argv)
+        for input_path, output_path in zip(argv[1::2], argv[2::2]):
+            render(argv[0], input_path, output_path)
     except InputError as exc:
         print(f"charts: {exc}", file=sys.stderr)
         return 1

@@ -87,6 +87,18 @@ double PulseTrain::force_rate(double t) const {
   return 0;
 }
 
+double PulseTrain::max_force_rate() const {
+  switch (profile) {  // force_rate's largest magnitude: at the edges, the quarter pulse, or constant
+    case PulseProfile::half_sine:
+    case PulseProfile::cosine: return peak_n * pi / contact_time_s;
+    case PulseProfile::triangular: return 2 * peak_n / contact_time_s;
+    case PulseProfile::sawtooth: return peak_n / contact_time_s;
+    case PulseProfile::rectangular:
+    case PulseProfile::impulse: return 0;
+  }
+  return 0;
+}
+
 std::vector<double> PulseTrain::edges(double t0, double t1) const {
   std::vector<double> out;
   for (long p = std::max(0L, static_cast<long>(std::floor(t0 / period_s))); p * period_s <= t1; ++p) {

@@ -11,6 +11,7 @@
 
 #include "bladestab/blade/damping.hpp"
 #include "bladestab/base/input_error.hpp"
+#include "bladestab/base/numerical_error.hpp"
 #include "bladestab/modal/basis_error.hpp"
 #include "bladestab/stability/periodic_system.hpp"
 #include "bladestab/blade/reduction.hpp"
@@ -224,6 +225,13 @@ StabilityAnswer analyse_stability(const Scene& scene, const StabilityRequest& re
   a.reference_terms = reference_terms(f.model.basis, f.model.terms);
   a.reduction = f.reduction;
   a.load = f.load;
+  // An estimate as large as max|ρ| itself leaves no digit of it known, and no verdict: a blade
+  // whose growth over a period overflows the budget's models (F̄ far past buckling) lands here.
+  if (!(a.budget.total() < a.floquet.max_abs_multiplier)) {
+    throw NumericalError(fmt::format("the error estimate {:.2g} of max|ρ| = {:.6g} is as large as max|ρ| itself: no "
+                                     "digit of it, and no verdict, is known with this model",
+                                     a.budget.total(), a.floquet.max_abs_multiplier));
+  }
   a.stable = a.floquet.max_abs_multiplier <= 1 + std::max(a.budget.total(), 1e-9);
   if (request.progress) request.progress(done, done);
   return a;

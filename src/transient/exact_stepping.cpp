@@ -215,16 +215,21 @@ void ExactStepper::prepare(const std::vector<double>& landings, int threads) {
 }
 
 bool ExactStepper::step(double a, double b, Eigen::VectorXd& z, double& work) {
-  ++stats_.intervals;
   if (const auto offsets = contact_offsets(a, b)) {
+    ++stats_.intervals;
     z = contact_piece(offsets->first, offsets->second).map * z;
     return true;
   }
-  const Piece& piece = free_piece(b - a);
+  free_flight(b - a, z, work);
+  return false;
+}
+
+void ExactStepper::free_flight(double h, Eigen::VectorXd& z, double& work) {
+  ++stats_.intervals;
+  const Piece& piece = free_piece(h);
   const auto y = z.head(dofs_);
   if (damped_) work += y.dot(piece.work * y);
   z.head(dofs_) = piece.map * y;
-  return false;
 }
 
 }  // namespace bladestab

@@ -12,48 +12,6 @@
 namespace bladestab::detail {
 namespace {
 
-// A time the exact stepping lands on, and what happens there.
-struct Landing {
-  double t = 0;
-  bool output = false, whole_revolution = false, check = false;
-  bool edge = false;  // a pulse edge or kink: its time is kept exactly when landings merge
-};
-
-// Every output time, whole revolution, pulse edge and kink of [0, t_end], and the check time, in
-// order; landings closer than 1e-9 of a pulse period (or of a revolution, if that is shorter) are
-// one (an output time that falls on a pulse edge up to rounding must not leave a sliver of an
-// interval).
-std::vector<Landing> landings(const ExactStepper& stepper, const RunStart& begin, const TransientOptions& o,
-                              double check_time) {
-  std::vector<Landing> all;
-  const int total_revs = static_cast<int>(std::ceil(o.revolutions));
-  for (int r = 0; r < total_revs; ++r) {
-    const double a = r * begin.revolution, b = std::min(begin.t_end, (r + 1) * begin.revolution);
-    for (double t : output_times(r, a, b, begin.revolution, o.samples_per_revolution)) all.push_back({t, true});
-    if (b == (r + 1) * begin.revolution) all.push_back({b, false, true});
-  }
-  const PulseTrain& pulses = stepper.pulses();
-  for (double t : pulses.edges(0, begin.t_end)) all.push_back({t, false, false, false, true});
-  for (double kink : stepper.kinks()) {
-    for (double t : pulses.edges(0, begin.t_end)) {
-      if (pulses.time_in_pulse(t) == 0.0 && t + kink < begin.t_end) all.push_back({t + kink, false, false, false, true});
-    }
-  }
-  if (check_time > 0) all.push_back({check_time, false, false, true});
-  std::sort(all.begin(), all.end(), [](const Landing& a, const Landing& b) { return a.t < b.t; });
-  std::vector<Landing> merged;
-  for (const Landing& l : all) {
-    if (!merged.empty() && l.t - merged.back().t <= 1e-9 * std::min(pulses.period_s, begin.revolution)) {
-      Landing& m = merged.back();
-      if (l.edge && !m.edge) m.t = l.t;
-      m.output |= l.output, m.whole_revolution |= l.whole_revolution, m.check |= l.check, m.edge |= l.edge;
-    } else {
-      merged.push_back(l);
-    }
-  }
-  return merged;
-}
-
 // The friction's sign is taken as +1 (exact_stepping.hpp): refuse a state where tanh(v_rel/ε)
 // would not be 1 to the unit roundoff.
 void check_sliding(const ExactStepper& stepper, const Eigen::VectorXd& z, double t, const TransientOptions& o) {
@@ -102,11 +60,11 @@ TransientResult run_fast_transient(const BladeModel& model, const Scene& scene, 
   result.method = TransientMethod::fast;
   RunStart begin = run_start(model, scene, system, o, result);
   const Recorder record = begin.recorder(model, system, o, result);
-  Eigen::VectorXd x = begin.x, z = stepper.modal(x.head(2 * n)), last_whole = x, z_whole = z, z_before = z;
+  Eigen::VectorXd x = begin.x, z = stepper.modal(x.head(2 * n)), z_whole = z, z_before = z;
   double work = 0, t = 0;
   record(0, x);
+  LandingLog log(model, system, record, o, result, x, check_state);
   const bool friction = scene.load.friction != 0;
-  const int total_revs = static_cast<int>(std::ceil(o.revolutions));
   const std::vector<Landing> all = landings(stepper, begin, o, check_time);
   std::vector<double> times{0};
   for (const Landing& l : all) times.push_back(l.t);
@@ -122,22 +80,14 @@ TransientResult run_fast_transient(const BladeModel& model, const Scene& scene, 
     if (contact) work += system.energy(x) - energy_before;
     x(2 * n) = work;
     if (contact && friction) check_sliding(stepper, z, t, o);
-    if (l.check) check_state = x.head(2 * n);
-    if (l.output) {
-      if ((result.stopped = record(t, x))) break;
-    }
+    if (log.sample(l, t, x)) break;
     // Without the small-deflection stop an unstable response would overflow: stop where its
     // vibration energy ½|y|² passes 1e200 J (the growth is carried on from there).
     if (!(z.head(2 * stepper.modes()).squaredNorm() < 4e200)) {
       result.stopped = TransientStop{t / begin.revolution, "the linear response passed 1e200 J, near the range of doubles"};
       break;
     }
-    if (l.whole_revolution) {
-      result.revolution_change.push_back(energy_norm(system.stiffness(), model.M, x - last_whole));
-      last_whole = x;
-      z_before = z_whole, z_whole = z;
-      if (o.progress) o.progress(static_cast<int>(result.revolution_change.size()), total_revs);
-    }
+    if (log.revolution(l, x)) z_before = z_whole, z_whole = z;
   }
   const int whole = static_cast<int>(result.revolution_change.size());
   if ((result.stopped || o.continue_growth) && whole >= 1) {

@@ -133,8 +133,8 @@ namespace {
 
 // Why the fast method does not apply to this run; empty when it does.
 std::string fast_method_refusal(const BladeModel& model, const Scene& scene, const TransientOptions& o) {
-  if (scene.load.mode == LoadMode::clearance) {
-    return "clearance mode: the casing's contact events are found on RKF45's dense output";
+  if (scene.load.mode == LoadMode::clearance && o.reduction) {
+    return "clearance mode steps the whole model";
   }
   if (o.follower) return "the follower load is nonlinear in the tip slope";
   if (!o.adaptive) return "fixed steps are RKF45's (54)";
@@ -220,7 +220,9 @@ TransientResult run_transient(const BladeModel& model, const Scene& scene, const
     reference.emplace(o.threads, 1, [&](std::size_t) { return reference_run(model, scene, o, check_time); });
   }
   Eigen::VectorXd check_state;
-  TransientResult r = detail::run_fast_transient(model, scene, o, check_time, check_state);
+  TransientResult r = scene.load.mode == LoadMode::clearance
+                          ? detail::run_fast_clearance_transient(model, scene, o, check_time, check_state)
+                          : detail::run_fast_transient(model, scene, o, check_time, check_state);
   if (reference) {
     ReferenceRun checked_against = reference->get(0);
     double checked_until = check_time;

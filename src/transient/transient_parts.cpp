@@ -1,5 +1,6 @@
 #include "transient_parts.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -10,11 +11,11 @@
 
 namespace bladestab::detail {
 
-Recorder::Recorder(const BladeModel& model, const TransientSystem& system, double speed, double revolution,
-                   double initial_energy, double max_lateral_m, double static_tip_axial_m,
+Recorder::Recorder(const BladeModel& model, const TransientSystem& system, double revolution, int samples_per_revolution,
+                   double revolutions, double initial_energy, double max_lateral_m, double static_tip_axial_m,
                    std::vector<TransientSample>& samples)
-    : model_(model), system_(system), K_E_(model.elastic_stiffness()), speed_(speed), revolution_(revolution),
-      initial_energy_(initial_energy), max_lateral_m_(max_lateral_m), static_axial_m_(static_tip_axial_m),
+    : model_(model), system_(system), K_E_(model.elastic_stiffness()), revolution_(revolution),
+      per_revolution_(samples_per_revolution), run_revolutions_(revolutions), initial_energy_(initial_energy), max_lateral_m_(max_lateral_m), static_axial_m_(static_tip_axial_m),
       samples_(samples) {}
 
 std::optional<TransientStop> Recorder::operator()(double t, const Eigen::VectorXd& s) const {
@@ -23,7 +24,7 @@ std::optional<TransientStop> Recorder::operator()(double t, const Eigen::VectorX
   const std::optional<CasingContact>& casing = system_.casing();
   const double F = system_.tip_load(t, s), E = system_.energy(s), W = s(2 * n);
   const TipLoads applied = system_.tip_loads(F, s);
-  const double revolutions = speed_ > 0 ? t * speed_ / two_pi : t / revolution_;
+  const double revolutions = revolutions_at(t);
   const TransientSample& sample = samples_.emplace_back(TransientSample{
       t, revolutions, model_.tip_lateral.dot(f), model_.tip_axial.dot(f), model_.tip_lateral.dot(v),
       model_.tip_axial.dot(v), F, system_.friction(F, s), casing ? casing->overlap(t, f) : 0, 0.5 * f.dot(K_E_ * f),
@@ -44,6 +45,13 @@ std::optional<TransientStop> Recorder::operator()(double t, const Eigen::VectorX
                                                   axial_change, axial_change / L, TransientChecks::max_axial_strain)};
   }
   return std::nullopt;
+}
+
+double Recorder::revolutions_at(double t) const {
+  const double r = t / revolution_, on_grid = std::round(r * per_revolution_) / per_revolution_;
+  const double close = 1e-9 * std::max(1.0, r);
+  if (std::abs(r - run_revolutions_) <= close) return run_revolutions_;
+  return std::abs(r - on_grid) <= close ? on_grid : r;
 }
 
 std::vector<double> output_times(int r, double a, double b, double revolution, int per_rev) {
@@ -80,8 +88,58 @@ RunStart run_start(const BladeModel& model, const Scene& scene, const TransientS
 
 Recorder RunStart::recorder(const BladeModel& model, const TransientSystem& system, const TransientOptions& o,
                             TransientResult& result) const {
-  return Recorder(model, system, speed, revolution, initial_energy,
+  return Recorder(model, system, revolution, o.samples_per_revolution, o.revolutions, initial_energy,
                   o.max_lateral_over_length * model.blade.L, result.static_tip_axial_m, result.samples);
+}
+
+std::vector<Landing> landings(const ExactStepper& stepper, const RunStart& begin, const TransientOptions& o,
+                              double check_time) {
+  std::vector<Landing> all;
+  const int total_revs = static_cast<int>(std::ceil(o.revolutions));
+  for (int r = 0; r < total_revs; ++r) {
+    const double a = r * begin.revolution, b = std::min(begin.t_end, (r + 1) * begin.revolution);
+    for (double t : output_times(r, a, b, begin.revolution, o.samples_per_revolution)) all.push_back({t, true});
+    if (b == (r + 1) * begin.revolution) all.push_back({b, false, true});
+  }
+  const PulseTrain& pulses = stepper.pulses();
+  for (double t : pulses.edges(0, begin.t_end)) all.push_back({t, false, false, false, true});
+  for (double kink : stepper.kinks()) {
+    for (double t : pulses.edges(0, begin.t_end)) {
+      if (pulses.time_in_pulse(t) == 0.0 && t + kink < begin.t_end) all.push_back({t + kink, false, false, false, true});
+    }
+  }
+  if (check_time > 0) all.push_back({check_time, false, false, true});
+  std::sort(all.begin(), all.end(), [](const Landing& a, const Landing& b) { return a.t < b.t; });
+  std::vector<Landing> merged;
+  for (const Landing& l : all) {
+    if (!merged.empty() && l.t - merged.back().t <= 1e-9 * std::min(pulses.period_s, begin.revolution)) {
+      Landing& m = merged.back();
+      if (l.edge && !m.edge) m.t = l.t;
+      m.output |= l.output, m.whole_revolution |= l.whole_revolution, m.check |= l.check, m.edge |= l.edge;
+    } else {
+      merged.push_back(l);
+    }
+  }
+  return merged;
+}
+
+LandingLog::LandingLog(const BladeModel& model, const TransientSystem& system, const Recorder& record,
+                       const TransientOptions& options, TransientResult& result, const Eigen::VectorXd& start,
+                       Eigen::VectorXd& check_state)
+    : model_(model), system_(system), record_(record), options_(options), result_(result), last_whole_(start),
+      check_state_(check_state), total_revolutions_(static_cast<int>(std::ceil(options.revolutions))) {}
+
+bool LandingLog::sample(const Landing& l, double t, const Eigen::VectorXd& x) {
+  if (l.check) check_state_ = x.head(2 * system_.dofs());
+  return l.output && (result_.stopped = record_(t, x));
+}
+
+bool LandingLog::revolution(const Landing& l, const Eigen::VectorXd& x) {
+  if (!l.whole_revolution) return false;
+  result_.revolution_change.push_back(energy_norm(system_.stiffness(), model_.M, x - last_whole_));
+  last_whole_ = x;
+  if (options_.progress) options_.progress(static_cast<int>(result_.revolution_change.size()), total_revolutions_);
+  return true;
 }
 
 }  // namespace bladestab::detail

@@ -8,6 +8,7 @@
 #include <Eigen/Dense>
 
 #include "bladestab/blade/model.hpp"
+#include "bladestab/transient/exact_stepping.hpp"
 #include "bladestab/transient/transient.hpp"
 #include "bladestab/transient/transient_system.hpp"
 
@@ -16,18 +17,22 @@ namespace bladestab::detail {
 // The samples of a run: tip motion, loads and the energy balance at each output time.
 class Recorder {
 public:
-  Recorder(const BladeModel& model, const TransientSystem& system, double speed, double revolution,
-           double initial_energy, double max_lateral_m, double static_tip_axial_m,
+  Recorder(const BladeModel& model, const TransientSystem& system, double revolution, int samples_per_revolution,
+           double revolutions, double initial_energy, double max_lateral_m, double static_tip_axial_m,
            std::vector<TransientSample>& samples);
   // Records the sample at t of the state s = [f; ḟ; W]; the stop when it lies beyond the
   // small-deflection range (the sample is kept: the history ends there).
   std::optional<TransientStop> operator()(double t, const Eigen::VectorXd& s) const;
 
 private:
+  // The revolutions at t: the output times lie on the sample grid k/samples_per_revolution of a
+  // revolution or at the run's end, so a time on them counts that fraction, not t's rounding.
+  double revolutions_at(double t) const;
+
   const BladeModel& model_;
   const TransientSystem& system_;
   const Eigen::MatrixXd K_E_;
-  double speed_, revolution_, initial_energy_, max_lateral_m_, static_axial_m_;
+  double revolution_, per_revolution_, run_revolutions_, initial_energy_, max_lateral_m_, static_axial_m_;
   std::vector<TransientSample>& samples_;
 };
 
@@ -50,6 +55,42 @@ struct RunStart {
 RunStart run_start(const BladeModel& model, const Scene& scene, const TransientSystem& system,
                    const TransientOptions& options, TransientResult& result);
 
+// A time the exact stepping lands on, and what happens there.
+struct Landing {
+  double t = 0;
+  bool output = false, whole_revolution = false, check = false;
+  bool edge = false;  // a pulse edge or kink: its time is kept exactly when landings merge
+};
+
+// Every output time, whole revolution, pulse edge and kink of [0, t_end], and the check time, in
+// order; landings closer than 1e-9 of a pulse period (or of a revolution, if that is shorter) are
+// one (an output time that falls on a pulse edge up to rounding must not leave a sliver of an
+// interval).
+std::vector<Landing> landings(const ExactStepper& stepper, const RunStart& begin, const TransientOptions& options,
+                              double check_time);
+
+// What the exact-stepping runs do at a landing with the state x = [f; ḟ; W] there.
+class LandingLog {
+public:
+  LandingLog(const BladeModel& model, const TransientSystem& system, const Recorder& record,
+             const TransientOptions& options, TransientResult& result, const Eigen::VectorXd& start,
+             Eigen::VectorXd& check_state);
+  // The check state and the sample; true where the run stops (result.stopped says why).
+  bool sample(const Landing& l, double t, const Eigen::VectorXd& x);
+  // A whole revolution's change (result.revolution_change) and the progress; true if l is one.
+  bool revolution(const Landing& l, const Eigen::VectorXd& x);
+
+private:
+  const BladeModel& model_;
+  const TransientSystem& system_;
+  const Recorder& record_;
+  const TransientOptions& options_;
+  TransientResult& result_;
+  Eigen::VectorXd last_whole_;
+  Eigen::VectorXd& check_state_;
+  int total_revolutions_;
+};
+
 // run_transient by RKF45.
 TransientResult run_rkf45_transient(const BladeModel& model, const Scene& scene, const TransientOptions& options);
 
@@ -57,5 +98,10 @@ TransientResult run_rkf45_transient(const BladeModel& model, const Scene& scene,
 // there is put in `check_state`.
 TransientResult run_fast_transient(const BladeModel& model, const Scene& scene, const TransientOptions& options,
                                    double check_time, Eigen::VectorXd& check_state);
+
+// The same in clearance mode (clearance_transient.cpp): free flight exact, each casing contact by
+// Runge–Kutta–Fehlberg 7(8), the contact events located on the exact free flight and on the steps.
+TransientResult run_fast_clearance_transient(const BladeModel& model, const Scene& scene, const TransientOptions& options,
+                                             double check_time, Eigen::VectorXd& check_state);
 
 }  // namespace bladestab::detail

@@ -28,6 +28,8 @@ struct PulseTrain {
   double force(double t) const;
   // dF/dt [N/s], with the same half-open windows (the right-hand limit at an edge).
   double force_rate(double t) const;
+  // max |dF/dt| over a pulse, between its edges.
+  double max_force_rate() const;
   // Pulse starts and ends in [t0, t1]: where F or F' jumps, so integrator steps land there.
   std::vector<double> edges(double t0, double t1) const;
   // The time since the current pulse started, if one is on at t.

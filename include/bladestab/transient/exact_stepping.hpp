@@ -57,6 +57,10 @@ public:
   // flight); `work` gains the damping's work in free flight (Van Loan's integral, exact). True
   // for a contact piece.
   bool step(double a, double b, Eigen::VectorXd& z, double& work);
+  // z over h of free flight (F = 0) whatever the pulses do; `work` gains the damping's work.
+  void free_flight(double h, Eigen::VectorXd& z, double& work);
+  // The free-flight state matrix on y (A_free without its constant row and column).
+  Eigen::MatrixXd free_matrix() const { return A_free_.topLeftCorner(dofs_, dofs_); }
 
   // [f; ḟ] of z, and z of [f; ḟ] (its M-orthogonal projection on the modes kept).
   Eigen::VectorXd physical(const Eigen::VectorXd& z) const;
@@ -67,6 +71,9 @@ public:
   // The pulse train; where its profile has a kink inside the contact (triangular: at t_c/2).
   const PulseTrain& pulses() const { return pulses_; }
   int modes() const { return n_; }
+  const Eigen::MatrixXd& shapes() const { return Phi_; }        // Φ
+  const Eigen::VectorXd& frequencies() const { return omega_; } // ω_k
+  const Eigen::VectorXd& equilibrium() const { return equilibrium_; }  // f_eq
   std::vector<double> kinks() const;
   const ExactSteppingStatistics& statistics() const { return stats_; }
 

@@ -35,9 +35,9 @@ struct FixedStep {
   double parasitic_growth = 1;  // |R(iω_maxΔt)|^steps: the stiffest mode's spurious amplification over the run
 };
 
-// How the transient is integrated: `fast` steps free flight exactly and each contact by Magnus
-// (exact_stepping.hpp) in load.mode = "force" without the follower correction, and falls back to
-// `rkf45` elsewhere (the result says so); `rkf45` is the paper's integrator, as described above.
+// How the transient is integrated: `fast` steps free flight exactly, each pulse by Magnus (force
+// mode, exact_stepping.hpp) or each casing contact by RKF78 (clearance mode), without the follower
+// correction; else it falls back to `rkf45` (the result says so), the paper's integrator above.
 enum class TransientMethod { fast, rkf45 };
 
 struct TransientOptions {
@@ -56,8 +56,8 @@ struct TransientOptions {
   bool adaptive = true;
   int steps_per_period = 0;  // fixed mode: steps per period of the stiffest mode (≥ 8, (54)); 0 = choose
   double tolerance = 1e-8;   // rtol of the adaptive steps
-  // fast: each contact piece's propagator, relative (its step doubling; exact_stepping.hpp). At
-  // 1e-7 the scene as shipped takes 128 Magnus steps per half contact, at 1e-8 256.
+  // fast: each contact piece's propagator, relative (its step doubling; exact_stepping.hpp; 128
+  // Magnus steps per half contact of the scene as shipped at 1e-7); clearance: RKF78's rtol.
   double contact_tolerance = 1e-7;
   int samples_per_revolution = 200;
   double friction_velocity = 1e-3;              // ε of the regularized sign [m/s]
