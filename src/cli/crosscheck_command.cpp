@@ -86,6 +86,34 @@ std::vector<CrosscheckPoint> as_printed(std::vector<CrosscheckPoint> points, con
   return points;
 }
 
+// The answer as JSON: each point's Floquet and transient numbers for both loads, with their estimates.
+std::string crosscheck_json(const Scene& scene, const std::vector<CrosscheckPoint>& printed, double revolutions) {
+  Json json = {{"scene", scene.source}, {"speed_rad_s", scene.operation.speed_rad_s},
+               {"revolutions", revolutions}, {"points", Json::array()}};
+  for (const CrosscheckPoint& p : printed) {
+    json["points"].push_back(
+        {{"fmax_over_fcr", p.fmax_over_fcr},
+         {"cosine_approximation",
+          {{"floquet_max_abs_multiplier", p.floquet_cosine},
+           {"floquet_error_estimate", p.floquet_cosine_error},
+           {"transient_growth_per_revolution", p.transient_cosine_growth},
+           {"transient_growth_error_estimate", p.transient_cosine_error},
+           {"agree", p.cosine_agrees()},
+           {"rkf45_monodromy_max_abs_multiplier", p.rkf45_max_abs_multiplier},
+           {"monodromy_matrix_relative_difference", p.monodromy_difference}}},
+         {"true_pulse",
+          {{"floquet_max_abs_multiplier", p.floquet_pulse},
+           {"floquet_error_estimate", p.floquet_pulse_error},
+           {"floquet_load_error_estimate", p.floquet_pulse_load_error},
+           {"load_harmonics", p.pulse_harmonics},
+           {"load_relative_tail", p.pulse_series_tail},
+           {"transient_growth_per_revolution", p.transient_pulse_growth},
+           {"transient_growth_error_estimate", p.transient_pulse_error},
+           {"agree", p.pulse_agrees()}}}});
+  }
+  return json_text(json);
+}
+
 }  // namespace
 
 Command register_crosscheck(CLI::App& app) {
@@ -125,33 +153,7 @@ Command register_crosscheck(CLI::App& app) {
       return !p.cosine_agrees() || !p.pulse_agrees();
     });
     switch (options->output_format()) {
-      case OutputFormat::json: {
-        Json json = {{"scene", scene.source}, {"speed_rad_s", scene.operation.speed_rad_s},
-                     {"revolutions", *revolutions}, {"points", Json::array()}};
-        for (const CrosscheckPoint& p : printed) {
-          json["points"].push_back(
-              {{"fmax_over_fcr", p.fmax_over_fcr},
-               {"cosine_approximation",
-                {{"floquet_max_abs_multiplier", p.floquet_cosine},
-                 {"floquet_error_estimate", p.floquet_cosine_error},
-                 {"transient_growth_per_revolution", p.transient_cosine_growth},
-                 {"transient_growth_error_estimate", p.transient_cosine_error},
-                 {"agree", p.cosine_agrees()},
-                 {"rkf45_monodromy_max_abs_multiplier", p.rkf45_max_abs_multiplier},
-                 {"monodromy_matrix_relative_difference", p.monodromy_difference}}},
-               {"true_pulse",
-                {{"floquet_max_abs_multiplier", p.floquet_pulse},
-                 {"floquet_error_estimate", p.floquet_pulse_error},
-                 {"floquet_load_error_estimate", p.floquet_pulse_load_error},
-                 {"load_harmonics", p.pulse_harmonics},
-                 {"load_relative_tail", p.pulse_series_tail},
-                 {"transient_growth_per_revolution", p.transient_pulse_growth},
-                 {"transient_growth_error_estimate", p.transient_pulse_error},
-                 {"agree", p.pulse_agrees()}}}});
-        }
-        print_json_answer(json_text(json));
-        break;
-      }
+      case OutputFormat::json: print_json_answer(crosscheck_json(scene, printed, *revolutions)); break;
       case OutputFormat::csv:
         fmt::print("fmax_over_fcr,cosine_floquet,cosine_transient_growth,cosine_rkf45_monodromy,monodromy_relative_difference,"
                    "pulse_floquet,pulse_transient_growth,pulse_harmonics,cosine_agrees,pulse_agrees\n");

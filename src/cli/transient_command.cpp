@@ -352,105 +352,112 @@ void print_table(const Scene& scene, const BladeModel& model, const TransientOpt
     }
 }
 
+// A run whose own checks failed (the integration, or a response that outgrew the model without
+// stopping at the small-deflection range) is a numerical failure, exit 1: no files, no numbers.
+void refuse_failed_run(const Summary& s, const TransientResult& r, const TransientOptions& o, double tolerance,
+                       double revolutions, double length) {
+  const auto failure = transient_failure(s.checks, length);
+  if (!failure || (!failure->integration && r.stopped)) return;
+  const std::string what = o.adaptive ? fmt::format("--tolerance {:g}", tolerance)
+                                      : fmt::format("--step fixed, {} steps per stiffest period", r.fixed.steps_per_period);
+  const std::string advice =
+      failure->integration ? (o.adaptive ? "use a smaller --tolerance"
+                                         : "leave out --steps-per-period (the default keeps the step stable)")
+      : r.growth.omitted.empty()
+          ? fmt::format("the response grows ×{:.6g} per revolution: run fewer --revolutions or a smaller load", r.growth.growth)
+          : "the response outgrows the model: run fewer --revolutions or a smaller load";
+  throw std::runtime_error(
+      fmt::format("transient ({}, {:g} revolutions): {}; {}", what, revolutions, failure->what, advice));
+}
+
+// The command's options as given.
+struct TransientArgs {
+  SceneOptions scene;
+  double revolutions = 10, tolerance = 1e-8, max_deflection = 0.1;
+  std::string step = "adaptive", out = ".", chart = "png", name = "transient", method = "fast";
+  int steps_per_period = 0, samples = 200, threads = 0;
+  bool follower = false, with_error = false;
+};
+
+void add_transient_options(CLI::App& command, TransientArgs& a) {
+  add_scene_options(command, a.scene);
+  command.add_flag("--error-estimate", a.with_error,
+                   "estimate each reported quantity's error against the continuum model (runs the same transient "
+                   "on a richer Ritz model; JSON error_estimate, error_budget)");
+  add_threads_option(command, a.threads);
+  command.add_option("--method", a.method,
+                     "fast (default: exact free flight, Magnus through each contact, checked against RKF45; load.mode "
+                     "= \"force\" without --follower, else rkf45) or rkf45 (the paper's integrator)")
+      ->check(CLI::IsMember({"fast", "rkf45"}));
+  add_number_option(command, "--max-deflection", a.max_deflection, AllowedRange::above(0, 1),
+                    "the small-deflection range: the run stops where the lateral tip deflection exceeds this "
+                    "fraction of the length (default 0.1)");
+  add_number_option(command, "--revolutions", a.revolutions, AllowedRange::above(0, 1e5),
+                    "length of the run in revolutions (default 10)");
+  add_number_option(command, "--tolerance", a.tolerance, AllowedRange::below(1e-13, 1),
+                    "relative tolerance: of RKF45's adaptive steps (default 1e-8) and of the fast method's contact "
+                    "propagators (default 1e-7)");
+  command.add_option("--step", a.step, "adaptive (default) or fixed (the paper's Δt = (1/8)(2π/ω_max), eq. 54)")
+      ->check(CLI::IsMember({"adaptive", "fixed"}));
+  add_integer_option(command, "--steps-per-period", a.steps_per_period, 8, 100000,
+                     "fixed steps per period of the stiffest mode: 8 is the paper's (54); default: the fewest ≥ 8 "
+                     "that keep RKF45's parasitic growth of that mode under 1 % over the run");
+  add_integer_option(command, "--samples-per-rev", a.samples, 8, 100000, "output samples per revolution (default 200)");
+  add_chart_options(command, a.out, a.chart, "directory for NAME.csv, NAME.json and the chart");
+  command.add_option("--name", a.name, "stem of the output files (default transient)");
+  command.add_flag("--follower", a.follower, "the tip load follows the tip slope (F cos ψ axially, −F sin ψ laterally)");
+}
+
 }  // namespace
 
 Command register_transient(CLI::App& app) {
   auto* command = app.add_subcommand("transient", "time response of the blade to the tip rub (RKF45)");
-  auto options = std::make_shared<SceneOptions>();
-  auto revolutions = std::make_shared<double>(10);
-  auto tolerance = std::make_shared<double>(1e-8);
-  auto step = std::make_shared<std::string>("adaptive");
-  auto steps_per_period = std::make_shared<int>(0);
-  auto samples = std::make_shared<int>(200);
-  auto out = std::make_shared<std::string>(".");
-  auto chart = std::make_shared<std::string>("png");
-  auto name = std::make_shared<std::string>("transient");
-  auto follower = std::make_shared<bool>(false);
-  auto method = std::make_shared<std::string>("fast");
-  auto max_deflection = std::make_shared<double>(0.1);
-  auto threads = std::make_shared<int>();
-  auto with_error = std::make_shared<bool>(false);
-  add_scene_options(*command, *options);
-  command->add_flag("--error-estimate", *with_error,
-                    "estimate each reported quantity's error against the continuum model (runs the same transient "
-                    "on a richer Ritz model; JSON error_estimate, error_budget)");
-  add_threads_option(*command, *threads);
-  command->add_option("--method", *method,
-                      "fast (default: exact free flight, Magnus through each contact, checked against RKF45; load.mode "
-                      "= \"force\" without --follower, else rkf45) or rkf45 (the paper's integrator)")
-      ->check(CLI::IsMember({"fast", "rkf45"}));
-  add_number_option(*command, "--max-deflection", *max_deflection, AllowedRange::above(0, 1),
-                    "the small-deflection range: the run stops where the lateral tip deflection exceeds this "
-                    "fraction of the length (default 0.1)");
-  add_number_option(*command, "--revolutions", *revolutions, AllowedRange::above(0, 1e5),
-                    "length of the run in revolutions (default 10)");
-  add_number_option(*command, "--tolerance", *tolerance, AllowedRange::below(1e-13, 1),
-                    "relative tolerance: of RKF45's adaptive steps (default 1e-8) and of the fast method's contact "
-                    "propagators (default 1e-7)");
-  command->add_option("--step", *step, "adaptive (default) or fixed (the paper's Δt = (1/8)(2π/ω_max), eq. 54)")
-      ->check(CLI::IsMember({"adaptive", "fixed"}));
-  add_integer_option(*command, "--steps-per-period", *steps_per_period, 8, 100000,
-                     "fixed steps per period of the stiffest mode: 8 is the paper's (54); default: the fewest ≥ 8 "
-                     "that keep RKF45's parasitic growth of that mode under 1 % over the run");
-  add_integer_option(*command, "--samples-per-rev", *samples, 8, 100000, "output samples per revolution (default 200)");
-  add_chart_options(*command, *out, *chart, "directory for NAME.csv, NAME.json and the chart");
-  command->add_option("--name", *name, "stem of the output files (default transient)");
-  command->add_flag("--follower", *follower, "the tip load follows the tip slope (F cos ψ axially, −F sin ψ laterally)");
+  auto args = std::make_shared<TransientArgs>();
+  add_transient_options(*command, *args);
   return [=] {
-    if (*step == "fixed" && *method == "fast" && command->count("--method") > 0) {
+    if (args->step == "fixed" && args->method == "fast" && command->count("--method") > 0) {
       throw InputError("--step fixed: the fixed step (54) is RKF45's; give --method rkf45 or leave out --method");
     }
-    if (command->count("--steps-per-period") > 0 && *step != "fixed") {
+    if (command->count("--steps-per-period") > 0 && args->step != "fixed") {
       throw InputError(fmt::format("--steps-per-period {}: must be in [8, 100000] (8 is the paper's (54)), with --step "
-                                   "fixed", *steps_per_period));
+                                   "fixed", args->steps_per_period));
     }
-    check_file_stem(*name);
-    check_output_directory("--out", *out);
-    const Scene scene = options->load();
+    check_file_stem(args->name);
+    check_output_directory("--out", args->out);
+    const Scene scene = args->scene.load();
     if (scene.operation.speed_rad_s <= 0) {
       throw InputError("operation.speed_rad_s = 0: the transient is counted in revolutions; give a speed > 0");
     }
     const BladeModel model = assemble_model(scene);
     TransientOptions o;
-    o.revolutions = *revolutions;
-    o.adaptive = *step == "adaptive";
-    o.steps_per_period = *steps_per_period;
-    o.tolerance = *tolerance;
-    if (command->count("--tolerance") > 0) o.contact_tolerance = *tolerance;
-    o.samples_per_revolution = *samples;
-    o.follower = *follower;
-    o.method = *method == "fast" && *step == "adaptive" ? TransientMethod::fast : TransientMethod::rkf45;
-    o.max_lateral_over_length = *max_deflection;
-    o.threads = *threads;
-    const bool for_people = options->output_format() == OutputFormat::table;
+    o.revolutions = args->revolutions;
+    o.adaptive = args->step == "adaptive";
+    o.steps_per_period = args->steps_per_period;
+    o.tolerance = args->tolerance;
+    if (command->count("--tolerance") > 0) o.contact_tolerance = args->tolerance;
+    o.samples_per_revolution = args->samples;
+    o.follower = args->follower;
+    o.method = args->method == "fast" && args->step == "adaptive" ? TransientMethod::fast : TransientMethod::rkf45;
+    o.max_lateral_over_length = args->max_deflection;
+    o.threads = args->threads;
+    const bool for_people = args->scene.output_format() == OutputFormat::table;
     o.progress = progress_reporter("transient: revolutions", for_people);
     check_transient_work(model, scene, o);
     const TransientResult r = run_transient(model, scene, o);
-    const double sample_rate = *samples * scene.operation.speed_rad_s / two_pi;
+    const double sample_rate = args->samples * scene.operation.speed_rad_s / two_pi;
     const Summary s = summarize(r, sample_rate);
-    const auto failure = transient_failure(s.checks, scene.blade.length);
-    if (failure && (failure->integration || !r.stopped)) {
-      // A numerical failure (exit 1), not a result: no files, no numbers.
-      const std::string what = o.adaptive ? fmt::format("--tolerance {:g}", *tolerance)
-                                          : fmt::format("--step fixed, {} steps per stiffest period", r.fixed.steps_per_period);
-      throw std::runtime_error(fmt::format(
-          "transient ({}, {:g} revolutions): {}; {}", what, *revolutions, failure->what,
-          failure->integration ? (o.adaptive ? "use a smaller --tolerance" : "leave out --steps-per-period (the default keeps the step stable)")
-          : r.growth.omitted.empty()
-              ? fmt::format("the response grows ×{:.6g} per revolution: run fewer --revolutions or a smaller load", r.growth.growth)
-              : "the response outgrows the model: run fewer --revolutions or a smaller load"));
-    }
+    refuse_failed_run(s, r, o, args->tolerance, args->revolutions, scene.blade.length);
 
     std::optional<TransientErrorEstimate> error;
-    if (*with_error) error = estimate_transient_error(scene, o, r);
-    const PrintedDigits digits = options->printed_digits();
-    const PrintedRun shown(digits, o.adaptive ? std::optional(*tolerance) : std::nullopt);
+    if (args->with_error) error = estimate_transient_error(scene, o, r);
+    const PrintedDigits digits = args->scene.printed_digits();
+    const PrintedRun shown(digits, o.adaptive ? std::optional(args->tolerance) : std::nullopt);
     const TransientResult printed = as_printed(r, shown);
     const Summary printed_summary = as_printed(s, shown);
     const std::vector<std::string> files =
-        write_outputs(*out, *name, {{*name + ".csv", history_csv(printed)}},
-                      summary_json(scene, model, printed, printed_summary, o.adaptive, true, error), "transient", *chart);
-    switch (options->output_format()) {
+        write_outputs(args->out, args->name, {{args->name + ".csv", history_csv(printed)}},
+                      summary_json(scene, model, printed, printed_summary, o.adaptive, true, error), "transient", args->chart);
+    switch (args->scene.output_format()) {
       case OutputFormat::json:
         print_json_answer(summary_json(scene, model, printed, printed_summary, o.adaptive, false, error));
         break;
