@@ -621,6 +621,10 @@ def judge(case, args, out, r, max_rss_mb):
     """The findings of one run."""
     found = []
     lines = r.err.count("\n")
+    # stderr is captured in a file, under the run's file-size limit too: a line cut at that limit
+    # (as on a full disk) is still the run's one line.
+    if case.file_bytes and len(r.err.encode()) >= case.file_bytes and "\n" not in r.err:
+        lines = 1
     if r.timed_out:
         return ["hang"]
     if r.status < 0:
