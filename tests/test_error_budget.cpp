@@ -205,6 +205,14 @@ TEST_CASE("a blade that diverges beyond the double range within a period is refu
   CHECK_THROWS_AS(analyse_stability(paper_scene({"blade.slenderness=0.3"}), {}), NumericalError);
 }
 
+TEST_CASE("an estimate as large as max|rho| itself is refused, never a verdict", "[budget][parallel]") {
+  // F̄ = 500 on a 4-term blade without its axial field: max|ρ| ≈ 6.5e260 with an estimate of 4.5e273
+  // (the budget's models overflow differently), which printed "stable".
+  const Scene scene = paper_scene({"model.terms=4", "model.axial=false", "load.fmax_over_fcr=500",
+                                   "load.contact_time_rev=0.01", "load.profile=\"rectangular\""});
+  CHECK_THROWS_WITH(analyse_stability(scene, {}), Catch::Contains("is as large as max|ρ| itself"));
+}
+
 TEST_CASE("the first release's wrong answers are right now (issue table)", "[budget][parallel][long_under_sanitizers]") {
   // Each against the value the issue measured with independent integrations.
   CHECK(analyse_stability(paper_scene({"model.terms=40"}), {}).floquet.max_abs_multiplier ==
