@@ -284,9 +284,7 @@ void check_boundary_work(const Scene& scene, const BladeModel& model, const Boun
   const PeriodicSystem sys =
       periodic_system(model, scene, load_series(scene), boundary_reduction(model, scene, request));
   const int k = request.first_approximation, n = sys.kept_modes;
-  const int richer = sys.kept_modes == sys.all_modes
-                         ? n * reference_terms(scene.model.basis, scene.model.terms) / scene.model.terms
-                         : n;
+  const int richer = richer_basis_dofs(scene.model, n, sys.all_modes);
   const bool in_theta = !request.theta_rad_s;
   const double flops = boundary_level_flops(k, n, in_theta) + boundary_level_flops(k + 2, n, in_theta) +
                        boundary_level_flops(k, richer, in_theta);

@@ -324,11 +324,11 @@ std::pair<double, double> window_of(const BoundaryRequest& r, double peak, doubl
   return r.theta_rad_s ? std::make_pair(0.0, 2 * peak) : std::make_pair(theta / 2, 2 * theta);
 }
 
-// The reduction's next step: twice the vectors, or the whole model once they would be as many.
-ReductionSpec doubled(const ReductionSpec& reduction, int dofs) {
-  const int vectors = 2 * reduction.vectors;
-  return reduction_keeps_whole(vectors, dofs) ? ReductionSpec{ReductionKind::none, 0, 0}
-                                              : ReductionSpec{ReductionKind::automatic, vectors, 0};
+// Whether the reduction's vectors are the program's to choose (and raise): the automatic reduction
+// without model.reduction_vectors, and no --cutoff-hz.
+bool vectors_left_to_program(const Scene& scene, const BoundaryRequest& r) {
+  const ReductionSpec& asked = scene.model.reduction;
+  return r.cutoff_hz == 0 && asked.kind == ReductionKind::automatic && asked.vectors == 0;
 }
 
 // k raised from `first` in steps of 2 on one model until every boundary of the window of order
@@ -370,12 +370,13 @@ void compare_whole_at(BoundaryAnalysis& result, BoundarySolver& reduced, Boundar
   for (const EstimatedBoundary& e : result.boundaries) reported.push_back(e.boundary);
   const std::vector<Boundary>& here = reduced.at(k_low);
   const std::vector<int> to_here = match(reported, here, in_load);
-  const std::vector<int> to_whole = match(here, whole.at(k_low), in_load);
+  const std::vector<Boundary>& there = whole.at(k_low);
+  const std::vector<int> to_whole = match(here, there, in_load);
   for (std::size_t i = 0; i < reported.size(); ++i) {
     const int j = to_here[i];
     if (j < 0 || to_whole[j] < 0) continue;
     double& part = result.boundaries[i].budget.reduction;
-    part = std::max(part, 2 * relative_change(here[j], whole.at(k_low)[to_whole[j]], in_load));
+    part = std::max(part, 2 * relative_change(here[j], there[to_whole[j]], in_load));
   }
 }
 
@@ -388,17 +389,17 @@ double boundary_level_flops(int k, int dofs, bool in_theta) {
   return flops;
 }
 
+int richer_basis_dofs(const ModelSpec& spec, int dofs, int all_dofs) {
+  return dofs < all_dofs ? dofs : dofs * reference_terms(spec.basis, spec.terms) / spec.terms;
+}
+
 ReductionSpec boundary_reduction(const BladeModel& model, const Scene& scene, const BoundaryRequest& r) {
   if (r.cutoff_hz > 0) return {ReductionKind::modal, 0, r.cutoff_hz};
-  const ReductionSpec& asked = scene.model.reduction;
-  if (asked.kind != ReductionKind::automatic) return asked;
-  if (asked.vectors > 0) return asked;
+  if (!vectors_left_to_program(scene, r)) return scene.model.reduction;
   const double peak = scene.load.fmax_over_fcr * model.blade.critical_load();
   const double theta = r.theta_rad_s ? *r.theta_rad_s : pulse_train(scene).angular_frequency();
   const double theta_max = r.theta_rad_s ? theta : window_of(r, peak, theta).second;
-  const int vectors = tongue_vectors(model, scene, theta_max, r.max_order);
-  return reduction_keeps_whole(vectors, model.layout.size()) ? ReductionSpec{ReductionKind::none, 0, 0}
-                                                             : ReductionSpec{ReductionKind::automatic, vectors, 0};
+  return automatic_or_whole(tongue_vectors(model, scene, theta_max, r.max_order), model.layout.size());
 }
 
 namespace {
@@ -481,9 +482,7 @@ private:
     const auto levels = [&](int n) {
       return boundary_level_flops(k, n, !in_load_) + boundary_level_flops(k + 2, n, !in_load_);
     };
-    const int richer = reduction.kind == ReductionKind::none
-                           ? dofs * reference_terms(scene_.model.basis, scene_.model.terms) / scene_.model.terms
-                           : dofs;
+    const int richer = richer_basis_dofs(scene_.model, dofs, all);
     double work = spent_ + boundary_level_flops(k + 4, dofs, !in_load_) + levels(richer);
     if (reduction.kind == ReductionKind::automatic) {
       work += levels(std::min(2 * dofs, all)) + boundary_level_flops(std::min(k, whole_model_approximation), all, !in_load_);
@@ -515,11 +514,11 @@ private:
   // low k. Vectors the program chose (not the scene, not --cutoff-hz) are doubled, and k converged
   // again from where it was, while the part is above half the tolerance.
   void raise_reduction(BoundarySolver& solver, BoundaryAnalysis& result) {
-    const ReductionSpec& asked = scene_.model.reduction;
-    const bool chosen = r_.cutoff_hz == 0 && asked.kind == ReductionKind::automatic && asked.vectors == 0;
+    const bool chosen = vectors_left_to_program(scene_, r_);
     BoundarySolver whole = solver_for(model_, load_, {ReductionKind::none, 0, 0});
     for (;;) {
-      const ReductionSpec next = doubled(result.reduction, model_.layout.size());
+      // Twice the vectors, or the whole model once they would be as many.
+      const ReductionSpec next = automatic_or_whole(2 * result.reduction.vectors, model_.layout.size());
       const bool next_whole = next.kind == ReductionKind::none;
       std::optional<BoundarySolver> twice;
       if (!next_whole) twice.emplace(solver_for(model_, load_, next));

@@ -185,10 +185,7 @@ MapCurves chosen_model(const Scene& scene, const BladeModel& model, const CurveW
     if (c.fidelity.tolerance_met) break;
     const bool reducible = c.model.reduction.kind == ReductionKind::automatic;
     if (reducible && b.reduction >= std::max(b.method, b.basis)) {
-      const int doubled = 2 * c.model.reduction.vectors;
-      c.model.reduction = reduction_keeps_whole(doubled, model.layout.size())
-                              ? ReductionSpec{ReductionKind::none, 0, 0}
-                              : ReductionSpec{ReductionKind::automatic, doubled, 0};
+      c.model.reduction = automatic_or_whole(2 * c.model.reduction.vectors, model.layout.size());
     } else if (b.method >= b.basis && c.model.approximation + 2 <= max_curve_approximation) {
       c.model.approximation += 2;
     } else {

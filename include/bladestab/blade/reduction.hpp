@@ -39,6 +39,13 @@ constexpr int default_reduction_vectors = 3;
 // would be as many as the model's dofs.
 constexpr bool reduction_keeps_whole(int vectors, int dofs) { return 3 * vectors >= dofs; }
 
+// The automatic reduction with `vectors` modes per load level, or the whole model (none) where
+// that would keep it whole.
+inline ReductionSpec automatic_or_whole(int vectors, int dofs) {
+  return reduction_keeps_whole(vectors, dofs) ? ReductionSpec{ReductionKind::none, 0, 0}
+                                              : ReductionSpec{ReductionKind::automatic, vectors, 0};
+}
+
 // `min_force_n` is the most compressive tip force of the period (≤ 0), used by `automatic`.
 ReducedSystem reduce(const BladeModel& model, double speed_rad_s, const Eigen::MatrixXd& damping,
                      double min_force_n, const ReductionSpec& spec);

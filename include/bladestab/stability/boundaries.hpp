@@ -83,6 +83,11 @@ struct BoundaryAnalysis {
 // doubled by the linearization in θ (in_theta), at dgeev's ~26 N³ flops.
 double boundary_level_flops(int k, int dofs, bool in_theta);
 
+// Dofs of the richer-basis model the basis part is measured against, for a model of `dofs` of its
+// `all_dofs`: a reduced model keeps its size (the same vectors, or the same cut-off), the whole
+// Ritz model grows with the terms (reference_terms).
+int richer_basis_dofs(const ModelSpec& spec, int dofs, int all_dofs);
+
 // The reduction the boundaries start from: modes below request.cutoff_hz if set, else the scene's
 // model.reduction; where that leaves the vectors to the program, the automatic reduction with
 // tongue_vectors for the window's highest θ (or the request's θ) and max_order.
