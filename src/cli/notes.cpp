@@ -13,8 +13,8 @@ void print_stderr_line(const char* kind, const std::string& message) {
   constexpr std::size_t longest = 2000;
   std::string line = one_line(message);
   if (line.size() > longest) line = line.substr(0, longest) + "…";
-  // Written as it goes: a stderr that cannot take the line (a full disk, a file-size limit) has
-  // nowhere to report that, and fmt::print would throw from the run's last handler.
+  // fwrite, its failure ignored: a stderr that cannot take the line (a full disk, a file-size
+  // limit) has nowhere to report that, and fmt::print would throw from the run's last handler.
   const std::string text = fmt::format("bladestab: {}: {}\n", kind, line);
   std::fwrite(text.data(), 1, text.size(), stderr);
 }
