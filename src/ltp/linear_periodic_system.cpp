@@ -50,11 +50,12 @@ LinearPeriodicSystem modal_periodic_system(ModalForm form, std::vector<std::comp
 }
 
 double fourier_sum(const std::vector<std::complex<double>>& coefficients, double angular_frequency, double t) {
-  double f = coefficients.at(0).real();
-  for (std::size_t m = 1; m < coefficients.size(); ++m) {
-    f += 2 * std::real(coefficients[m] * std::exp(std::complex<double>(0, m * angular_frequency * t)));
-  }
-  return f;
+  // Horner's rule in z = e^{iθt}: Σ_{m≥1} f_m z^m = z(f₁ + z(f₂ + …)), one exponential per call.
+  const double f0 = coefficients.at(0).real();
+  const std::complex<double> z = std::polar(1.0, angular_frequency * t);
+  std::complex<double> sum = 0;
+  for (std::size_t m = coefficients.size() - 1; m >= 1; --m) sum = z * (coefficients[m] + sum);
+  return f0 + 2 * sum.real();
 }
 
 }  // namespace bladestab
