@@ -102,25 +102,19 @@ NumericalError too_many_steps(const LinearPeriodicSystem& sys) {
 // Doubles the Magnus steps from 1/64 of the count where h‖A‖ ≤ 2 until StepDoubling accepts the
 // multiplier sets (on the paper blade 128 steps are within 1e-8 where that condition asks for
 // 512: the exponential takes A₀'s stiff modes exactly). A level that overflows restarts the
-// ladder's evidence; two overflows in a row from the safe count on are growth, not a too-long step.
+// ladder's evidence (StepDoubling::overflowed).
 Attempt refine_steps(const LinearPeriodicSystem& sys, double tol, LevelCounter& counter) {
   const int safe = minimum_magnus_steps(sys);
   if (safe > max_magnus_steps) throw too_many_steps(sys);
   StepDoubling ladder(std::max(8, safe / 64), max_magnus_steps, safe);
   counter.plan(ladder.levels() + 1);  // and the checks after
   Eigen::VectorXcd previous;
-  bool overflowed_before = false;
   for (int steps = ladder.first(); steps <= ladder.last(); steps *= 2) {
     Eigen::MatrixXd phi = magnus_monodromy(sys, steps);
     counter.level_done();
     if (!phi.allFinite()) {
-      if (steps > safe && overflowed_before) {
-        throw NumericalError("the monodromy matrix overflows the double range (max|ρ| > 1e308): the system grows "
-                             "past it within one period");
-      }
-      overflowed_before = steps >= safe;
+      if (ladder.overflowed(steps)) throw monodromy_overflow();
       previous.resize(0);
-      ladder.start();
       continue;
     }
     const Eigen::VectorXcd current = sorted_eigenvalues(phi);

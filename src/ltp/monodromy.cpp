@@ -20,6 +20,11 @@ Eigen::MatrixXd magnus_monodromy(const LinearPeriodicSystem& sys, int steps) {
   return magnus_propagator(sys.A0, sys.B, [&sys](double t) { return sys.variation(t); }, 0, sys.period(), steps);
 }
 
+NumericalError monodromy_overflow() {
+  return NumericalError("the monodromy matrix overflows the double range (max|ρ| > 1e308): the system grows past it "
+                        "within one period");
+}
+
 Eigen::VectorXcd sorted_eigenvalues(const Eigen::MatrixXd& phi) {
   Eigen::EigenSolver<Eigen::MatrixXd> eig(phi, false);
   if (eig.info() != Eigen::Success) throw NumericalError("the eigenvalues of the monodromy matrix did not converge");

@@ -79,10 +79,15 @@ PulseMonodromy exact_pulse_monodromy(const LinearPeriodicSystem& sys, const Peri
   Eigen::VectorXcd previous;
   for (int steps = first; steps <= ladder.last(); steps *= 2) {
     result.monodromy = pulse_monodromy(flight, sys, pulse, steps);
-    result.multipliers = finite_multipliers(result.monodromy);
     result.steps = steps;
     if (progress) progress(++done, ladder.levels());
-    if (steps > first) {
+    if (!result.monodromy.allFinite()) {
+      if (ladder.overflowed(steps)) throw monodromy_overflow();
+      previous.resize(0);
+      continue;
+    }
+    result.multipliers = sorted_eigenvalues(result.monodromy);
+    if (previous.size() > 0) {
       const double distance = multiplier_set_distance(result.multipliers, previous);
       const double allowed = tolerance * std::max(1.0, result.multipliers.cwiseAbs().maxCoeff());
       if (const std::optional<double> error = ladder.judge(steps, distance, allowed)) {

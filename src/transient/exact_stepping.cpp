@@ -171,7 +171,11 @@ ExactStepper::Integrated ExactStepper::integrate_contact(double start, double en
     Eigen::MatrixXd map = magnus_propagator(A_free_, B_, load, start, end, steps);
     result.steps += steps;
     if (!map.allFinite()) {
-      ladder.start();
+      if (ladder.overflowed(steps)) {
+        throw NumericalError(fmt::format("exact stepping: the propagator of the contact piece [{:.6g}, {:.6g}] s "
+                                         "overflows the double range: the state grows past it within the contact",
+                                         start, end));
+      }
       previous.resize(0, 0);
       continue;
     }

@@ -3,6 +3,8 @@
 // it: its eigenvalues, the Floquet multipliers ρ (docs/theory.md §4).
 #include <Eigen/Dense>
 
+#include "bladestab/base/numerical_error.hpp"
+
 #include "bladestab/ltp/linear_periodic_system.hpp"
 
 namespace bladestab {
@@ -15,6 +17,9 @@ Eigen::VectorXcd monodromy_multipliers(const LinearPeriodicSystem& system, int s
 Eigen::MatrixXd rkf45_monodromy(const LinearPeriodicSystem& system, double rtol);
 // Magnus steps per period below which the step's h‖A‖ exceeds 2 (the series would diverge).
 int minimum_magnus_steps(const LinearPeriodicSystem& system);
+// The error of a monodromy that overflows at step counts that are short enough (StepDoubling::
+// overflowed): max|ρ| > 1e308, the system grows past the double range within one period.
+NumericalError monodromy_overflow();
 // Eigenvalues of Φ sorted by |ρ|, largest first; NumericalError if they do not converge.
 Eigen::VectorXcd sorted_eigenvalues(const Eigen::MatrixXd& phi);
 // Largest distance |ρ_a − ρ_b| between two multiplier sets of equal size, each ρ matched to its
