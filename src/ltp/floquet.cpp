@@ -77,8 +77,6 @@ bool refine_harmonics(const LinearPeriodicSystem& sys, Method method, int start,
   return false;
 }
 
-constexpr int max_magnus_steps = 1 << 17;
-
 // Why a period needs more than max_magnus_steps steps (h‖A‖ ≤ 2 asks ‖A‖T/2 of them): in modal
 // form, either the period is too long even for the slowest mode (pulses too slow for a Floquet
 // analysis: a speed range from 0 to 1e-300 rad/s gives θ ≈ 5e-307 rad/s) or the stiffest mode is

@@ -54,12 +54,13 @@ struct VariantRho {
 // max|ρ| of a variant of the scene's system and its error: Magnus levels from 1/16 of the count
 // where h‖A‖ ≤ 2 (minimum_magnus_steps), doubled until StepDoubling accepts max|ρ| within `tol`.
 // A variant independent of the answer runs beside it; the budget's `method` part counts the
-// answer's own discretization once. Where the ladder does not settle within four levels, and for
-// the exact train, the variant takes the monodromy's own refinement to `tol`.
+// answer's own discretization once. Where the ladder does not settle within four levels or would
+// pass max_magnus_steps, and for the exact train, the variant takes the monodromy's own refinement
+// to `tol` (which refuses a period that needs more).
 VariantRho variant_max_rho(const Scene& scene, const Fidelity& f, double tol) {
   const PeriodicSystem sys = system_at(scene, f);
-  if (!f.load.exact_pulse) {
-    const int safe = minimum_magnus_steps(sys), first = std::max(8, safe / 16);
+  const int safe = minimum_magnus_steps(sys), first = std::max(8, safe / 16);
+  if (!f.load.exact_pulse && 8 * first <= max_magnus_steps) {
     StepDoubling ladder(first, 8 * first, safe);
     std::optional<double> previous;
     for (int steps = first; steps <= ladder.last(); steps *= 2) {

@@ -15,6 +15,8 @@ Eigen::MatrixXd magnus_monodromy(const LinearPeriodicSystem& system, int steps);
 Eigen::VectorXcd monodromy_multipliers(const LinearPeriodicSystem& system, int steps);
 // Φ(T) integrated by RKF45 at relative tolerance `rtol` (all fundamental solutions at once).
 Eigen::MatrixXd rkf45_monodromy(const LinearPeriodicSystem& system, double rtol);
+// The most Magnus steps per period any monodromy takes (floquet.hpp refuses a system that needs more).
+inline constexpr int max_magnus_steps = 1 << 17;
 // Magnus steps per period below which the step's h‖A‖ exceeds 2 (the series would diverge).
 int minimum_magnus_steps(const LinearPeriodicSystem& system);
 // The error of a monodromy that overflows at step counts that are short enough (StepDoubling::
