@@ -74,6 +74,14 @@ Json refinement_json(const StabilityMap& m) {
           {"y_lo", m.grid_fbar.front()}, {"y_hi", m.grid_fbar.back()}, {"cells", cells}};
 }
 
+// Why the curves' estimate is above --tolerance, after it: "" when it is not.
+std::string curves_unmet(const CurveFidelity& f, double tolerance) {
+  if (f.tolerance_met) return "";
+  if (!f.work_limited) return fmt::format(" — above --tolerance {}", tolerance);
+  return fmt::format(" — above --tolerance {}: a richer curve model's check would pass the work --max-seconds {:g} "
+                     "allows", tolerance, work_limits().seconds);
+}
+
 Json curve_fidelity_json(const StabilityMap& m, const PrintedDigits& digits) {
   const CurveFidelity& f = m.curve_fidelity;
   Json json = {{"reduction", to_string(f.reduction.kind)},
@@ -81,6 +89,7 @@ Json curve_fidelity_json(const StabilityMap& m, const PrintedDigits& digits) {
                {"approximation", f.approximation},
                {"checked_at", f.checked_at},
                {"tolerance_met", f.tolerance_met},
+               {"work_limited", f.work_limited},
                {"drawn", f.drawn},
                {"error_measure", m.plane == MapPlane::theta_fmax ? "distance in θ over the window's θ span"
                                                                   : "distance in F̄ over the window's F̄ span"}};
@@ -289,7 +298,7 @@ void print_map_table(const Scene& scene, const BladeModel& model, const std::str
                m.curves.size(), f.approximation, to_string(f.reduction.kind),
                f.reduction.kind == ReductionKind::automatic ? fmt::format(", {} vectors per load level", f.reduction.vectors)
                                                             : "",
-               describe_error_budget(f.budget), f.tolerance_met ? "" : fmt::format(" — above --tolerance {}", o.tolerance));
+               describe_error_budget(f.budget), curves_unmet(f, o.tolerance));
   }
   const ShadingFidelity& sf = m.shading_fidelity;
   fmt::print("shading   {} of {} grid points unstable; refined to {} × {} cells with {} Floquet points; "
@@ -363,6 +372,7 @@ Command register_map(CLI::App& app) {
     o.tolerance = *tolerance;
     std::tie(o.resolution_x, o.resolution_y) = parse_resolution(*resolution);
     o.threads = *threads;
+    o.work_flops = work_limits().seconds * dense_flops_per_second;
     check_output_directory("--out", *out);
     const Scene scene = options->load();
     o.engine_order = *order > 0 ? *order : scene.load.pulses_per_rev;

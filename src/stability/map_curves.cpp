@@ -164,6 +164,19 @@ CurveFidelity check_curves(const Scene& scene, const CurveWindow& w, const Curve
   return f;
 }
 
+// Flops of check_curves at model m, counting every variant on each of its three lines as solved
+// (the cache spares some): boundary_level_flops at each model's dofs, in θ (the larger).
+double check_flops(const CurveModel& m, const BladeModel& richer) {
+  const int all = static_cast<int>(m.model->layout.size());
+  const auto level = [](int k, int dofs) { return boundary_level_flops(k, dofs, true); };
+  const bool reduced = m.reduction.kind == ReductionKind::automatic;
+  const int dofs = reduced ? std::min(m.reduction.vectors, all) : all;
+  double flops = 2 * level(m.approximation, dofs) + level(m.approximation + 2, dofs) +
+                 level(m.approximation, reduced ? dofs : static_cast<int>(richer.layout.size()));
+  if (reduced) flops += level(std::min(m.approximation, 4), all) + level(m.approximation, std::min(2 * dofs, all));
+  return 3 * flops;
+}
+
 // The curves' model: the window's reduction at the map's harmonics, raised part by part (the
 // reduction's vectors, then the harmonics) while the curves' check misses the tolerance. A pulse's
 // own series (not the cosine approximation) puts many harmonics into the balance, and its
@@ -179,18 +192,26 @@ MapCurves chosen_model(const Scene& scene, const BladeModel& model, const CurveW
   richer_spec.terms = reference_terms(richer_spec.basis, richer_spec.terms);
   const BladeModel richer = assemble_model(scene, richer_spec);
   c.fidelity.drawn = cosine_load;
+  double spent = 0;
   while (c.fidelity.drawn) {
     c.fidelity = check_curves(scene, window, c.model, richer, o, cache);
+    spent += check_flops(c.model, richer);
     const ErrorBudget& b = c.fidelity.budget;
     if (c.fidelity.tolerance_met) break;
+    CurveModel next = c.model;
     const bool reducible = c.model.reduction.kind == ReductionKind::automatic;
     if (reducible && b.reduction >= std::max(b.method, b.basis)) {
-      c.model.reduction = automatic_or_whole(2 * c.model.reduction.vectors, model.layout.size());
+      next.reduction = automatic_or_whole(2 * c.model.reduction.vectors, model.layout.size());
     } else if (b.method >= b.basis && c.model.approximation + 2 <= max_curve_approximation) {
-      c.model.approximation += 2;
+      next.approximation += 2;
     } else {
       break;  // the basis is the scene's (model.terms): reported, not raised
     }
+    if (spent + check_flops(next, richer) > o.work_flops) {
+      c.fidelity.work_limited = true;
+      break;
+    }
+    c.model = next;
   }
   return c;
 }

@@ -9,6 +9,7 @@
 // traced boundary point, until the cells reach the requested resolution.
 #include <functional>
 #include <optional>
+#include <limits>
 #include <vector>
 
 #include <Eigen/Dense>
@@ -33,6 +34,10 @@ struct MapOptions {
   double tolerance = 1e-3;                // on max|ρ| of the shading and on the curves (CurveFidelity)
   int resolution_x = 400, resolution_y = 200;  // effective cells of the refined shading (at least)
   int threads = 0;  // worker threads (0: one per core)
+  // The work the curves' fidelity may take, in dense eigensolver flops (boundary_level_flops): the
+  // curves' model is not raised to a level whose check would pass it (CurveFidelity::work_limited).
+  // Deterministic, unlike a clock.
+  double work_flops = std::numeric_limits<double>::infinity();
 };
 
 // One evaluated shading point.
@@ -64,6 +69,7 @@ struct CurveFidelity {
   std::vector<double> checked_at; // the trace values (F̄ or Ω) of the lines checked
   ErrorBudget budget;
   bool tolerance_met = false;     // budget.total() ≤ the map's tolerance
+  bool work_limited = false;      // not raised further: the next level's check passes MapOptions::work_flops
   bool drawn = true;              // false for a pulse's own series: no curves (stability_map.cpp)
 };
 
