@@ -10,6 +10,7 @@
 // compare ρ₁ + ρ₂ with ±2. With damping, y = e^{−cτ/2} z turns the equation into Mathieu's with
 // a − c²/4, and the multipliers scale by e^{−cπ/2}.
 #include <cmath>
+#include <complex>
 #include <functional>
 #include <vector>
 
@@ -197,6 +198,44 @@ TEST_CASE("LTP kernels: a pulsed coefficient's monodromy is the product of the p
   CHECK((p.monodromy - expected).cwiseAbs().maxCoeff() <= 1e-11);
 }
 
+TEST_CASE("LTP kernels: a long Fourier series sums to its closed form", "[ltp]") {
+  // f_m = r^m e^{imφ} for m = 0..M: Σ_{|m|≤M} f_m e^{imθt} = 1 + 2 Re[z(1 − z^M)/(1 − z)] with
+  // z = r e^{i(φ+θt)}, evaluated in 40 digits (mpmath) for r = 0.999, φ = 0.3, θ = 314, M = 3000.
+  // Within 1e-12 absolute: 5e-16 of Σ|f_m| ≈ 2000, the rounding of the terms' sum.
+  const double r = 0.999, phase = 0.3, theta = 314.0;
+  std::vector<std::complex<double>> coefficients;
+  for (int m = 0; m <= 3000; ++m) coefficients.push_back(std::polar(std::pow(r, m), m * phase));
+  const std::pair<double, double> expected[] = {{0.0, 0.35382047180081983439},
+                                                 {1e-3, 0.16523595494187954744},
+                                                 {0.0123, -0.042144409596079586026},
+                                                 {7.5, 0.09914185794258190093}};
+  for (const auto& [t, sum] : expected) {
+    CAPTURE(t);
+    CHECK(std::abs(fourier_sum(coefficients, theta, t) - sum) <= 1e-12);
+  }
+}
+
+TEST_CASE("LTP kernels: a pulse whose growth passes the double range stops as overflow at the safe count",
+          "[ltp][pulse]") {
+  // y'' + (1 + f) y = 0 with f = −1e6 on [0, 0.8) of each period 2: during the pulse y grows like
+  // e^{√(1e6 − 1) t}, e^{800} ≈ 1e347 > 1e308 over it, at every step count (f is constant, so each
+  // Magnus level is exact). The ladder must stop there, not climb to its last level.
+  LinearPeriodicSystem system = mathieu(1, 0);
+  system.angular_frequency = pi;
+  system.coefficients = {0.0};
+  const PeriodicPulse pulse{2.0, 0.8, [](double) { return -1e6; }, {}};
+  CHECK_THROWS_WITH(exact_pulse_monodromy(system, pulse, 1e-8), Catch::Contains("overflows the double range"));
+  // Over 0.3 the same pulse stays finite (e^{300}) and converges. Φ = R(1.7) H(0.3) with R the unit
+  // rotation and H = [[ch, sh/s], [s sh, ch]] (s = √(1e6 − 1), x = 0.3 s); det Φ = 1, so
+  // max ρ = tr Φ (to e^{−2x}) = 2 cos(1.7) ch + sin(1.7) sh (s − 1/s), whose log is
+  // x + ln((2 cos 1.7 + sin 1.7 (s − 1/s)) / 2).
+  const PeriodicPulse shorter{2.0, 0.3, [](double) { return -1e6; }, {}};
+  const PulseMonodromy p = exact_pulse_monodromy(system, shorter, 1e-8);
+  const double s = std::sqrt(1e6 - 1), x = 0.3 * s;
+  const double expected = x + std::log((2 * std::cos(1.7) + std::sin(1.7) * (s - 1 / s)) / 2);
+  CHECK(std::log(p.multipliers.cwiseAbs().maxCoeff()) == Approx(expected).epsilon(1e-10));
+}
+
 TEST_CASE("step doubling: a sixth-order ladder is accepted with the bound Δ/15 only on evidence", "[ltp]") {
   // Levels x_N = x* + E N⁻⁶: Δ_N = 63 E N⁻⁶ and the error of level N is E N⁻⁶ = Δ_N/63 ≤ Δ_N/15.
   const double E = 1e6;
@@ -225,6 +264,17 @@ TEST_CASE("step doubling: a sixth-order ladder is accepted with the bound Δ/15 
     CHECK_FALSE(restarted.judge(16, 5e-5, 1e-6));
     restarted.start();
     CHECK_FALSE(restarted.judge(32, 5e-7, 1e-6));  // r would be 100, but the evidence was forgotten
+  }
+  SECTION("an overflow restarts the evidence; two in a row from the safe count on are growth") {
+    StepDoubling ladder(8, 1 << 17, 32);
+    CHECK_FALSE(ladder.overflowed(8));
+    CHECK_FALSE(ladder.overflowed(16));  // too long a step, twice: not yet evidence of growth
+    CHECK_FALSE(ladder.overflowed(32));
+    CHECK(ladder.overflowed(64));
+    StepDoubling recovered(8, 1 << 17, 32);
+    CHECK_FALSE(recovered.overflowed(32));
+    CHECK_FALSE(recovered.judge(64, 1.0, 1e-6));  // a finite level between the two
+    CHECK_FALSE(recovered.overflowed(128));
   }
   SECTION("the error is never below the floor and NaN is never accepted") {
     StepDoubling fresh(8, 1 << 17, 16);
