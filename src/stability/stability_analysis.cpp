@@ -144,11 +144,19 @@ ErrorBudget budget_of(const FloquetResult& r, BudgetVariants& v, const std::func
   return b;
 }
 
+// What fixes the reduction: the scene's cut-off or vectors, or, for vectors left to the program,
+// the automatic reduction's richest level (its check, twice the vectors, would be the whole model).
+std::string reduction_fixed_by(const ReductionSpec& r, bool vectors_free, int all_modes) {
+  if (r.kind == ReductionKind::modal) return "the modal cut-off (--cutoff-hz or model.cutoff_hz)";
+  if (!vectors_free) return "model.reduction_vectors";
+  return fmt::format("the automatic reduction's richest level, {} vectors of {} modes (model.reduction = \"none\" "
+                     "takes the whole model)", r.vectors, all_modes);
+}
+
 // The part of a budget above the tolerance that the analysis may not lower, in words.
-std::string fixed_part(const ErrorBudget& b, double scale) {
+std::string fixed_part(const ErrorBudget& b, double scale, const std::string& reduction_fixed_by) {
   if (b.reduction >= std::max(b.load, b.method)) {
-    return fmt::format("its reduction part {:.2g} is fixed by the modal cut-off or model.reduction_vectors",
-                       b.reduction / scale);
+    return fmt::format("its reduction part {:.2g} is fixed by {}", b.reduction / scale, reduction_fixed_by);
   }
   if (b.load >= b.method) {
     return fmt::format("its load part {:.2g} is fixed by the scene's load series (load.approximation)", b.load / scale);
@@ -218,7 +226,9 @@ StabilityAnswer analyse_stability(const Scene& scene, const StabilityRequest& re
       a.tolerance_met = false;
       a.tolerance_unmet = b.basis > allowed ? tolerance_not_met(tol, f.model, b.basis / scale).what()
                                             : fmt::format("tolerance {}: not met (estimated error {:.2g}): {}", tol,
-                                                          a.budget.total() / scale, fixed_part(b, scale));
+                                                          a.budget.total() / scale,
+                                                          fixed_part(b, scale, reduction_fixed_by(f.reduction, vectors_free,
+                                                                                                  sys.all_modes)));
       break;
     }
   }
