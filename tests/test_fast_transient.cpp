@@ -76,6 +76,17 @@ TEST_CASE("fast transient: one pulse in a period of many revolutions is RKF45's 
   CHECK(history_difference(fast, reference) < 1e-9);
 }
 
+TEST_CASE("fast transient: a fractional run's samples are RKF45's, the last at its end", "[transient][fast]") {
+  // 0.3 of a revolution at 200 samples a revolution: samples 0..60, the 60th at 0.3 T exactly
+  // (60 T/200 rounds past 0.3 T; RKF45, which ends at 0.3 T, once dropped it).
+  const Scene scene = paper_scene({"model.terms=4"});
+  const TransientResult fast = run(scene, TransientMethod::fast, 1e-10, 0.3);
+  const TransientResult reference = run(scene, TransientMethod::rkf45, 1e-10, 0.3);
+  REQUIRE(reference.samples.size() == 61);
+  CHECK(reference.samples.back().time_s == Approx(0.3 * 2 * 3.14159265358979323846 / 300).epsilon(1e-14));
+  CHECK(history_difference(fast, reference) < 1e-7);
+}
+
 TEST_CASE("fast transient: a run stopped within the self-check's stretch is checked to where it stopped",
           "[transient][fast]") {
   // A thick blade (slenderness 0.1) under F̄ = 5 leaves the elastic range within 0.005 revolution,

@@ -56,8 +56,10 @@ double Recorder::revolutions_at(double t) const {
 
 std::vector<double> output_times(int r, double a, double b, double revolution, int per_rev) {
   std::vector<double> outputs;
+  // A sample within rounding past b (the end of a fractional run) is taken at b, where the
+  // integration ends.
   for (int k = (r == 0 ? 0 : 1); k <= per_rev && a + k * revolution / per_rev <= b * (1 + 1e-12); ++k) {
-    outputs.push_back(k == per_rev ? b : a + k * revolution / per_rev);
+    outputs.push_back(k == per_rev ? b : std::min(b, a + k * revolution / per_rev));
   }
   return outputs;
 }
