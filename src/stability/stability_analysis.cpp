@@ -57,13 +57,18 @@ struct VariantRho {
 // answer's own discretization once. Where the ladder does not settle within four levels or would
 // pass max_magnus_steps, and for the exact train, the variant takes the monodromy's own refinement
 // to `tol` (which refuses a period that needs more).
-VariantRho variant_max_rho(const Scene& scene, const Fidelity& f, double tol) {
+VariantRho variant_max_rho(const Scene& scene, const Fidelity& f, double tol, const Cancellation& stop) {
+  // Polled at every level: a variant of an answer that failed stops there (WorkCancelled).
+  const auto poll = [&stop](int, int) {
+    if (stop.cancelled()) throw WorkCancelled();
+  };
   const PeriodicSystem sys = system_at(scene, f);
   const int safe = minimum_magnus_steps(sys), first = std::max(8, safe / 16);
   if (!f.load.exact_pulse && 8 * first <= max_magnus_steps) {
     StepDoubling ladder(first, 8 * first, safe);
     std::optional<double> previous;
     for (int steps = first; steps <= ladder.last(); steps *= 2) {
+      poll(0, 0);
       const Eigen::MatrixXd phi = magnus_monodromy(sys, steps);
       if (!phi.allFinite()) break;
       const double rho = phi.eigenvalues().cwiseAbs().maxCoeff();
@@ -74,14 +79,22 @@ VariantRho variant_max_rho(const Scene& scene, const Fidelity& f, double tol) {
       previous = rho;
     }
   }
-  const FloquetResult r = floquet_of(scene, f, sys, {FloquetMethod::monodromy, 0, tol, false});
+  const FloquetResult r = floquet_of(scene, f, sys, {FloquetMethod::monodromy, 0, tol, false, poll});
   return {r.max_abs_multiplier, r.error_estimate};
 }
 
 // The variants of the budget, each differing from `f` in one part only. They do not depend on the
 // answer, so they run beside it (WorkPool), the richer reduction first: its model is the largest.
+// An answer that fails (its exception unwinding past the variants) cancels them: the running ones
+// stop at their next level instead of finishing work nobody takes.
 struct BudgetVariants {
   static constexpr std::size_t none = static_cast<std::size_t>(-1);
+  BudgetVariants() = default;
+  BudgetVariants(BudgetVariants&&) = default;
+  ~BudgetVariants() {
+    if (stop) stop->cancel();
+  }
+  std::unique_ptr<Cancellation> stop = std::make_unique<Cancellation>();
   std::unique_ptr<WorkPool<VariantRho>> tasks;
   std::size_t basis = none, reduction = none, load = none;
   double basis_factor = 1, reduction_factor = 1;
@@ -122,8 +135,9 @@ BudgetVariants start_variants(const Scene& scene, const Fidelity& f, double tol,
   }
   const std::size_t count = variants.size();
   v.tasks = std::make_unique<WorkPool<VariantRho>>(
-      threads, count, [&scene, variant_tol, variants = std::move(variants)](std::size_t i) {
-        return variant_max_rho(scene, variants[i], variant_tol);
+      threads, count,
+      [&scene, variant_tol, variants = std::move(variants), &stop = *v.stop](std::size_t i) {
+        return variant_max_rho(scene, variants[i], variant_tol, stop);
       });
   return v;
 }
