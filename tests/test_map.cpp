@@ -371,3 +371,22 @@ TEST_CASE("theta-plane map of the paper blade: curves followed through their cha
   CHECK(checked >= 40);
   CHECK(sides_checked >= 20);
 }
+
+TEST_CASE("map: a curve model the work limit cannot raise is drawn at its level with its estimate, marked",
+          "[map][parallel][long_under_sanitizers]") {
+  // --tolerance 1e-9 asks for more harmonics or vectors than the first level's; a budget of one flop
+  // allows no further level. The curves stay at --approximation's k, drawn, with an estimate above
+  // the tolerance and work_limited set (the table and JSON say why the tolerance is not met).
+  const Scene scene = paper_scene({"model.terms=8"});
+  MapOptions o = theta_plane(linspace(100, 1000, 3), linspace(0, 10, 3), linspace(0, 10, 11));
+  o.resolution_x = 2;
+  o.resolution_y = 2;
+  o.tolerance = 1e-9;
+  o.work_flops = 1;
+  const StabilityMap limited = stability_map(scene, o);
+  CHECK(limited.curve_fidelity.work_limited);
+  CHECK_FALSE(limited.curve_fidelity.tolerance_met);
+  CHECK(limited.curve_fidelity.approximation == o.approximation);
+  CHECK(limited.curve_fidelity.budget.total() > o.tolerance);
+  CHECK(limited.curves.size() >= 4);
+}
