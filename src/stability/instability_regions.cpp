@@ -8,6 +8,7 @@
 #include "bladestab/blade/blade_properties.hpp"
 #include "bladestab/base/constants.hpp"
 #include "bladestab/stability/stability_analysis.hpp"
+#include "support/work_pool.hpp"
 
 namespace bladestab {
 
@@ -36,7 +37,9 @@ std::vector<InstabilityRegion> instability_regions(const Scene& scene, const Bou
     const std::complex<double> rho = a.floquet.multipliers(0);
     return !a.stable && std::abs(rho.imag()) <= 1e-6 * std::abs(rho) && rho.real() * multiplier > 0;
   };
-  std::vector<InstabilityRegion> regions;
+  // Every interval between neighbouring boundaries of a sign (the window closing the first and
+  // last) is a candidate; their verdicts are independent and run side by side.
+  std::vector<InstabilityRegion> candidates;
   for (auto& [multiplier, bounds] : by_sign) {
     std::sort(bounds.begin(), bounds.end(), [&](const auto& x, const auto& y) { return value(x.first) < value(y.first); });
     // Interval k lies between boundary k − 1 and boundary k; the window closes the first and last.
@@ -47,7 +50,6 @@ std::vector<InstabilityRegion> instability_regions(const Scene& scene, const Bou
       const double hi = above ? value(*above) : analysis.window.second;
       if (!(hi > lo) || (in_load && hi <= 0)) continue;
       InstabilityRegion r;
-      if (!unstable_at(0.5 * (lo + hi), multiplier, r.middle_max_abs_multiplier)) continue;
       r.lower = lo;
       r.upper = hi;
       r.lower_open = below == nullptr;
@@ -60,8 +62,19 @@ std::vector<InstabilityRegion> instability_regions(const Scene& scene, const Bou
       const Boundary* named = below && above ? (below->order >= above->order ? below : above) : below ? below : above;
       r.mode = named ? named->mode : 0;
       r.order = named ? named->order : 0;
-      regions.push_back(r);
+      candidates.push_back(r);
     }
+  }
+  const std::vector<double> middle_max_abs = run_indexed(candidates.size(), request.threads, [&](std::size_t i) {
+    double max_abs = 0;
+    const InstabilityRegion& r = candidates[i];
+    return unstable_at(0.5 * (r.lower + r.upper), r.multiplier, max_abs) ? max_abs : -1.0;
+  });
+  std::vector<InstabilityRegion> regions;
+  for (std::size_t i = 0; i < candidates.size(); ++i) {
+    if (middle_max_abs[i] < 0) continue;
+    regions.push_back(candidates[i]);
+    regions.back().middle_max_abs_multiplier = middle_max_abs[i];
   }
   std::sort(regions.begin(), regions.end(),
             [](const InstabilityRegion& a, const InstabilityRegion& b) { return a.lower < b.lower; });

@@ -168,9 +168,11 @@ std::string reduction_fixed_by(const ReductionSpec& r, bool vectors_free, int al
 }
 
 // The part of a budget above the tolerance that the analysis may not lower, in words.
-std::string fixed_part(const ErrorBudget& b, double scale, const std::string& reduction_fixed_by) {
+std::string fixed_part(const ErrorBudget& b, double scale, const Fidelity& f, bool vectors_free,
+                       const PeriodicSystem& sys) {
   if (b.reduction >= std::max(b.load, b.method)) {
-    return fmt::format("its reduction part {:.2g} is fixed by {}", b.reduction / scale, reduction_fixed_by);
+    return fmt::format("its reduction part {:.2g} is fixed by {}", b.reduction / scale,
+                       reduction_fixed_by(f.reduction, vectors_free, sys.all_modes));
   }
   if (b.load >= b.method) {
     return fmt::format("its load part {:.2g} is fixed by the scene's load series (load.approximation)", b.load / scale);
@@ -240,9 +242,7 @@ StabilityAnswer analyse_stability(const Scene& scene, const StabilityRequest& re
       a.tolerance_met = false;
       a.tolerance_unmet = b.basis > allowed ? tolerance_not_met(tol, f.model, b.basis / scale).what()
                                             : fmt::format("tolerance {}: not met (estimated error {:.2g}): {}", tol,
-                                                          a.budget.total() / scale,
-                                                          fixed_part(b, scale, reduction_fixed_by(f.reduction, vectors_free,
-                                                                                                  sys.all_modes)));
+                                                          b.total() / scale, fixed_part(b, scale, f, vectors_free, sys));
       break;
     }
   }
