@@ -23,7 +23,6 @@ int StepDoubling::levels() const {
 std::optional<double> StepDoubling::judge(int steps, double distance, double allowed, double floor) {
   const std::optional<double> before = previous_distance_;
   previous_distance_ = distance;
-  overflowed_at_safe_ = false;
   const double ratio = before ? *before / distance : 0;
   double error = std::numeric_limits<double>::infinity();
   if (ratio >= 16 && ratio <= 256) {
@@ -40,8 +39,8 @@ void StepDoubling::start() { previous_distance_.reset(); }
 
 bool StepDoubling::overflowed(int steps) {
   start();
-  const bool growth = overflowed_at_safe_ && steps > safe_;
-  overflowed_at_safe_ = steps >= safe_;
+  const bool growth = last_overflow_ == steps / 2 && last_overflow_ >= safe_;
+  last_overflow_ = steps;
   return growth;
 }
 

@@ -34,15 +34,15 @@ class StepDoubling {
   // Forgets the distances seen, as at the ladder's first level (also after a level that failed,
   // e.g. overflowed, so that its neighbours are never compared).
   void start();
-  // Level `steps` overflowed: forgets the distances (start()). True when the level before overflowed
-  // too and both are at or past `safe`, where a step is short enough: the result itself grows past
-  // the double range, and no level will settle.
+  // Level `steps` overflowed: forgets the distances (start()). True when the level before (steps/2)
+  // overflowed too and was at or past `safe`, where a step is short enough: the result itself grows
+  // past the double range, and no level will settle.
   bool overflowed(int steps);
 
  private:
   int first_, last_, safe_;
   std::optional<double> previous_distance_;
-  bool overflowed_at_safe_ = false;  // the level before overflowed at or past `safe`
+  int last_overflow_ = 0;  // the steps of the last level that overflowed (0: none)
 };
 
 }  // namespace bladestab
