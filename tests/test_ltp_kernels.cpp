@@ -12,6 +12,7 @@
 #include <cmath>
 #include <complex>
 #include <functional>
+#include <limits>
 #include <vector>
 
 #include <catch2/catch.hpp>
@@ -20,6 +21,7 @@
 #include "bladestab/ltp/boundary_equations.hpp"
 #include "bladestab/ltp/floquet.hpp"
 #include "bladestab/ltp/linear_periodic_system.hpp"
+#include "bladestab/ltp/magnus.hpp"
 #include "bladestab/ltp/pulse_monodromy.hpp"
 #include "bladestab/ltp/step_doubling.hpp"
 #include "reference/mathieu.hpp"
@@ -172,7 +174,7 @@ TEST_CASE("LTP kernels on Mathieu: the boundary equations in θ give 4ω²/θ² 
       }
       REQUIRE(match != nullptr);
       // The monodromy at the boundary has a multiplier at ±1 (a Jordan pair: √ of Φ's error).
-      CHECK(multiplier_gap(system, s, *match, 1e-12) <= 1e-5);
+      CHECK(multiplier_gap(system, s, *match, 1e-12).gap.value() <= 1e-5);
     }
   }
 }
@@ -276,9 +278,37 @@ TEST_CASE("step doubling: a sixth-order ladder is accepted with the bound Δ/15 
     CHECK_FALSE(recovered.judge(64, 1.0, 1e-6));  // a finite level between the two
     CHECK_FALSE(recovered.overflowed(128));
   }
+  SECTION("a work limit keeps the levels whose steps together fit, and at least two") {
+    // Levels 8, 16, 32 take 56 steps; with 64 they would take 120.
+    CHECK(affordable_last_level(8, 1 << 17, 1.0, 100) == 32);
+    CHECK(affordable_last_level(8, 1 << 17, 2.0, 112) == 32);
+    CHECK(affordable_last_level(8, 1 << 17, 1.0, 24) == 16);
+    CHECK(affordable_last_level(8, 1 << 17, 1.0, 23) == 0);
+    CHECK(affordable_last_level(8, 16, 1.0, 1e9) == 16);
+    CHECK(affordable_last_level(8, 1 << 17, 1.0, std::numeric_limits<double>::infinity()) == 1 << 17);
+  }
   SECTION("the error is never below the floor and NaN is never accepted") {
     StepDoubling fresh(8, 1 << 17, 16);
     CHECK(*fresh.judge(16, 0.0, 1e-6, 1e-14) == 1e-14);
     CHECK_FALSE(fresh.judge(32, std::nan(""), 1e-6));
   }
 }
+
+TEST_CASE("LTP kernels: a monodromy ladder stops at its work limit, and a limit it fits in changes nothing",
+          "[ltp][mathieu]") {
+  // Mathieu inside the first tongue at a = 1, q = 0.2: the ladder from 8 steps converges at some
+  // N, having taken 8 + 16 + … + N = 2N − 8 steps. Exactly that work gives the same multipliers;
+  // one flop less cannot take level N, and the ladder stops as a WorkLimitError.
+  const LinearPeriodicSystem sys = mathieu(1.0, 0.2);
+  FloquetOptions options{FloquetMethod::monodromy, 0, 1e-10, false, {}};
+  const FloquetResult free = floquet_multipliers(sys, options);
+  REQUIRE(free.steps > 16);
+  options.max_flops = (2.0 * free.steps - 8) * magnus_step_work(sys.state_size());
+  const FloquetResult fitted = floquet_multipliers(sys, options);
+  CHECK(fitted.steps == free.steps);
+  CHECK((fitted.multipliers - free.multipliers).cwiseAbs().maxCoeff() == 0);
+  options.max_flops = std::nextafter(options.max_flops, 0.0);
+  CHECK_THROWS_AS(floquet_multipliers(sys, options), WorkLimitError);
+  CHECK_THROWS_WITH(floquet_multipliers(sys, options), Catch::Contains("all that the work limit affords"));
+}
+

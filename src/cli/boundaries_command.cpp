@@ -1,6 +1,7 @@
 // bladestab boundaries SCENE: boundary pulse frequencies at the scene's (Ω, F_max), or boundary
 // loads at a given θ (--at-theta), each with an estimate of its whole error; k is raised until the
 // boundaries converge to --tolerance.
+#include <algorithm>
 #include <optional>
 #include <string>
 #include <utility>
@@ -10,6 +11,7 @@
 #include "bladestab/stability/boundaries.hpp"
 #include "bladestab/base/input_error.hpp"
 #include "bladestab/stability/instability_regions.hpp"
+#include "bladestab/ltp/monodromy.hpp"
 #include "support/message_text.hpp"
 #include "bladestab/modal/basis_error.hpp"
 #include "bladestab/stability/periodic_load.hpp"
@@ -135,7 +137,8 @@ void print_json(const BoundaryOutput& o) {
                               {"fmax_over_fcr", fbar},
                               {"multiplier", c.boundary.multiplier},
                               {"cutoff_hz", c.cutoff_hz},
-                              {"multiplier_gap", o.digits.estimate(c.gap)},
+                              {"made", c.made},
+                              {"multiplier_gap", c.made ? Json(o.digits.estimate(c.gap)) : Json(nullptr)},
                               {"allowed", o.digits.estimate(c.allowed)}});
   }
   json["boundaries"] = Json::array();
@@ -167,8 +170,12 @@ void print_json(const BoundaryOutput& o) {
                                {"multiplier", r.multiplier},
                                {"mode", r.mode},
                                {"order", r.order},
+                               {"decided", r.undecided.empty()},
+                               {"undecided", r.undecided.empty() ? Json(nullptr) : Json(r.undecided)},
                                {"middle_max_abs_multiplier",
-                                o.digits.relative(r.middle_max_abs_multiplier, region_check_tolerance)}});
+                                r.undecided.empty() ? Json(o.digits.relative(r.middle_max_abs_multiplier,
+                                                                             region_check_tolerance))
+                                                    : Json(nullptr)}});
   }
   print_json_answer(json_text(json));
 }
@@ -220,11 +227,16 @@ void print_table(const BoundaryOutput& o) {
              describe_error_budget(o.result.total()), o.in_load ? "F̄_max" : "θ",
              o.unmet ? fmt::format(" — above --tolerance {:g}", o.request.tolerance) : "");
   for (const BoundaryCheck& c : o.result.checks) {
-    fmt::print("check          θ = {:.6g} rad/s, F̄_max = {:.6g}: Magnus monodromy{} has a multiplier {:.1e} from {} "
-               "(allowed {:.1e})\n",
-               c.boundary.theta_rad_s, c.boundary.peak_force_n / o.fcr,
-               c.cutoff_hz > 0 ? fmt::format(" (modes below {:.0f} Hz)", c.cutoff_hz) : "", c.gap,
-               c.boundary.multiplier > 0 ? "+1" : "-1", c.allowed);
+    const std::string found =
+        c.made ? fmt::format("has a multiplier {:.1e} from {} (allowed {:.1e})", c.gap,
+                             c.boundary.multiplier > 0 ? "+1" : "-1", c.allowed)
+               : fmt::format("did not settle within the steps a check may take ({} Magnus steps, or what is left of "
+                             "the checks' quarter of the work --max-seconds {:g} allows): not made, the boundary is "
+                             "listed as not converged",
+                             max_magnus_steps, work_limits().seconds);
+    fmt::print("check          θ = {:.6g} rad/s, F̄_max = {:.6g}: Magnus monodromy{} {}\n", c.boundary.theta_rad_s,
+               c.boundary.peak_force_n / o.fcr, c.cutoff_hz > 0 ? fmt::format(" (modes below {:.0f} Hz)", c.cutoff_hz) : "",
+               found);
   }
   fmt::print("\n{:>16} {:>14} {:>10} {:>5} {:>6} {:>9}\n", "θ [rad/s]", "F̄_max", "multiplier", "mode", "order",
              "error");
@@ -250,11 +262,13 @@ void print_table(const BoundaryOutput& o) {
     const auto end = [](bool open, bool unconverged) {
       return open ? "(window)" : unconverged ? "(not converged)" : "";
     };
-    fmt::print("  {}{}{:.6g} … {:.6g}{}{}  multiplier {}  mode {}  order {}  (max|ρ| = {:.4g} at the middle)\n",
+    const std::string verdict = r.undecided.empty()
+                                    ? fmt::format("max|ρ| = {:.4g} at the middle", r.middle_max_abs_multiplier)
+                                    : "undecided: the check at the middle failed, " + r.undecided;
+    fmt::print("  {}{}{:.6g} … {:.6g}{}{}  multiplier {}  mode {}  order {}  ({})\n",
                end(r.lower_open, r.lower_unconverged), r.lower_open || r.lower_unconverged ? " " : "",
                r.lower / o.unit, r.upper / o.unit, r.upper_open || r.upper_unconverged ? " " : "",
-               end(r.upper_open, r.upper_unconverged),
-               r.multiplier > 0 ? "+1" : "-1", r.mode, r.order, r.middle_max_abs_multiplier);
+               end(r.upper_open, r.upper_unconverged), r.multiplier > 0 ? "+1" : "-1", r.mode, r.order, verdict);
   }
   if (o.regions.empty()) fmt::print("  (none in the window)\n");
   fmt::print("\nCombination resonances are not boundaries of this kind: check them with `bladestab stability` or `map`.\n");
@@ -344,8 +358,8 @@ std::optional<std::string> tolerance_unmet(const Scene& scene, const BoundaryReq
 // above the tolerance. Boundaries that did not converge do not sink those that did: with some
 // converged the answer stands (exit 0, the line a note); with none converged the answer, which
 // lists them, is a failure (exit 1, the line the failure's).
-void report_shortfalls(const BoundaryAnalysis& analysis, const BoundaryRequest& request,
-                       const std::optional<std::string>& unmet) {
+void report_shortfalls(const BoundaryAnalysis& analysis, const std::vector<InstabilityRegion>& regions,
+                       const BoundaryRequest& request, const std::optional<std::string>& unmet) {
   std::vector<std::string> parts;
   if (!analysis.unconverged.empty()) {
     const bool none = analysis.boundaries.empty();
@@ -357,6 +371,11 @@ void report_shortfalls(const BoundaryAnalysis& analysis, const BoundaryRequest& 
                                 harmonics_reached(analysis, request)));
   }
   if (unmet) parts.push_back(*unmet);
+  const auto undecided = std::count_if(regions.begin(), regions.end(), [](const auto& r) { return !r.undecided.empty(); });
+  if (undecided > 0) {
+    parts.push_back(fmt::format("{} of the intervals between boundaries have no verdict (listed as undecided with why)",
+                                undecided));
+  }
   if (analysis.work_limited && analysis.unconverged.empty()) {
     parts.push_back(fmt::format("the reduction was not raised further: more would exceed the work --max-seconds {:g} "
                                 "allows", work_limits().seconds));
@@ -421,9 +440,9 @@ Command register_boundaries(CLI::App& app) {
     request->progress = progress_reporter("boundaries: harmonic levels solved", options->output_format() == OutputFormat::table);
     const BoundaryAnalysis analysis = boundaries_with_error_estimate(scene, *request);
     const std::optional<std::string> unmet = tolerance_unmet(scene, *request, analysis);
-    print(*options, scene, model, *request, analysis,
-          instability_regions(scene, *request, analysis, region_check_tolerance), unmet);
-    report_shortfalls(analysis, *request, unmet);
+    const std::vector<InstabilityRegion> regions = instability_regions(scene, *request, analysis, region_check_tolerance);
+    print(*options, scene, model, *request, analysis, regions, unmet);
+    report_shortfalls(analysis, regions, *request, unmet);
   };
 }
 

@@ -316,7 +316,8 @@ Command register_check(CLI::App& app) {
     if (scene.requirements->max_fmax_over_fcr) {
       double seconds = 0;
       const RubStabilityResult r =
-          timed(seconds, [&] { return check_rub_stability(scene, progress_reporter("check: rub speeds", for_people)); });
+          timed(seconds, [&] { return check_rub_stability(scene, progress_reporter("check: rub speeds", for_people),
+                                                                  work_limits().seconds * dense_flops_per_second); });
       checks.push_back(rub_outcome(scene, r));
       checks.back().seconds = seconds;
     }

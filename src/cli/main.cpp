@@ -17,6 +17,7 @@
 
 #include "support/blas_threads.hpp"
 #include "bladestab/base/input_error.hpp"
+#include "bladestab/base/numerical_error.hpp"
 #include "commands.hpp"
 #include "notes.hpp"
 #include "interruption.hpp"
@@ -74,6 +75,8 @@ int main(int argc, char** argv) {
     return report("error", as_option(e), 2);
   } catch (const bladestab::InputError& e) {
     return report("error", e.what(), 2);
+  } catch (const bladestab::WorkLimitError& e) {
+    return report("failed", fmt::format("{} (--max-seconds {:g})", e.what(), work_limits().seconds), 1);
   } catch (const std::bad_alloc&) {
     return report("failed", "out of memory", 1);
   } catch (const std::exception& e) {

@@ -23,6 +23,7 @@
 #include "number_options.hpp"
 #include "options.hpp"
 #include "progress.hpp"
+#include "work_limits.hpp"
 #include "output_files.hpp"
 
 namespace bladestab::cli {
@@ -281,9 +282,11 @@ Command register_stability(CLI::App& app) {
                                    "pulse and has no series to export; use \"cosine\" or \"fourier\"",
                                    echoed(*export_path, 240)));
     }
-    const StabilityAnswer answer = analyse_stability(
-        scene, {named(*method, methods), *harmonics, *tolerance, *threads,
-                progress_reporter("stability: refinement levels", options->output_format() == OutputFormat::table)});
+    StabilityRequest request{named(*method, methods), *harmonics, *tolerance, *threads,
+                             progress_reporter("stability: refinement levels",
+                                               options->output_format() == OutputFormat::table)};
+    request.work_flops = work_limits().seconds * dense_flops_per_second;
+    const StabilityAnswer answer = analyse_stability(scene, request);
     if (exporting) export_matrices(*export_path, scene, answer, *tolerance, options->printed_digits());
     print(*options, scene, answer);
     if (!answer.tolerance_met) print_note("stability: --" + answer.tolerance_unmet + "; the answer stands with its estimate");

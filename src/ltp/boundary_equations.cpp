@@ -8,6 +8,7 @@
 #include <lapacke.h>
 
 #include "bladestab/base/numerical_error.hpp"
+#include "bladestab/ltp/magnus.hpp"
 #include "bladestab/ltp/monodromy.hpp"
 #include "bladestab/ltp/step_doubling.hpp"
 
@@ -187,8 +188,8 @@ std::vector<int> multiplier_signs(int sign) {
 
 }  // namespace
 
-double multiplier_gap(const LinearPeriodicSystem& system, double system_peak_force_n, const Boundary& b,
-                      double tolerance) {
+MultiplierGap multiplier_gap(const LinearPeriodicSystem& system, double system_peak_force_n, const Boundary& b,
+                             double tolerance, double max_flops) {
   // The coefficient scaled to b's amplitude (A₀ moves by Δf₀ B) at b's frequency.
   LinearPeriodicSystem at = system.scaled(b.peak_force_n / system_peak_force_n);
   at.angular_frequency = b.theta_rad_s;
@@ -196,23 +197,26 @@ double multiplier_gap(const LinearPeriodicSystem& system, double system_peak_for
   // accepts Φ entry-wise within `tolerance` relative to its largest entry. (The multipliers
   // themselves would not settle: at a boundary two of them meet in a Jordan pair, where a change
   // δ in Φ moves them by √δ.)
-  const int safe = minimum_magnus_steps(at);
-  StepDoubling ladder(std::max(8, safe / 4), 1 << 17, safe);
-  Eigen::MatrixXd previous = magnus_monodromy(at, ladder.first());
-  for (int steps = 2 * ladder.first();; steps *= 2) {
-    if (steps > ladder.last()) {
-      throw NumericalError(fmt::format("the multiplier check's monodromy at θ = {:.6g} rad/s did not converge to {:g} "
-                                       "within {} Magnus steps", b.theta_rad_s, tolerance, ladder.last()));
-    }
+  const int safe = minimum_magnus_steps(at), first = std::max(8, safe / 4);
+  const double step_work = magnus_step_work(at.state_size());
+  const int last = affordable_last_level(first, max_magnus_steps, step_work, max_flops);
+  MultiplierGap result;
+  if (last == 0) return result;
+  StepDoubling ladder(first, last, safe);
+  Eigen::MatrixXd previous = magnus_monodromy(at, first);
+  for (int steps = 2 * first; steps <= last; steps *= 2) {
     Eigen::MatrixXd phi = magnus_monodromy(at, steps);
-    if (!phi.allFinite()) throw NumericalError("the multiplier check's monodromy overflowed");
+    result.work = (2.0 * steps - first) * step_work;
+    if (!phi.allFinite()) return result;
     const double distance = (phi - previous).cwiseAbs().maxCoeff();
     if (ladder.judge(steps, distance, tolerance * phi.cwiseAbs().maxCoeff())) {
       const Eigen::VectorXcd rho = sorted_eigenvalues(phi);
-      return (rho.array() - std::complex<double>(b.multiplier, 0)).abs().minCoeff();
+      result.gap = (rho.array() - std::complex<double>(b.multiplier, 0)).abs().minCoeff();
+      return result;
     }
     previous = std::move(phi);
   }
+  return result;
 }
 
 std::vector<Boundary> boundary_frequencies(const LinearPeriodicSystem& sys, double peak_force_n, int approximation,

@@ -8,6 +8,7 @@
 #include "bladestab/base/constants.hpp"
 #include "bladestab/base/input_error.hpp"
 #include "bladestab/base/numerical_error.hpp"
+#include "bladestab/ltp/magnus.hpp"
 #include "bladestab/ltp/step_doubling.hpp"
 #include "ltp/monodromy_checks.hpp"
 
@@ -100,11 +101,14 @@ NumericalError too_many_steps(const LinearPeriodicSystem& sys) {
 // Doubles the Magnus steps from 1/64 of the count where h‖A‖ ≤ 2 until StepDoubling accepts the
 // multiplier sets (on the paper blade 128 steps are within 1e-8 where that condition asks for
 // 512: the exponential takes A₀'s stiff modes exactly). A level that overflows restarts the
-// ladder's evidence (StepDoubling::overflowed).
-Attempt refine_steps(const LinearPeriodicSystem& sys, double tol, LevelCounter& counter) {
+// ladder's evidence (StepDoubling::overflowed). The levels stop where `max_flops` would be passed.
+Attempt refine_steps(const LinearPeriodicSystem& sys, double tol, double max_flops, LevelCounter& counter) {
   const int safe = minimum_magnus_steps(sys);
   if (safe > max_magnus_steps) throw too_many_steps(sys);
-  StepDoubling ladder(std::max(8, safe / 64), max_magnus_steps, safe);
+  const int first = std::max(8, safe / 64);
+  const int last = affordable_last_level(first, max_magnus_steps, magnus_step_work(sys.state_size()), max_flops);
+  if (last == 0) throw_unconverged(fmt::format("the monodromy matrix cannot converge to {:g}", tol), 0, 0, "");
+  StepDoubling ladder(first, last, safe);
   counter.plan(ladder.levels() + 1);  // and the checks after
   Eigen::VectorXcd previous;
   for (int steps = ladder.first(); steps <= ladder.last(); steps *= 2) {
@@ -125,8 +129,8 @@ Attempt refine_steps(const LinearPeriodicSystem& sys, double tol, LevelCounter& 
     }
     previous = current;
   }
-  throw NumericalError(fmt::format("the monodromy matrix did not converge to {:g} within {} Magnus steps per period",
-                                   tol, max_magnus_steps));
+  throw_unconverged(fmt::format("the monodromy matrix did not converge to {:g}", tol), last, max_magnus_steps,
+                    "Magnus steps per period");
 }
 
 FloquetResult result_of(FloquetMethod method, const Attempt& attempt, const FloquetChecks& checks, double period) {
@@ -187,7 +191,7 @@ FloquetResult floquet_multipliers(const LinearPeriodicSystem& sys, const Floquet
                                          sys.state_size() * (2 * attempt.harmonics + 1)));
       }
       // The kept exponents must agree with the monodromy's (sorting can pick wrong ones).
-      const Attempt reference = refine_steps(sys, tol, counter);
+      const Attempt reference = refine_steps(sys, tol, options.max_flops, counter);
       checks = check_monodromy(reference.monodromy, reference.multipliers, sys, tol, false, series_variation(sys));
       const double disagreement = std::abs(max_abs(attempt.multipliers) - max_abs(reference.multipliers));
       if (disagreement > attempt.error + reference.error + tol * std::max(1.0, max_abs(reference.multipliers))) {
@@ -202,7 +206,7 @@ FloquetResult floquet_multipliers(const LinearPeriodicSystem& sys, const Floquet
     }
     case FloquetMethod::monodromy:
     case FloquetMethod::automatic:
-      attempt = refine_steps(sys, tol, counter);
+      attempt = refine_steps(sys, tol, options.max_flops, counter);
       checks = check_monodromy(attempt.monodromy, attempt.multipliers, sys, tol, options.independent_check,
                                series_variation(sys));
       break;
@@ -225,7 +229,7 @@ FloquetResult floquet_multipliers(const LinearPeriodicSystem& sys, const Floquet
 
 FloquetResult pulse_train_multipliers(const LinearPeriodicSystem& sys, const PeriodicPulse& pulse,
                                       const FloquetOptions& options) {
-  const PulseMonodromy p = exact_pulse_monodromy(sys, pulse, options.tolerance, options.progress);
+  const PulseMonodromy p = exact_pulse_monodromy(sys, pulse, options.tolerance, options.progress, options.max_flops);
   const Attempt attempt{p.multipliers, p.error_estimate, 0, p.steps, p.monodromy};
   const CoefficientVariation variation =
       options.independent_check ? pulse_check_variation(sys, pulse) : CoefficientVariation{};

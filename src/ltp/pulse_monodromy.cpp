@@ -61,7 +61,7 @@ Eigen::MatrixXd pulse_monodromy(const LinearPeriodicSystem& sys, const PeriodicP
 }
 
 PulseMonodromy exact_pulse_monodromy(const LinearPeriodicSystem& sys, const PeriodicPulse& pulse, double tolerance,
-                                     const std::function<void(int, int)>& progress) {
+                                     const std::function<void(int, int)>& progress, double max_flops) {
   if (!(tolerance > 0)) throw std::invalid_argument(fmt::format("exact_pulse_monodromy: tolerance {} must be > 0", tolerance));
   PulseMonodromy result;
   const FreeFlight flight = free_flight(sys, pulse);
@@ -74,7 +74,10 @@ PulseMonodromy exact_pulse_monodromy(const LinearPeriodicSystem& sys, const Peri
   // exactly (a map of the paper blade's true train, N = 8, 2.2× faster than from 1/2).
   const double pulse_steps = minimum_magnus_steps(sys) * pulse.width / pulse.period;
   const int first = std::max(2, 1 << static_cast<int>(std::ceil(std::log2(std::max(1.0, pulse_steps / 32)))));
-  StepDoubling ladder(first, 1 << 16, static_cast<int>(std::min(pulse_steps, 1e9)));
+  const int most = 1 << 16;
+  const int last = affordable_last_level(first, most, magnus_step_work(sys.state_size()), max_flops);
+  if (last == 0) throw_unconverged(fmt::format("the pulse monodromy cannot converge to {:g}", tolerance), 0, 0, "");
+  StepDoubling ladder(first, last, static_cast<int>(std::min(pulse_steps, 1e9)));
   int done = 0;
   Eigen::VectorXcd previous;
   for (int steps = first; steps <= ladder.last(); steps *= 2) {
@@ -98,8 +101,7 @@ PulseMonodromy exact_pulse_monodromy(const LinearPeriodicSystem& sys, const Peri
     }
     previous = result.multipliers;
   }
-  throw NumericalError(fmt::format("the pulse monodromy did not converge to {:g} within {} steps", tolerance,
-                                   ladder.last()));
+  throw_unconverged(fmt::format("the pulse monodromy did not converge to {:g}", tolerance), last, most, "steps");
 }
 
 std::function<double(double)> pulse_variation(const LinearPeriodicSystem& sys, const PeriodicPulse& pulse) {

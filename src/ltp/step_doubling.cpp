@@ -6,6 +6,8 @@
 
 #include <fmt/format.h>
 
+#include "bladestab/base/numerical_error.hpp"
+
 namespace bladestab {
 
 StepDoubling::StepDoubling(int first, int last, int safe) : first_(first), last_(last), safe_(safe) {
@@ -42,6 +44,24 @@ bool StepDoubling::overflowed(int steps) {
   const bool growth = last_overflow_ == steps / 2 && last_overflow_ >= safe_;
   last_overflow_ = steps;
   return growth;
+}
+
+int affordable_last_level(int first, int last, double step_flops, double max_flops) {
+  int affordable = 0;
+  for (long long steps = 2LL * first; steps <= last && (2.0 * steps - first) * step_flops <= max_flops; steps *= 2) {
+    affordable = static_cast<int>(steps);
+  }
+  return affordable;
+}
+
+void throw_unconverged(const std::string& what, int last, int limit, const std::string& unit) {
+  if (last == 0) {
+    throw WorkLimitError(fmt::format("{}: the work limit affords fewer than the two levels that can converge", what));
+  }
+  if (last < limit) {
+    throw WorkLimitError(fmt::format("{} within {} {}, all that the work limit affords", what, last, unit));
+  }
+  throw NumericalError(fmt::format("{} within {} {}", what, last, unit));
 }
 
 }  // namespace bladestab

@@ -252,9 +252,11 @@ void split_by_tolerance(const std::vector<Compared>& compared, double tolerance,
 // The check: the multiplier at the lowest-order converged boundaries (one or two) from a monodromy
 // (multiplier_gap) on a system whose fastest mode Magnus steps take cheaply over a period, cut off
 // at check_reach·order·θ/2π (or the request's cut-off, if lower). `checker(cutoff_hz)` is the
-// boundaries' solver on the model cut off there. Marks the boundaries whose check failed.
+// boundaries' solver on the model cut off there. Marks the boundaries whose check failed or was
+// not made (its monodromy took more than `check_work_left`, which it is charged).
 std::vector<BoundaryCheck> check_lowest(std::vector<Compared>& compared, double tolerance, double request_cutoff_hz,
-                                        bool in_load, const std::function<BoundarySolver(double)>& checker) {
+                                        double& check_work_left, bool in_load,
+                                        const std::function<BoundarySolver(double)>& checker) {
   int lowest = std::numeric_limits<int>::max();
   for (const Compared& c : compared) {
     if (method_part(c) <= tolerance) lowest = std::min(lowest, c.boundary.order);
@@ -265,17 +267,29 @@ std::vector<BoundaryCheck> check_lowest(std::vector<Compared>& compared, double 
     const double reach_hz = check_reach * std::max(1, lowest) * c.boundary.theta_rad_s / two_pi;
     BoundaryCheck check;
     check.cutoff_hz = request_cutoff_hz > 0 ? std::min(request_cutoff_hz, reach_hz) : reach_hz;
-    BoundarySolver solver = checker(check.cutoff_hz);
-    if (solver.system().kept_modes == solver.system().all_modes) check.cutoff_hz = 0;
-    const std::vector<Boundary>& there = solver.at(c.approximation);
-    const int j = match({c.boundary}, there, in_load)[0];  // the same boundary in the check's model
     // Multipliers split like the square root of the distance from the boundary (test_map:
     // 2e-4 in ρ for 1e-8 in F̄); the check's boundary carries the same harmonics' error.
     check.allowed = std::max(1e-3, 10 * std::sqrt(method_part(c)));
-    check.boundary = j < 0 ? c.boundary : there[j];
-    check.gap = j < 0 ? std::numeric_limits<double>::infinity()
-                      : multiplier_gap(solver.system(), solver.peak(), check.boundary, check_monodromy_tolerance);
-    c.check_failed = !(check.gap <= check.allowed);
+    check.boundary = c.boundary;
+    check.made = false;
+    if (check_work_left > 0) {
+      BoundarySolver solver = checker(check.cutoff_hz);
+      const PeriodicSystem& system = solver.system();
+      if (system.kept_modes == system.all_modes) check.cutoff_hz = 0;
+      const std::vector<Boundary>& there = solver.at(c.approximation);
+      // Its model (static limits, modes: a few dense solves of the whole Ritz model) and boundaries.
+      check_work_left -= 3 * 26 * std::pow(system.all_modes, 3) + boundary_level_flops(c.approximation, system.kept_modes, !in_load);
+      const int j = match({c.boundary}, there, in_load)[0];  // the same boundary in the check's model
+      MultiplierGap gap{std::numeric_limits<double>::infinity(), 0};
+      if (j >= 0) {
+        check.boundary = there[j];
+        gap = multiplier_gap(system, solver.peak(), check.boundary, check_monodromy_tolerance, check_work_left);
+      }
+      check_work_left -= gap.work;
+      check.made = gap.gap.has_value();
+      check.gap = gap.gap.value_or(0);
+    }
+    c.check_failed = !check.made || !(check.gap <= check.allowed);
     checks.push_back(check);
   }
   return checks;
@@ -335,8 +349,9 @@ bool vectors_left_to_program(const Scene& scene, const BoundaryRequest& r) {
 // ≤ max_order moves by at most the tolerance at k + 2 and the multiplier check passes, or k + 2
 // would need more than max_approximation harmonics, or more work than `affordable(k + 2)` allows
 // (then result.work_limited): the result's approximation, boundaries (with their method part),
-// unconverged ones and checks. `at_level(k)` is told each k tried.
-void converge_in_harmonics(BoundarySolver& solver, const BoundaryRequest& r, int first,
+// unconverged ones and checks. `at_level(k)` is told each k tried; the checks' Magnus work is
+// taken from `check_work_left`.
+void converge_in_harmonics(BoundarySolver& solver, const BoundaryRequest& r, int first, double& check_work_left,
                            const std::function<BoundarySolver(double)>& checker,
                            const std::function<void(int)>& at_level, const std::function<bool(int)>& affordable,
                            BoundaryAnalysis& result) {
@@ -350,8 +365,11 @@ void converge_in_harmonics(BoundarySolver& solver, const BoundaryRequest& r, int
     for (const Compared& c : compared) worst = std::max(worst, method_part(c));
     if (worst > r.tolerance && !last) continue;
     result.approximation = k;
-    result.checks = check_lowest(compared, r.tolerance, r.cutoff_hz, in_load, checker);
-    const bool passed = std::none_of(compared.begin(), compared.end(), [](const Compared& c) { return c.check_failed; });
+    result.checks = check_lowest(compared, r.tolerance, r.cutoff_hz, check_work_left, in_load, checker);
+    // A check not made (its monodromy did not settle within its share of the work) would not be
+    // made at a higher k either: its boundary is listed as unconverged, and k is not raised for it.
+    const bool passed = std::all_of(result.checks.begin(), result.checks.end(),
+                                    [](const BoundaryCheck& c) { return !c.made || c.gap <= c.allowed; });
     if (!passed && !last) continue;
     split_by_tolerance(compared, r.tolerance, in_load, result);
     result.work_limited = within_harmonics && !result.unconverged.empty();
@@ -499,7 +517,7 @@ private:
     const int dofs = solver.system().kept_modes;
     const ReductionSpec reduction = result.reduction;
     converge_in_harmonics(
-        solver, r_, first, checker, [this](int k) { level_ = k; },
+        solver, r_, first, check_work_left_, checker, [this](int k) { level_ = k; },
         [this, dofs, reduction](int k) { return affordable(k, dofs, reduction); }, result);
   }
 
@@ -550,6 +568,8 @@ private:
   LoadSeries load_;
   int done_ = 0, level_ = 0, comparisons_left_ = 0;
   double spent_ = 0;  // boundary_level_flops of the levels solved
+  // What the multiplier checks of the whole run may still take: a quarter of the request's work.
+  double check_work_left_ = r_.work_flops / 4;
   const BoundarySolver* ladder_ = nullptr;
 };
 

@@ -7,10 +7,34 @@
 
 #include "bladestab/blade/blade_properties.hpp"
 #include "bladestab/base/constants.hpp"
+#include "bladestab/base/numerical_error.hpp"
 #include "bladestab/stability/stability_analysis.hpp"
 #include "support/work_pool.hpp"
 
 namespace bladestab {
+namespace {
+
+struct Verdict {
+  bool unstable = false;
+  double max_abs = 0;     // max|ρ| (decided)
+  std::string undecided;  // why there is no verdict: the analysis's one-line failure
+};
+
+// Unstable at a point for a multiplier sign: the dominant multiplier real, beyond +1 or −1 as the
+// sign (a complex one is a combination resonance; the other sign's is that sign's region). An
+// analysis that fails (NumericalError, e.g. its work share spent) leaves the point undecided.
+Verdict verdict_at(const Scene& at, int multiplier, const StabilityRequest& request) {
+  try {
+    const StabilityAnswer a = analyse_stability(at, request);
+    const std::complex<double> rho = a.floquet.multipliers(0);
+    const bool real_of_sign = std::abs(rho.imag()) <= 1e-6 * std::abs(rho) && rho.real() * multiplier > 0;
+    return {!a.stable && real_of_sign, a.floquet.max_abs_multiplier, {}};
+  } catch (const NumericalError& e) {
+    return {false, 0, e.what()};
+  }
+}
+
+}  // namespace
 
 std::vector<InstabilityRegion> instability_regions(const Scene& scene, const BoundaryRequest& request,
                                                    const BoundaryAnalysis& analysis, double tolerance) {
@@ -22,9 +46,7 @@ std::vector<InstabilityRegion> instability_regions(const Scene& scene, const Bou
   for (const EstimatedBoundary& e : analysis.boundaries) by_sign[e.boundary.multiplier].emplace_back(e.boundary, true);
   for (const UnconvergedBoundary& u : analysis.unconverged) by_sign[u.boundary.multiplier].emplace_back(u.boundary, false);
   // The scene at a point of the line: θ at the scene's load, or F_max at the given θ.
-  // Unstable at x for this sign: the dominant multiplier real, beyond +1 or −1 as the sign
-  // (a complex one is a combination resonance; the other sign's is that sign's region).
-  const auto unstable_at = [&](double x, int multiplier, double& max_abs) {
+  const auto at_point = [&](double x) {
     Scene at = scene;
     if (in_load) {
       at.load.pulse_frequency_hz = *request.theta_rad_s / two_pi;
@@ -32,10 +54,7 @@ std::vector<InstabilityRegion> instability_regions(const Scene& scene, const Bou
     } else {
       at.load.pulse_frequency_hz = x / two_pi;
     }
-    const StabilityAnswer a = analyse_stability(at, {FloquetMethod::automatic, 0, tolerance});
-    max_abs = a.floquet.max_abs_multiplier;
-    const std::complex<double> rho = a.floquet.multipliers(0);
-    return !a.stable && std::abs(rho.imag()) <= 1e-6 * std::abs(rho) && rho.real() * multiplier > 0;
+    return at;
   };
   // Every interval between neighbouring boundaries of a sign (the window closing the first and
   // last) is a candidate; their verdicts are independent and run side by side.
@@ -65,16 +84,20 @@ std::vector<InstabilityRegion> instability_regions(const Scene& scene, const Bou
       candidates.push_back(r);
     }
   }
-  const std::vector<double> middle_max_abs = run_indexed(candidates.size(), request.threads, [&](std::size_t i) {
-    double max_abs = 0;
+  // The verdicts together may take a quarter of the request's work, in equal shares (a quarter of a
+  // share for each of its monodromy ladders, StabilityRequest::work_flops).
+  StabilityRequest verdict{FloquetMethod::automatic, 0, tolerance, 0, {}};
+  verdict.work_flops = request.work_flops / (4.0 * std::max<std::size_t>(1, candidates.size()));
+  const std::vector<Verdict> verdicts = run_indexed(candidates.size(), request.threads, [&](std::size_t i) {
     const InstabilityRegion& r = candidates[i];
-    return unstable_at(0.5 * (r.lower + r.upper), r.multiplier, max_abs) ? max_abs : -1.0;
+    return verdict_at(at_point(0.5 * (r.lower + r.upper)), r.multiplier, verdict);
   });
   std::vector<InstabilityRegion> regions;
   for (std::size_t i = 0; i < candidates.size(); ++i) {
-    if (middle_max_abs[i] < 0) continue;
+    if (!verdicts[i].unstable && verdicts[i].undecided.empty()) continue;
     regions.push_back(candidates[i]);
-    regions.back().middle_max_abs_multiplier = middle_max_abs[i];
+    regions.back().middle_max_abs_multiplier = verdicts[i].max_abs;
+    regions.back().undecided = verdicts[i].undecided;
   }
   std::sort(regions.begin(), regions.end(),
             [](const InstabilityRegion& a, const InstabilityRegion& b) { return a.lower < b.lower; });

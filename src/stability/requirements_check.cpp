@@ -249,7 +249,8 @@ FrequencyMarginResult check_frequency_margin(const Scene& scene, double toleranc
   }
 }
 
-RubStabilityResult check_rub_stability(const Scene& scene, const std::function<void(int, int)>& progress) {
+RubStabilityResult check_rub_stability(const Scene& scene, const std::function<void(int, int)>& progress,
+                                       double work_flops) {
   const RequirementsSpec& req = requirements_of(scene);
   if (!req.max_fmax_over_fcr) throw InputError(fmt::format("{}: requirements.max_fmax_over_fcr: missing", scene.source));
   if (scene.load.approximation == LoadApproximation::exact) {
@@ -285,6 +286,7 @@ RubStabilityResult check_rub_stability(const Scene& scene, const std::function<v
   request.theta_rad_s = r.pulses_per_rev * worst_speed;
   request.window = std::make_pair(0.0, window * fcr);
   request.max_order = sought_order;
+  request.work_flops = work_flops;
   const BoundaryAnalysis analysis = boundaries_with_error_estimate(worst, request);
   const std::vector<InstabilityRegion> regions = instability_regions(worst, request, analysis, floquet_tolerance);
   r.approximation = analysis.approximation;
@@ -300,8 +302,9 @@ RubStabilityResult check_rub_stability(const Scene& scene, const std::function<v
   } else {
     r.check_fmax_over_fcr = r.required;
   }
-  const StabilityAnswer answer = analyse_stability(at_speed(scene, worst_speed, r.check_fmax_over_fcr),
-                                                   {FloquetMethod::automatic, 0, floquet_tolerance});
+  StabilityRequest floquet{FloquetMethod::automatic, 0, floquet_tolerance};
+  floquet.work_flops = work_flops / 4;
+  const StabilityAnswer answer = analyse_stability(at_speed(scene, worst_speed, r.check_fmax_over_fcr), floquet);
   r.max_abs_multiplier = answer.floquet.max_abs_multiplier;
   r.check_stable = answer.stable;
   r.check_tolerance_unmet = answer.tolerance_unmet;

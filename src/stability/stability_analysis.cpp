@@ -15,6 +15,7 @@
 #include "bladestab/modal/basis_error.hpp"
 #include "bladestab/stability/periodic_system.hpp"
 #include "bladestab/blade/reduction.hpp"
+#include "bladestab/ltp/magnus.hpp"
 #include "bladestab/ltp/step_doubling.hpp"
 #include "support/work_pool.hpp"
 
@@ -57,14 +58,18 @@ struct VariantRho {
 // answer's own discretization once. Where the ladder does not settle within four levels or would
 // pass max_magnus_steps, and for the exact train, the variant takes the monodromy's own refinement
 // to `tol` (which refuses a period that needs more).
-VariantRho variant_max_rho(const Scene& scene, const Fidelity& f, double tol, const Cancellation& stop) {
+VariantRho variant_max_rho(const Scene& scene, const Fidelity& f, double tol, double max_flops,
+                           const Cancellation& stop) {
   // Polled at every level: a variant of an answer that failed stops there (WorkCancelled).
   const auto poll = [&stop](int, int) {
     if (stop.cancelled()) throw WorkCancelled();
   };
   const PeriodicSystem sys = system_at(scene, f);
   const int safe = minimum_magnus_steps(sys), first = std::max(8, safe / 16);
-  if (!f.load.exact_pulse && 8 * first <= max_magnus_steps) {
+  const bool own_ladder_fits = 8 * first <= max_magnus_steps &&
+                               affordable_last_level(first, 8 * first, magnus_step_work(sys.state_size()), max_flops) ==
+                                   8 * first;
+  if (!f.load.exact_pulse && own_ladder_fits) {
     StepDoubling ladder(first, 8 * first, safe);
     std::optional<double> previous;
     for (int steps = first; steps <= ladder.last(); steps *= 2) {
@@ -79,7 +84,7 @@ VariantRho variant_max_rho(const Scene& scene, const Fidelity& f, double tol, co
       previous = rho;
     }
   }
-  const FloquetResult r = floquet_of(scene, f, sys, {FloquetMethod::monodromy, 0, tol, false, poll});
+  const FloquetResult r = floquet_of(scene, f, sys, {FloquetMethod::monodromy, 0, tol, false, poll, max_flops});
   return {r.max_abs_multiplier, r.error_estimate};
 }
 
@@ -100,7 +105,7 @@ struct BudgetVariants {
   double basis_factor = 1, reduction_factor = 1;
 };
 
-BudgetVariants start_variants(const Scene& scene, const Fidelity& f, double tol, int threads) {
+BudgetVariants start_variants(const Scene& scene, const Fidelity& f, double tol, double max_flops, int threads) {
   const double variant_tol = tol / 8;
   std::vector<Fidelity> variants;
   const auto add = [&](Fidelity variant) {
@@ -136,8 +141,8 @@ BudgetVariants start_variants(const Scene& scene, const Fidelity& f, double tol,
   const std::size_t count = variants.size();
   v.tasks = std::make_unique<WorkPool<VariantRho>>(
       threads, count,
-      [&scene, variant_tol, variants = std::move(variants), &stop = *v.stop](std::size_t i) {
-        return variant_max_rho(scene, variants[i], variant_tol, stop);
+      [&scene, variant_tol, max_flops, variants = std::move(variants), &stop = *v.stop](std::size_t i) {
+        return variant_max_rho(scene, variants[i], variant_tol, max_flops, stop);
       });
   return v;
 }
@@ -204,10 +209,11 @@ StabilityAnswer analyse_stability(const Scene& scene, const StabilityRequest& re
   StabilityAnswer a;
   int done = 0;  // progress over the rounds: the answer's levels, then its variants
   while (true) {
-    BudgetVariants variants = start_variants(scene, f, tol, request.threads);
+    const double ladder_flops = request.work_flops / 4;
+    BudgetVariants variants = start_variants(scene, f, tol, ladder_flops, request.threads);
     const int variant_count = (variants.basis != BudgetVariants::none) + (variants.reduction != BudgetVariants::none) +
                               (variants.load != BudgetVariants::none);
-    FloquetOptions options{request.method, request.harmonics, tol / 4, true, {}};
+    FloquetOptions options{request.method, request.harmonics, tol / 4, true, {}, ladder_flops};
     int levels = 0;
     if (request.progress) {
       options.progress = [&](int d, int total) { levels = d, request.progress(done + d, done + total + variant_count); };

@@ -12,4 +12,11 @@ public:
   explicit NumericalError(const std::string& message) : std::runtime_error(message) {}
 };
 
+// A refinement stopped where its next level would take more work than the caller allows (its
+// flops: FloquetOptions::max_flops, StabilityRequest::work_flops); the CLI names --max-seconds.
+class WorkLimitError : public NumericalError {
+public:
+  explicit WorkLimitError(const std::string& message) : NumericalError(message) {}
+};
+
 }  // namespace bladestab

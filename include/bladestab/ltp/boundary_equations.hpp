@@ -14,6 +14,8 @@
 // regions.
 // Combination resonances (|ρ| leaving the unit circle away from ±1) are not boundaries of this
 // kind; only the Floquet multipliers show them.
+#include <limits>
+#include <optional>
 #include <vector>
 
 #include "bladestab/ltp/linear_periodic_system.hpp"
@@ -43,7 +45,13 @@ std::vector<Boundary> boundary_loads(const LinearPeriodicSystem& system, double 
 // (θ = b.theta_rad_s, amplitude b.peak_force_n; the system's is `system_peak_force_n`), from the
 // monodromy matrix by Magnus steps, doubled (StepDoubling) until Φ(T) settles to `tolerance`
 // relative to its largest entry: a check that shares nothing with the boundary eigenproblem. On a boundary it
-// is 0; it grows like the square root of the distance from it.
-double multiplier_gap(const LinearPeriodicSystem& system, double system_peak_force_n, const Boundary& b, double tolerance);
+// is 0; it grows like the square root of the distance from it. None where Φ(T) does not settle
+// (or overflows) within max_magnus_steps or the steps `max_flops` affords (magnus_step_work).
+struct MultiplierGap {
+  std::optional<double> gap;
+  double work = 0;  // of the Magnus steps taken (magnus_step_work)
+};
+MultiplierGap multiplier_gap(const LinearPeriodicSystem& system, double system_peak_force_n, const Boundary& b,
+                             double tolerance, double max_flops = std::numeric_limits<double>::infinity());
 
 }  // namespace bladestab

@@ -12,6 +12,7 @@
 // checks that do not share its failure mode (FloquetChecks); a failed check raises the fidelity or
 // throws NumericalError — never a number.
 #include <functional>
+#include <limits>
 #include <optional>
 #include <vector>
 
@@ -38,6 +39,9 @@ struct FloquetOptions {
   // count): `total` is the most levels the refinements may still take, so it overstates; the
   // independent check is the last step, (total, total).
   std::function<void(int, int)> progress = {};
+  // The most work a Magnus ladder may take, in eigensolver flops (magnus_step_work a step): one not
+  // converged where its next level would pass it throws WorkLimitError.
+  double max_flops = std::numeric_limits<double>::infinity();
 };
 
 // What the result was checked against.

@@ -10,6 +10,7 @@
 // limit t_c → 0 at fixed J = ∫f dt: Φ_pulse = e^{J B} = I + J B where B² = 0 (the scaled modal
 // form's B), then flight over the whole T.
 #include <functional>
+#include <limits>
 #include <optional>
 
 #include <Eigen/Dense>
@@ -44,10 +45,12 @@ Eigen::MatrixXd pulse_monodromy(const LinearPeriodicSystem& system, const Period
 
 // Φ(T) with the pulse's steps doubled (StepDoubling, from 1/32 of the count where h‖A‖ ≤ 2 on the
 // pulse) until the multipliers are within `tolerance` > 0, relative above max|ρ| = 1. Throws
-// NumericalError if 2^16 steps do not reach it. progress(done, total) after each step count
-// (total: the most the ladder can take, then done at its end).
+// NumericalError if 2^16 steps do not reach it, WorkLimitError if the steps `max_flops` affords
+// (magnus_step_work) do not. progress(done, total) after each step count (total: the most the
+// ladder can take, then done at its end).
 PulseMonodromy exact_pulse_monodromy(const LinearPeriodicSystem& system, const PeriodicPulse& pulse, double tolerance,
-                                     const std::function<void(int, int)>& progress = {});
+                                     const std::function<void(int, int)>& progress = {},
+                                     double max_flops = std::numeric_limits<double>::infinity());
 
 // f(t) − f₀ of the pulsed coefficient over one period, the variation that multiplies B.
 std::function<double(double)> pulse_variation(const LinearPeriodicSystem& system, const PeriodicPulse& pulse);

@@ -13,6 +13,7 @@
 //    Δ_N 15× below the true error at F̄ = 12, N = 256), and two levels alone show no contraction.
 // Knows nothing of what is integrated: the caller computes the levels and their distances.
 #include <optional>
+#include <string>
 
 namespace bladestab {
 
@@ -44,5 +45,15 @@ class StepDoubling {
   std::optional<double> previous_distance_;
   int last_overflow_ = 0;  // the steps of the last level that overflowed (0: none)
 };
+
+// The last level L of a ladder first, 2·first, … ≤ `last` whose levels together (2L − first steps)
+// take at most `max_flops` at `step_flops` a step; 0 where not even the first two, the fewest that
+// can converge, fit.
+int affordable_last_level(int first, int last, double step_flops, double max_flops);
+
+// The error of a ladder that ended unconverged at `last` steps: "<what> within <last> <unit>",
+// thrown as WorkLimitError where `last` is below `limit` (the work allowed stopped it; the message
+// says so; `last` 0: not even two levels fit), else as NumericalError.
+[[noreturn]] void throw_unconverged(const std::string& what, int last, int limit, const std::string& unit);
 
 }  // namespace bladestab

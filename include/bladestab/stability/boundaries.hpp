@@ -33,7 +33,9 @@ struct BoundaryRequest {
   int max_approximation = 40;
   // The work the run may take, in dense eigensolver flops (boundary_level_flops): k, and the
   // automatic reduction's vectors, are raised only while the next step and the comparisons after
-  // it fit (else BoundaryAnalysis::work_limited). Deterministic, unlike a clock.
+  // it fit (else BoundaryAnalysis::work_limited). The multiplier checks' monodromies together, and
+  // the regions' Floquet verdicts together (instability_regions.hpp), may take a quarter of it each
+  // (in magnus_step_work). Deterministic, unlike a clock.
   double work_flops = std::numeric_limits<double>::infinity();
   int threads = 1;                    // the two multiplier signs' eigenproblems side by side (0: one per core)
   // progress(done, total) after each harmonic level of each model: `total` is what the answer needs
@@ -50,7 +52,10 @@ struct EstimatedBoundary {
 struct BoundaryCheck {
   Boundary boundary;      // the boundary checked, in the check's model
   double cutoff_hz = 0;   // the check's modal cut-off (0: all modes)
-  double gap = 0;         // multiplier_gap there
+  double gap = 0;         // multiplier_gap there (where made)
+  // False where the check's monodromy did not settle within max_magnus_steps or what is left of
+  // the checks' quarter of BoundaryRequest::work_flops: the boundary is then listed as unconverged.
+  bool made = true;
   double allowed = 0;     // the largest gap accepted
 };
 

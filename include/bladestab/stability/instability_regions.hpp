@@ -13,7 +13,9 @@
 // labelled order 1). A region is labelled by its edges, the higher order where they differ. Regions of
 // different kinds may overlap; combination resonances have no ±1 boundaries and are not listed
 // (the map's shading shows them). The boundaries that did not converge divide the line too, so no
-// interval spans one; a region that ends at one says so.
+// interval spans one; a region that ends at one says so. An interval whose check fails is listed
+// as undecided, so one hard middle does not sink the verdicts that were reached.
+#include <string>
 #include <vector>
 
 #include "bladestab/stability/boundaries.hpp"
@@ -29,6 +31,9 @@ struct InstabilityRegion {
   bool lower_unconverged = false, upper_unconverged = false;
   int multiplier = -1, mode = 0, order = 0;  // mode and order 0 where both ends are the window's
   double middle_max_abs_multiplier = 0;  // the check: max|ρ| at the middle, > 1 + its error
+  // Set where the check failed (its analysis's one-line NumericalError, e.g. its share of
+  // BoundaryRequest::work_flops spent): the interval may be a region or a gap, and is listed.
+  std::string undecided;
 };
 
 // `analysis` from boundaries_with_error_estimate(scene, request); each middle is checked by

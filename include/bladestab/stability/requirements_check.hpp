@@ -18,6 +18,7 @@
 //     Floquet multipliers (stability_analysis.hpp) at the worst speed: inside the lowest region
 //     where the requirement fails, at max_fmax_over_fcr where it holds.
 #include <functional>
+#include <limits>
 #include <optional>
 #include <string>
 
@@ -85,7 +86,9 @@ struct RubStabilityResult {
   double speed_lo_rad_s = 0, speed_hi_rad_s = 0;  // the range checked: its part within the static limits
 };
 
-// `progress(done, total)` counts the speeds scanned.
-RubStabilityResult check_rub_stability(const Scene& scene, const std::function<void(int, int)>& progress = {});
+// `progress(done, total)` counts the speeds scanned. `work_flops`: the boundaries' work at the worst
+// speed (BoundaryRequest::work_flops), and a quarter of it for the Floquet check there.
+RubStabilityResult check_rub_stability(const Scene& scene, const std::function<void(int, int)>& progress = {},
+                                       double work_flops = std::numeric_limits<double>::infinity());
 
 }  // namespace bladestab
