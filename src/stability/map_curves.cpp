@@ -166,11 +166,17 @@ CurveFidelity check_curves(const Scene& scene, const CurveWindow& w, const Curve
 
 // Flops of check_curves at model m, counting every variant on each of its three lines as solved
 // (the cache spares some): boundary_level_flops at each model's dofs, in θ (the larger).
+// The dofs of the curves' model.
+int curve_dofs(const CurveModel& m) {
+  const int all = static_cast<int>(m.model->layout.size());
+  return m.reduction.kind == ReductionKind::automatic ? std::min(m.reduction.vectors, all) : all;
+}
+
 double check_flops(const CurveModel& m, const BladeModel& richer) {
   const int all = static_cast<int>(m.model->layout.size());
   const auto level = [](int k, int dofs) { return boundary_level_flops(k, dofs, true); };
   const bool reduced = m.reduction.kind == ReductionKind::automatic;
-  const int dofs = reduced ? std::min(m.reduction.vectors, all) : all;
+  const int dofs = curve_dofs(m);
   double flops = 2 * level(m.approximation, dofs) + level(m.approximation + 2, dofs) +
                  level(m.approximation, reduced ? dofs : static_cast<int>(richer.layout.size()));
   if (reduced) flops += level(std::min(m.approximation, 4), all) + level(m.approximation, std::min(2 * dofs, all));
@@ -207,7 +213,11 @@ MapCurves chosen_model(const Scene& scene, const BladeModel& model, const CurveW
     } else {
       break;  // the basis is the scene's (model.terms): reported, not raised
     }
-    if (spent + check_flops(next, richer) > o.work_flops) {
+    // The next level's check and the trace lines solved at it (traced_curves) within half the
+    // work: the shading takes the rest.
+    const double traces = static_cast<double>(o.trace.size()) *
+                          boundary_level_flops(next.approximation, curve_dofs(next), true);
+    if (spent + check_flops(next, richer) + traces > o.work_flops / 2) {
       c.fidelity.work_limited = true;
       break;
     }

@@ -34,9 +34,9 @@ struct MapOptions {
   double tolerance = 1e-3;                // on max|ρ| of the shading and on the curves (CurveFidelity)
   int resolution_x = 400, resolution_y = 200;  // effective cells of the refined shading (at least)
   int threads = 0;  // worker threads (0: one per core)
-  // The work the curves' fidelity may take, in dense eigensolver flops (boundary_level_flops): the
-  // curves' model is not raised to a level whose check would pass it (CurveFidelity::work_limited).
-  // Deterministic, unlike a clock.
+  // The work of the map, in dense eigensolver flops (boundary_level_flops): the curves' model is not
+  // raised to a level whose check and trace lines would pass half of it (CurveFidelity::
+  // work_limited). Deterministic, unlike a clock.
   double work_flops = std::numeric_limits<double>::infinity();
 };
 
