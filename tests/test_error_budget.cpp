@@ -213,6 +213,21 @@ TEST_CASE("an estimate as large as max|rho| itself is refused, never a verdict",
   CHECK_THROWS_WITH(analyse_stability(scene, {}), Catch::Contains("is as large as max|ρ| itself"));
 }
 
+TEST_CASE("a growth past 1e218 a period is an answer whose checks say what they cannot tell, never inf",
+          "[budget][parallel]") {
+  // A thick Euler–Bernoulli blade (d̄ = 0.99) without its axial field: max|ρ| ≈ 4.7e218. The
+  // partners 1/ρ of its multipliers lie far below Φ's rounding, and ρ times a partner overflowed:
+  // the reciprocal-pairs check printed "inf" (seed 2031). It is not informative there: NaN ("n/a").
+  const Scene scene = paper_scene({"model.axial=false", "model.terms=7", "model.theory=\"euler-bernoulli\"",
+                                   "blade.slenderness=0.99"});
+  const StabilityAnswer a = analyse_stability(scene, {});
+  CHECK(a.floquet.max_abs_multiplier > 1e200);
+  CHECK_FALSE(a.stable);
+  CHECK(std::isnan(a.floquet.checks.reciprocal_error));
+  CHECK(std::isfinite(a.budget.total()));
+  CHECK(a.floquet.multipliers.allFinite());
+}
+
 TEST_CASE("the first release's wrong answers are right now (issue table)", "[budget][parallel][long_under_sanitizers]") {
   // Each against the value the issue measured with independent integrations.
   CHECK(analyse_stability(paper_scene({"model.terms=40"}), {}).floquet.max_abs_multiplier ==

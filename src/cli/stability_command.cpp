@@ -169,13 +169,17 @@ void print_table(const Scene& scene, const StabilityAnswer& a) {
   const double relative = error / std::max(1.0, r.max_abs_multiplier);
   fmt::print("max|ρ| = {:.{}g}   max Re λ = {:.4g} 1/s   → {}\n\n", r.max_abs_multiplier,
              significant_digits(relative), r.max_real_exponent, a.stable ? "stable" : "UNSTABLE");
-  // Decimals the error estimate supports.
+  // Decimals the error estimate supports; from 1e6 on, the significant digits it supports.
   const int decimals = std::clamp(static_cast<int>(-std::log10(std::max(error, 1e-12))), 1, 10);
+  const auto shown = [&](double x) {
+    if (std::abs(x) < 1e6) return fmt::format("{:.{}f}", x, decimals);
+    return fmt::format("{:.{}e}", x, significant_digits(error / std::abs(x)) - 1);
+  };
   fmt::print("{:>4} {:>16} {:>16} {:>16} {:>10}\n", "#", "Re ρ", "Im ρ", "|ρ|", "log decr.");
   for (Eigen::Index k = 0; k < r.multipliers.size(); ++k) {
     const auto& d = r.log_decrements[k];
-    fmt::print("{:>4} {:>16.{}f} {:>16.{}f} {:>16.{}f} {:>10}\n", k + 1, r.multipliers(k).real(), decimals,
-               r.multipliers(k).imag(), decimals, std::abs(r.multipliers(k)), decimals,
+    fmt::print("{:>4} {:>16} {:>16} {:>16} {:>10}\n", k + 1, shown(r.multipliers(k).real()),
+               shown(r.multipliers(k).imag()), shown(std::abs(r.multipliers(k))),
                d ? fmt::format("{:.4f}", *d + 0.0) : "—");
   }
 }

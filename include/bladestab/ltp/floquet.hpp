@@ -49,7 +49,8 @@ struct FloquetChecks {
   // |det Φ(T) / exp(∫₀ᵀ tr A dt) − 1| (Liouville); NaN where Φ is too ill-conditioned to tell.
   double determinant_error = 0;
   // Systems stated Hamiltonian: multipliers come in pairs ρ, 1/ρ; the largest |ρ ρ_j − 1| over
-  // the |ρ| ≥ 1 and their nearest partners. NaN otherwise.
+  // the |ρ| ≥ 1 and their nearest partners. NaN otherwise, and where max|ρ| ≳ 3e5 (the partner of
+  // the largest is then below Φ's rounding).
   double reciprocal_error = 0;
   // The dominant eigenpair (ρ, v) of Φ(T) checked by integrating v over one period with RKF45:
   // the residual ‖x(T) − ρ v‖ / (|ρ| ‖v‖), and the multiplier that x(T) gives, ρ' = wᴴx(T) / wᴴv
