@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 #include <fmt/format.h>
 
@@ -107,7 +108,8 @@ Attempt refine_steps(const LinearPeriodicSystem& sys, double tol, double max_flo
   if (safe > max_magnus_steps) throw too_many_steps(sys);
   const int first = std::max(8, safe / 64);
   const int last = affordable_last_level(first, max_magnus_steps, magnus_step_work(sys.state_size()), max_flops);
-  if (last == 0) throw_unconverged(fmt::format("the monodromy matrix cannot converge to {:g}", tol), 0, 0, "");
+  const std::string unconverged = fmt::format("the monodromy matrix did not converge to {:g}", tol);
+  if (last == 0) throw_unconverged(unconverged, last, max_magnus_steps, "Magnus steps per period");
   StepDoubling ladder(first, last, safe);
   counter.plan(ladder.levels() + 1);  // and the checks after
   Eigen::VectorXcd previous;
@@ -129,8 +131,7 @@ Attempt refine_steps(const LinearPeriodicSystem& sys, double tol, double max_flo
     }
     previous = current;
   }
-  throw_unconverged(fmt::format("the monodromy matrix did not converge to {:g}", tol), last, max_magnus_steps,
-                    "Magnus steps per period");
+  throw_unconverged(unconverged, last, max_magnus_steps, "Magnus steps per period");
 }
 
 FloquetResult result_of(FloquetMethod method, const Attempt& attempt, const FloquetChecks& checks, double period) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -76,7 +77,8 @@ PulseMonodromy exact_pulse_monodromy(const LinearPeriodicSystem& sys, const Peri
   const int first = std::max(2, 1 << static_cast<int>(std::ceil(std::log2(std::max(1.0, pulse_steps / 32)))));
   const int most = 1 << 16;
   const int last = affordable_last_level(first, most, magnus_step_work(sys.state_size()), max_flops);
-  if (last == 0) throw_unconverged(fmt::format("the pulse monodromy cannot converge to {:g}", tolerance), 0, 0, "");
+  const std::string unconverged = fmt::format("the pulse monodromy did not converge to {:g}", tolerance);
+  if (last == 0) throw_unconverged(unconverged, last, most, "steps");
   StepDoubling ladder(first, last, static_cast<int>(std::min(pulse_steps, 1e9)));
   int done = 0;
   Eigen::VectorXcd previous;
@@ -101,7 +103,7 @@ PulseMonodromy exact_pulse_monodromy(const LinearPeriodicSystem& sys, const Peri
     }
     previous = result.multipliers;
   }
-  throw_unconverged(fmt::format("the pulse monodromy did not converge to {:g}", tolerance), last, most, "steps");
+  throw_unconverged(unconverged, last, most, "steps");
 }
 
 std::function<double(double)> pulse_variation(const LinearPeriodicSystem& sys, const PeriodicPulse& pulse) {

@@ -56,7 +56,7 @@ int affordable_last_level(int first, int last, double step_flops, double max_flo
 
 void throw_unconverged(const std::string& what, int last, int limit, const std::string& unit) {
   if (last == 0) {
-    throw WorkLimitError(fmt::format("{}: the work limit affords fewer than the two levels that can converge", what));
+    throw WorkLimitError(fmt::format("{}: the work limit affords fewer than the two levels a judgement needs", what));
   }
   if (last < limit) {
     throw WorkLimitError(fmt::format("{} within {} {}, all that the work limit affords", what, last, unit));
