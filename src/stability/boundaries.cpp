@@ -278,7 +278,8 @@ std::vector<BoundaryCheck> check_lowest(std::vector<Compared>& compared, double 
       if (system.kept_modes == system.all_modes) check.cutoff_hz = 0;
       const std::vector<Boundary>& there = solver.at(c.approximation);
       // Its model (static limits, modes: a few dense solves of the whole Ritz model) and boundaries.
-      check_work_left -= 3 * 26 * std::pow(system.all_modes, 3) + boundary_level_flops(c.approximation, system.kept_modes, !in_load);
+      check_work_left -= 3 * 26 * std::pow(system.all_modes, 3) +
+                         boundary_level_flops(c.approximation, system.kept_modes, !in_load);
       const int j = match({c.boundary}, there, in_load)[0];  // the same boundary in the check's model
       MultiplierGap gap{std::numeric_limits<double>::infinity(), 0};
       if (j >= 0) {
