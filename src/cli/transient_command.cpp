@@ -440,6 +440,8 @@ Command register_transient(CLI::App& app) {
     o.method = args->method == "fast" && args->step == "adaptive" ? TransientMethod::fast : TransientMethod::rkf45;
     o.max_lateral_over_length = args->max_deflection;
     o.threads = args->threads;
+    // Each contact piece may take a quarter of the work --max-seconds allows.
+    o.piece_work_flops = work_limits().seconds * dense_flops_per_second / 4;
     const bool for_people = args->scene.output_format() == OutputFormat::table;
     o.progress = progress_reporter("transient: revolutions", for_people);
     check_transient_work(model, scene, o);

@@ -228,7 +228,7 @@ TransientResult run_fast_clearance_transient(const BladeModel& model, const Scen
                                              double check_time, Eigen::VectorXd& check_state) {
   const int n = model.layout.size();
   const TransientSystem system(model, scene, o);
-  ExactStepper stepper(model, scene, o.contact_tolerance);
+  ExactStepper stepper(model, scene, o.contact_tolerance, std::nullopt, o.piece_work_flops);
   require_dissipative(model, scene, stepper);
   TransientResult result;
   result.method = TransientMethod::fast;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <string>
 
 #include <fmt/format.h>
 #include <unsupported/Eigen/MatrixFunctions>
@@ -48,8 +49,8 @@ UndampedModes kept_modes(const BladeModel& model, const Scene& scene, const Eige
 }  // namespace
 
 ExactStepper::ExactStepper(const BladeModel& model, const Scene& scene, double tolerance,
-                           const std::optional<ReductionSpec>& reduction)
-    : pulses_(pulse_train(scene)), tolerance_(tolerance) {
+                           const std::optional<ReductionSpec>& reduction, double piece_work_flops)
+    : pulses_(pulse_train(scene)), tolerance_(tolerance), piece_work_flops_(piece_work_flops) {
   if (!pulses_.frequency_known) {
     throw InputError("operation.speed_rad_s = 0: the pulses have no frequency; give load.pulse_frequency_hz");
   }
@@ -164,7 +165,12 @@ ExactStepper::Integrated ExactStepper::integrate_contact(double start, double en
                       pulses_.peak_n * B_.cwiseAbs().colwise().sum().maxCoeff();
   const double safe = std::max(1.0, norm * (end - start) / 2);
   const int first = 1 << static_cast<int>(std::max(0.0, std::ceil(std::log2(safe / 32))));
-  StepDoubling ladder(first, 1 << 16, static_cast<int>(std::min(safe, 1e9)));
+  const int most = 1 << 16;
+  const int last = affordable_last_level(first, most, magnus_step_work(A_free_.rows()), piece_work_flops_);
+  const std::string unconverged =
+      fmt::format("exact stepping: the contact piece [{:.6g}, {:.6g}] s did not converge to {:g}", start, end, tolerance_);
+  if (last == 0) throw_unconverged(unconverged, last, most, "Magnus steps");
+  StepDoubling ladder(first, last, static_cast<int>(std::min(safe, 1e9)));
   Integrated result;
   Eigen::MatrixXd previous;
   for (int steps = first; steps <= ladder.last(); steps *= 2) {
@@ -188,8 +194,7 @@ ExactStepper::Integrated ExactStepper::integrate_contact(double start, double en
     }
     previous = std::move(map);
   }
-  throw NumericalError(fmt::format("exact stepping: the contact piece [{:.6g}, {:.6g}] s did not converge to {:g} "
-                                   "within {} Magnus steps", start, end, tolerance_, ladder.last()));
+  throw_unconverged(unconverged, last, most, "Magnus steps");
 }
 
 std::optional<std::pair<double, double>> ExactStepper::contact_offsets(double a, double b) const {

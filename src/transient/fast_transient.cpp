@@ -55,7 +55,7 @@ TransientResult run_fast_transient(const BladeModel& model, const Scene& scene, 
                                    double check_time, Eigen::VectorXd& check_state) {
   const int n = model.layout.size();
   const TransientSystem system(model, scene, o);
-  ExactStepper stepper(model, scene, o.contact_tolerance, o.reduction);
+  ExactStepper stepper(model, scene, o.contact_tolerance, o.reduction, o.piece_work_flops);
   TransientResult result;
   result.method = TransientMethod::fast;
   RunStart begin = run_start(model, scene, system, o, result);

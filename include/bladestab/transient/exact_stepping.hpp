@@ -21,6 +21,7 @@
 // to rounding. A contact piece is integrated by the sixth-order Magnus propagator (ltp/magnus.hpp)
 // with its steps doubled until the propagator has converged (ltp/step_doubling.hpp), once per
 // distinct piece: an endless train reuses the propagators of its first pulse.
+#include <limits>
 #include <optional>
 #include <vector>
 
@@ -43,10 +44,12 @@ struct ExactSteppingStatistics {
 class ExactStepper {
 public:
   // `tolerance` bounds each contact piece's propagator, relative; `reduction`: on that reduced model
-  // (for the load's range 0 … −F_max) instead of the whole one. InputError where the pulses have no
+  // (for the load's range 0 … −F_max) instead of the whole one; `piece_work_flops`: what each
+  // piece's step doubling may take (WorkLimitError past it). InputError where the pulses have no
   // frequency.
   ExactStepper(const BladeModel& model, const Scene& scene, double tolerance,
-               const std::optional<ReductionSpec>& reduction = std::nullopt);
+               const std::optional<ReductionSpec>& reduction = std::nullopt,
+               double piece_work_flops = std::numeric_limits<double>::infinity());
 
   // Integrates the contact pieces of the intervals [t_k, t_{k+1}] of `landings` (absolute times)
   // that are not yet known, on up to `threads` threads (the pieces are independent; each comes out
@@ -101,7 +104,7 @@ private:
 
   int n_, dofs_;  // modes kept, and 2n_
   PulseTrain pulses_;
-  double tolerance_, in_plane_share_, mu_in_plane_, rim_speed_;
+  double tolerance_, piece_work_flops_, in_plane_share_, mu_in_plane_, rim_speed_;
   bool damped_;
   Eigen::MatrixXd Phi_, PhiT_M_, A_free_, B_, Q_damping_;
   Eigen::VectorXd omega_, equilibrium_;

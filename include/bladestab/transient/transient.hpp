@@ -14,6 +14,7 @@
 // pulse edge. With the follower correction (docs/theory.md §5) the load turns with the tip slope ψ = v'(L):
 // F cos ψ along the axis (and in the geometric stiffness), −F sin ψ on the lateral tip.
 #include <functional>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -69,6 +70,10 @@ struct TransientOptions {
   bool follower = false;  // the tip load follows the tip slope ψ = v'(L): F cos ψ axially, −F sin ψ laterally
   std::optional<Eigen::VectorXd> initial_state; // x = [f; ḟ]; default: the steady rotating equilibrium
   std::function<void(int, int)> progress;       // (revolutions done, total)
+  // fast: the work each contact piece's step doubling may take, in eigensolver flops
+  // (magnus_step_work); a piece not converged where its next level would pass it throws
+  // WorkLimitError.
+  double piece_work_flops = std::numeric_limits<double>::infinity();
 };
 
 struct TransientSample {
