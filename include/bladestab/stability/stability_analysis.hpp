@@ -37,9 +37,9 @@ struct StabilityRequest {
   // progress(done, total): the answer's refinement levels (FloquetOptions::progress) and then each
   // budget variant as it is taken, over every fidelity round; `total` overstates; (n, n) at the end.
   std::function<void(int, int)> progress = {};
-  // The work of one fidelity round, in eigensolver flops (magnus_step_work): the answer's and each variant's monodromy ladder may
-  // take a quarter of it (FloquetOptions::max_flops); a ladder that would pass its share throws
-  // WorkLimitError. Deterministic, unlike a clock.
+  // The work of one fidelity round, in eigensolver flops (magnus_step_work): the answer's and each
+  // variant's monodromy ladder may take a quarter of it (FloquetOptions::max_flops); a ladder that
+  // would pass its share throws WorkLimitError. Deterministic, unlike a clock.
   double work_flops = std::numeric_limits<double>::infinity();
 };
 
