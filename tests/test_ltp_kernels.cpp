@@ -280,12 +280,19 @@ TEST_CASE("step doubling: a sixth-order ladder is accepted with the bound Δ/15 
   }
   SECTION("a work limit keeps the levels whose steps together fit, and at least two") {
     // Levels 8, 16, 32 take 56 steps; with 64 they would take 120.
-    CHECK(affordable_last_level(8, 1 << 17, 1.0, 100) == 32);
-    CHECK(affordable_last_level(8, 1 << 17, 2.0, 112) == 32);
-    CHECK(affordable_last_level(8, 1 << 17, 1.0, 24) == 16);
-    CHECK(affordable_last_level(8, 1 << 17, 1.0, 23) == 0);
-    CHECK(affordable_last_level(8, 16, 1.0, 1e9) == 16);
-    CHECK(affordable_last_level(8, 1 << 17, 1.0, std::numeric_limits<double>::infinity()) == 1 << 17);
+    const auto last_level = [](int last, double step_work, double max_work) {
+      return StepDoubling(8, last, 1 << 20, step_work, max_work).last();
+    };
+    CHECK(last_level(1 << 17, 1.0, 100) == 32);
+    CHECK(last_level(1 << 17, 2.0, 112) == 32);
+    CHECK(last_level(1 << 17, 1.0, 24) == 16);
+    CHECK(last_level(1 << 17, 1.0, 23) == 0);
+    CHECK(last_level(16, 1.0, 1e9) == 16);
+    CHECK(last_level(1 << 17, 1.0, std::numeric_limits<double>::infinity()) == 1 << 17);
+    // The failure names what stopped the ladder: the work bound, or the most steps (from a first
+    // level that is no power of two the last level, 102400, lies below the most, 2^17).
+    CHECK_THROWS_AS(StepDoubling(8, 1 << 17, 1 << 20, 1.0, 100).give_up("x", "steps"), WorkLimitError);
+    CHECK_THROWS_WITH(StepDoubling(100, 1 << 17, 1 << 20).give_up("x", "steps"), "x within 102400 steps");
   }
   SECTION("the error is never below the floor and NaN is never accepted") {
     StepDoubling fresh(8, 1 << 17, 16);

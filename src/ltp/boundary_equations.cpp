@@ -199,12 +199,11 @@ MultiplierGap multiplier_gap(const LinearPeriodicSystem& system, double system_p
   // δ in Φ moves them by √δ.)
   const int safe = minimum_magnus_steps(at), first = std::max(8, safe / 4);
   const double step_work = magnus_step_work(at.state_size());
-  const int last = affordable_last_level(first, max_magnus_steps, step_work, max_flops);
+  StepDoubling ladder(first, max_magnus_steps, safe, step_work, max_flops);
   MultiplierGap result;
-  if (last == 0) return result;
-  StepDoubling ladder(first, last, safe);
+  if (ladder.levels() < 2) return result;
   Eigen::MatrixXd previous = magnus_monodromy(at, first);
-  for (int steps = 2 * first; steps <= last; steps *= 2) {
+  for (int steps = 2 * first; steps <= ladder.last(); steps *= 2) {
     Eigen::MatrixXd phi = magnus_monodromy(at, steps);
     result.work = (2.0 * steps - first) * step_work;
     if (!phi.allFinite()) return result;

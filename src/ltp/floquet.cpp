@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <string>
 
 #include <fmt/format.h>
 
@@ -106,11 +105,7 @@ NumericalError too_many_steps(const LinearPeriodicSystem& sys) {
 Attempt refine_steps(const LinearPeriodicSystem& sys, double tol, double max_flops, LevelCounter& counter) {
   const int safe = minimum_magnus_steps(sys);
   if (safe > max_magnus_steps) throw too_many_steps(sys);
-  const int first = std::max(8, safe / 64);
-  const int last = affordable_last_level(first, max_magnus_steps, magnus_step_work(sys.state_size()), max_flops);
-  const std::string unconverged = fmt::format("the monodromy matrix did not converge to {:g}", tol);
-  if (last == 0) throw_unconverged(unconverged, last, max_magnus_steps, "Magnus steps per period");
-  StepDoubling ladder(first, last, safe);
+  StepDoubling ladder(std::max(8, safe / 64), max_magnus_steps, safe, magnus_step_work(sys.state_size()), max_flops);
   counter.plan(ladder.levels() + 1);  // and the checks after
   Eigen::VectorXcd previous;
   for (int steps = ladder.first(); steps <= ladder.last(); steps *= 2) {
@@ -131,7 +126,7 @@ Attempt refine_steps(const LinearPeriodicSystem& sys, double tol, double max_flo
     }
     previous = current;
   }
-  throw_unconverged(unconverged, last, max_magnus_steps, "Magnus steps per period");
+  ladder.give_up(fmt::format("the monodromy matrix did not converge to {:g}", tol), "Magnus steps per period");
 }
 
 FloquetResult result_of(FloquetMethod method, const Attempt& attempt, const FloquetChecks& checks, double period) {

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <string>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -75,11 +74,8 @@ PulseMonodromy exact_pulse_monodromy(const LinearPeriodicSystem& sys, const Peri
   // exactly (a map of the paper blade's true train, N = 8, 2.2× faster than from 1/2).
   const double pulse_steps = minimum_magnus_steps(sys) * pulse.width / pulse.period;
   const int first = std::max(2, 1 << static_cast<int>(std::ceil(std::log2(std::max(1.0, pulse_steps / 32)))));
-  const int most = 1 << 16;
-  const int last = affordable_last_level(first, most, magnus_step_work(sys.state_size()), max_flops);
-  const std::string unconverged = fmt::format("the pulse monodromy did not converge to {:g}", tolerance);
-  if (last == 0) throw_unconverged(unconverged, last, most, "steps");
-  StepDoubling ladder(first, last, static_cast<int>(std::min(pulse_steps, 1e9)));
+  StepDoubling ladder(first, 1 << 16, static_cast<int>(std::min(pulse_steps, 1e9)), magnus_step_work(sys.state_size()),
+                      max_flops);
   int done = 0;
   Eigen::VectorXcd previous;
   for (int steps = first; steps <= ladder.last(); steps *= 2) {
@@ -103,7 +99,7 @@ PulseMonodromy exact_pulse_monodromy(const LinearPeriodicSystem& sys, const Peri
     }
     previous = result.multipliers;
   }
-  throw_unconverged(unconverged, last, most, "steps");
+  ladder.give_up(fmt::format("the pulse monodromy did not converge to {:g}", tolerance), "steps");
 }
 
 std::function<double(double)> pulse_variation(const LinearPeriodicSystem& sys, const PeriodicPulse& pulse) {

@@ -10,10 +10,17 @@
 
 namespace bladestab {
 
-StepDoubling::StepDoubling(int first, int last, int safe) : first_(first), last_(last), safe_(safe) {
-  if (first < 1 || last < first) {
-    throw std::invalid_argument(fmt::format("StepDoubling: the ladder {}..{} is empty", first, last));
+StepDoubling::StepDoubling(int first, int last, int safe, double step_work, double max_work)
+    : first_(first), safe_(safe), most_(last) {
+  if (first < 1) throw std::invalid_argument(fmt::format("StepDoubling: the first level {} has no steps", first));
+  for (long long steps = first; steps <= last; steps *= 2) {
+    if ((2.0 * steps - first) * step_work > max_work) {
+      work_limited_ = true;
+      break;
+    }
+    last_ = static_cast<int>(steps);
   }
+  if (work_limited_ && last_ < 2LL * first) last_ = 0;
 }
 
 int StepDoubling::levels() const {
@@ -46,22 +53,13 @@ bool StepDoubling::overflowed(int steps) {
   return growth;
 }
 
-int affordable_last_level(int first, int last, double step_flops, double max_flops) {
-  int affordable = 0;
-  for (long long steps = 2LL * first; steps <= last && (2.0 * steps - first) * step_flops <= max_flops; steps *= 2) {
-    affordable = static_cast<int>(steps);
-  }
-  return affordable;
-}
-
-void throw_unconverged(const std::string& what, int last, int limit, const std::string& unit) {
-  if (last == 0) {
+void StepDoubling::give_up(const std::string& what, const std::string& unit) const {
+  if (work_limited_ && last_ == 0) {
     throw WorkLimitError(fmt::format("{}: the work limit affords fewer than the two levels a judgement needs", what));
   }
-  if (last < limit) {
-    throw WorkLimitError(fmt::format("{} within {} {}, all that the work limit affords", what, last, unit));
-  }
-  throw NumericalError(fmt::format("{} within {} {}", what, last, unit));
+  if (work_limited_) throw WorkLimitError(fmt::format("{} within {} {}, all that the work limit affords", what, last_, unit));
+  if (last_ == 0) throw NumericalError(fmt::format("{}: its first level, {} {}, is past the most, {}", what, first_, unit, most_));
+  throw NumericalError(fmt::format("{} within {} {}", what, last_, unit));
 }
 
 }  // namespace bladestab

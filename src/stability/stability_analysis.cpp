@@ -66,11 +66,8 @@ VariantRho variant_max_rho(const Scene& scene, const Fidelity& f, double tol, do
   };
   const PeriodicSystem sys = system_at(scene, f);
   const int safe = minimum_magnus_steps(sys), first = std::max(8, safe / 16);
-  const bool own_ladder_fits = 8 * first <= max_magnus_steps &&
-                               affordable_last_level(first, 8 * first, magnus_step_work(sys.state_size()), max_flops) ==
-                                   8 * first;
-  if (!f.load.exact_pulse && own_ladder_fits) {
-    StepDoubling ladder(first, 8 * first, safe);
+  StepDoubling ladder(first, 8 * first, safe, magnus_step_work(sys.state_size()), max_flops);
+  if (!f.load.exact_pulse && 8 * first <= max_magnus_steps && ladder.last() == 8 * first) {
     std::optional<double> previous;
     for (int steps = first; steps <= ladder.last(); steps *= 2) {
       poll(0, 0);

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
-#include <string>
 
 #include <fmt/format.h>
 #include <unsupported/Eigen/MatrixFunctions>
@@ -165,12 +164,8 @@ ExactStepper::Integrated ExactStepper::integrate_contact(double start, double en
                       pulses_.peak_n * B_.cwiseAbs().colwise().sum().maxCoeff();
   const double safe = std::max(1.0, norm * (end - start) / 2);
   const int first = 1 << static_cast<int>(std::max(0.0, std::ceil(std::log2(safe / 32))));
-  const int most = 1 << 16;
-  const int last = affordable_last_level(first, most, magnus_step_work(A_free_.rows()), piece_work_flops_);
-  const std::string unconverged =
-      fmt::format("exact stepping: the contact piece [{:.6g}, {:.6g}] s did not converge to {:g}", start, end, tolerance_);
-  if (last == 0) throw_unconverged(unconverged, last, most, "Magnus steps");
-  StepDoubling ladder(first, last, static_cast<int>(std::min(safe, 1e9)));
+  StepDoubling ladder(first, 1 << 16, static_cast<int>(std::min(safe, 1e9)), magnus_step_work(A_free_.rows()),
+                      piece_work_flops_);
   Integrated result;
   Eigen::MatrixXd previous;
   for (int steps = first; steps <= ladder.last(); steps *= 2) {
@@ -194,7 +189,9 @@ ExactStepper::Integrated ExactStepper::integrate_contact(double start, double en
     }
     previous = std::move(map);
   }
-  throw_unconverged(unconverged, last, most, "Magnus steps");
+  ladder.give_up(fmt::format("exact stepping: the contact piece [{:.6g}, {:.6g}] s did not converge to {:g}", start,
+                             end, tolerance_),
+                 "Magnus steps");
 }
 
 std::optional<std::pair<double, double>> ExactStepper::contact_offsets(double a, double b) const {

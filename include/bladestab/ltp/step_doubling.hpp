@@ -12,6 +12,7 @@
 //    pre-asymptotic and may have landed near the answer by chance (measured on the paper blade:
 //    Δ_N 15× below the true error at F̄ = 12, N = 256), and two levels alone show no contraction.
 // Knows nothing of what is integrated: the caller computes the levels and their distances.
+#include <limits>
 #include <optional>
 #include <string>
 
@@ -19,8 +20,12 @@ namespace bladestab {
 
 class StepDoubling {
  public:
-  // Levels first, 2·first, … up to `last`; `safe` as above.
-  StepDoubling(int first, int last, int safe);
+  // Levels first, 2·first, … up to `last`; `safe` as above. A work bound keeps only the levels whose
+  // steps together (2L − first up to level L) take at most `max_work` at `step_work` a step, and
+  // none where not even the first two, the fewest that can converge, fit. last() is the last level
+  // kept (0: none). std::invalid_argument unless first ≥ 1.
+  StepDoubling(int first, int last, int safe, double step_work = 0,
+               double max_work = std::numeric_limits<double>::infinity());
 
   int first() const { return first_; }
   int last() const { return last_; }
@@ -39,21 +44,15 @@ class StepDoubling {
   // overflowed too and was at or past `safe`, where a step is short enough: the result itself grows
   // past the double range, and no level will settle.
   bool overflowed(int steps);
+  // The failure of a ladder that ended unconverged: "<what> within <last> <unit>", thrown as
+  // WorkLimitError where the work bound cut levels off (the message says so), else as NumericalError.
+  [[noreturn]] void give_up(const std::string& what, const std::string& unit) const;
 
  private:
-  int first_, last_, safe_;
+  int first_, last_ = 0, safe_, most_;  // most_: the `last` asked for
+  bool work_limited_ = false;           // the work bound cut levels off
   std::optional<double> previous_distance_;
   int last_overflow_ = 0;  // the steps of the last level that overflowed (0: none)
 };
-
-// The last level L of a ladder first, 2·first, … ≤ `last` whose levels together (2L − first steps)
-// take at most `max_flops` at `step_flops` a step; 0 where not even the first two, the fewest that
-// can converge, fit.
-int affordable_last_level(int first, int last, double step_flops, double max_flops);
-
-// The error of a ladder that ended unconverged at `last` steps: "<what> within <last> <unit>",
-// thrown as WorkLimitError where `last` is below `limit` (the work allowed stopped it; the message
-// says so; `last` 0: not even two levels fit), else as NumericalError.
-[[noreturn]] void throw_unconverged(const std::string& what, int last, int limit, const std::string& unit);
 
 }  // namespace bladestab
