@@ -5,6 +5,7 @@
 #include <sys/wait.h>
 
 #include <cmath>
+#include <cstdio>
 #include <functional>
 #include <string>
 
@@ -12,6 +13,7 @@
 
 #include "bladestab/blade/damping.hpp"
 #include "bladestab/blade/model.hpp"
+#include "bladestab/modal/campbell.hpp"
 #include "bladestab/modal/modes.hpp"
 #include "bladestab/stability/requirements_check.hpp"
 #include "bladestab/stability/stability_analysis.hpp"
@@ -215,4 +217,44 @@ TEST_CASE("check: bad input is one line naming the key", "[check]") {
   // Other commands accept a scene with [requirements] and ignore it.
   const Outcome o = run_bladestab({"modes", example("passes"), "--count", "2"});
   CHECK(exit_code(o) == 0);
+}
+
+// A slender blade (d̄ = 1e-4) over 0–600 rad/s against engine order 12 needs 40 modes below 1273 Hz
+// and 76 terms per field at the tolerance 1e-2: ~47 s of eigensolves. Under a limit of 4 s the
+// terms are raised only while the next round's whole-model solves fit half of it, and the check
+// ends in one line saying so, long before the limit itself stops the run.
+TEST_CASE("check: a Campbell margin whose terms outgrow the work limit ends in one line naming the tolerance",
+          "[check][parallel]") {
+  const auto path = scratch() / "slender_margin.toml";
+  std::FILE* f = std::fopen(path.c_str(), "w");
+  std::fputs((read_text(BLADESTAB_SOURCE_DIR "/stability_maps/sinha2005/blade.toml") +
+              "\n[requirements]\nspeed_range_rad_s = [0.0, 600.0]\nengine_orders = [12]\nfrequency_margin = 0.1\n")
+                 .c_str(),
+             f);
+  std::fclose(f);
+  const Outcome o = run_bladestab({"check", path.string(), "--set", "blade.slenderness=1e-4", "--tolerance", "1e-2",
+                                   "--max-seconds", "4"});
+  INFO(o.command << "\n" << o.err);
+  CHECK(exit_code(o) == 1);
+  CHECK(o.out.empty());
+  CHECK(count_of(o.err, "\n") == 1);
+  CHECK(count_of(o.err, "the Campbell frequencies cannot be brought within the tolerance 0.01") == 1);
+  CHECK(count_of(o.err, "all that the work limit affords (--max-seconds 4)") == 1);
+}
+
+TEST_CASE("check: the Campbell estimate starts no round its work limit cannot afford", "[check]") {
+  const Scene scene = load_scene(example("fails"));
+  CampbellOptions options;
+  options.speeds_rad_s = {230, 290, 350};
+  options.engine_orders = {1};
+  options.mode_count = 2;
+  // The first round's least work: the screen's three whole solves of the 8-term model (24 dofs) and
+  // of its 10-term reference (30 dofs), 25 (2n)³ flops each.
+  const double first_round = 3 * 200 * (std::pow(24.0, 3) + std::pow(30.0, 3));
+  options.work_flops = 0.99 * first_round;
+  CHECK_THROWS_WITH(campbell_with_error_estimate(scene, options, 1e-6),
+                    Catch::Contains("the diagram at model.terms = 8 would pass all that the work limit affords"));
+  options.work_flops = 1e300;
+  const CampbellWithErrors whole = campbell_with_error_estimate(scene, options, 1e-6);
+  CHECK(whole.work_flops >= first_round);
 }

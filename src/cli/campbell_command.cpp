@@ -191,7 +191,7 @@ void check_campbell_work(const Scene& scene, std::size_t speeds, EigenSolverKind
   richer.terms = reference_terms(scene.model.basis, scene.model.terms);
   double flops = 0, bytes = 0;
   for (const ModelSpec& spec : {scene.model, richer}) {
-    flops += solves * eigensolve_flops(dof_layout(spec, scene.blade.two_planes()).size());
+    flops += solves * whole_eigensolve_flops(dof_layout(spec, scene.blade.two_planes()).size());
     bytes = std::max(bytes, eigensolve_bytes(dof_layout(spec, scene.blade.two_planes()).size()));
   }
   check_work(fmt::format("--speeds with model.terms = {}", scene.model.terms),
@@ -228,6 +228,7 @@ Command register_campbell(CLI::App& app) {
     CampbellOptions campbell{speed_list, *orders, *count, options->eigen_solver()};
     campbell.threads = *threads;
     campbell.speeds_text = *speeds;
+    campbell.work_flops = work_limits().seconds * dense_flops_per_second / 2;
     const bool for_people = options->output_format() == OutputFormat::table;
     const CampbellWithErrors result =
         campbell_with_error_estimate(scene, campbell, *tolerance, progress_reporter("campbell: speeds", for_people));

@@ -253,7 +253,7 @@ void check_requirements_work(const Scene& scene) {
   double flops = 0, bytes = 0;
   if (req.frequency_margin) {
     for (const double dofs : {n, nr}) {
-      flops += 3 * eigensolve_flops(dofs);
+      flops += 3 * whole_eigensolve_flops(dofs);
       bytes = std::max(bytes, eigensolve_bytes(dofs));
     }
   }
@@ -308,7 +308,8 @@ Command register_check(CLI::App& app) {
     if (scene.requirements->frequency_margin) {
       double seconds = 0;
       const FrequencyMarginResult m = timed(seconds, [&] {
-        return check_frequency_margin(scene, *tolerance, progress_reporter("check: Campbell speeds", for_people));
+        return check_frequency_margin(scene, *tolerance, progress_reporter("check: Campbell speeds", for_people),
+                                      work_limits().seconds * dense_flops_per_second / 2);
       });
       checks.push_back(margin_outcome(scene, m));
       checks.back().seconds = seconds;

@@ -53,7 +53,7 @@ EigensolveWork converged_modes_work(ModelSpec spec, bool two_planes) {
   EigensolveWork work;
   for (int level = 0; level <= (spec.basis == BasisKind::sine ? 2 : 1); ++level) {
     const double dofs = dof_layout(spec, two_planes).size();
-    work.flops += eigensolve_flops(dofs);
+    work.flops += whole_eigensolve_flops(dofs);
     work.bytes = std::max(work.bytes, eigensolve_bytes(dofs));
     spec.terms = reference_terms(spec.basis, spec.terms);
   }

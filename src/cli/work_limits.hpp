@@ -9,6 +9,7 @@
 #include <CLI/CLI.hpp>
 
 #include "bladestab/blade/model.hpp"
+#include "bladestab/modal/modes.hpp"
 
 namespace bladestab::cli {
 
@@ -33,9 +34,7 @@ void check_work(const std::string& cause, const std::string& what, double second
 inline constexpr double dense_flops_per_second = 4e9;
 inline constexpr double small_product_flops_per_second = 2e9;
 
-// One whole dense eigensolve of the first-order system of a model with `dofs` dofs (2·dofs states):
-// ~25 (2n)³ flops and 6 (2n)² doubles.
-inline double eigensolve_flops(double dofs) { return 25 * 8 * dofs * dofs * dofs; }
+// The memory of one whole dense eigensolve (whole_eigensolve_flops, modes.hpp): 6 (2n)² doubles.
 inline double eigensolve_bytes(double dofs) { return 6 * 8 * 4 * dofs * dofs; }
 
 // The eigensolves of modes_with_error_estimate on a model of `spec`: the model and its richer

@@ -4,11 +4,13 @@
 #include <cmath>
 #include <memory>
 #include <optional>
+#include <utility>
 
 #include <fmt/format.h>
 
 #include "bladestab/base/constants.hpp"
 #include "bladestab/base/input_error.hpp"
+#include "bladestab/base/numerical_error.hpp"
 #include "bladestab/modal/basis_error.hpp"
 #include "bladestab/modal/mode_tracking.hpp"
 #include "support/scalar_search.hpp"
@@ -322,6 +324,28 @@ PathWithinLimits campbell_speeds(const BladeModel& model, const CampbellOptions&
   return path;
 }
 
+// The least work of a round at `spec`, in flops: the screen's whole solves of the model and of its
+// richer models (EstimateRound::work).
+double least_round_work(const Scene& scene, ModelSpec spec) {
+  double flops = 0;
+  for (int model = 0; model <= (spec.basis == BasisKind::sine ? 2 : 1); ++model) {
+    flops += 3 * whole_eigensolve_flops(dof_layout(spec, scene.blade.two_planes()).size());
+    spec.terms = reference_terms(spec.basis, spec.terms);
+  }
+  return flops;
+}
+
+// The round at `spec` would pass CampbellOptions::work_flops; `reached`: the terms and whole
+// estimate of the round before, if any.
+WorkLimitError round_past_work_limit(double tolerance, const ModelSpec& spec,
+                                     const std::optional<std::pair<int, double>>& reached) {
+  const std::string before =
+      reached ? fmt::format("at model.terms = {} their estimate is {:.2g}; ", reached->first, reached->second) : "";
+  return WorkLimitError(fmt::format("the Campbell frequencies cannot be brought within the tolerance {:g}: {}the "
+                                    "diagram at model.terms = {} would pass all that the work limit affords",
+                                    tolerance, before, spec.terms));
+}
+
 // The largest whole estimate and rounding part over the screened points.
 struct Screening {
   double worst = 0, rounding = 0;
@@ -392,10 +416,25 @@ public:
     return s;
   }
 
+  // The whole-model eigensolves the round has taken, in flops (whole_eigensolve_flops): each
+  // model's at its reduced sweep's samples, or at the screen's three speeds and, once the diagram
+  // is solved, at every speed where it is solved densely. The reduced solves are not counted.
+  double work() const {
+    const int speeds = static_cast<int>(options_.speeds_rad_s.size());
+    const auto solves = [&](const SpeedSweep& sweep) {
+      const int samples = static_cast<int>(sweep.sample_speeds().size());
+      return samples > 0 ? std::max(3, samples) : 3 + (swept_ ? speeds : 0);
+    };
+    double flops = solves(*base_) * whole_eigensolve_flops(model_->M.rows());
+    for (const Reference& r : refs_) flops += solves(*r.sweep) * whole_eigensolve_flops(r.model->M.rows());
+    return flops;
+  }
+
   // The base model's diagram at every speed, the richer models solved beside it, and the budget of
   // every point.
   RoundDiagram diagram(const std::function<void(int, int)>& progress) {
     const std::vector<double>& speeds = options_.speeds_rad_s;
+    swept_ = true;
     RoundDiagram d;
     std::vector<std::vector<SpeedModes>> richer(refs_.size());
     run_indexed(2, options_.threads, [&](std::size_t part) {
@@ -449,7 +488,8 @@ public:
                               std::vector<int>(terms_.begin() + 1, terms_.end()),
                               std::move(solved.budget),
                               std::move(crossing_budget),
-                              std::move(approach_budget)};
+                              std::move(approach_budget),
+                              0};
   }
 
 private:
@@ -490,6 +530,7 @@ private:
   std::unique_ptr<BladeModel> model_;
   PathWithinLimits limits_;
   int count_ = 0, tracked_ = 0;
+  bool swept_ = false;      // the diagram has been solved
   std::vector<int> terms_;  // the base model's and each richer model's
   BasisConvergence convergence_;
   std::vector<Reference> refs_;
@@ -526,20 +567,25 @@ CampbellWithErrors campbell_with_error_estimate(const Scene& scene, const Campbe
   wanted.reduction_tolerance = tolerance / 20;
   ModelSpec spec = scene.model;
   bool dense = false;  // set when a reduced sweep could not certify some speed
-  const auto raise = [&](double estimate) {
+  double spent = 0;    // the whole-model eigensolves of the rounds before (EstimateRound::work)
+  std::optional<std::pair<int, double>> reached;  // the last round's terms and estimate
+  const auto raise = [&](double worst, const EstimateRound& round) {
     const std::optional<int> next = terms_for_tolerance(basis_convergence(scene.blade, spec.basis), spec.terms,
-                                                         estimate, tolerance);
-    if (!next) throw tolerance_not_met(tolerance, spec, estimate);
+                                                         worst, tolerance);
+    if (!next) throw tolerance_not_met(tolerance, spec, worst);
+    spent += round.work();
+    reached = std::pair{spec.terms, worst};
     spec.terms = *next;
   };
   while (true) {
+    if (spent + least_round_work(scene, spec) > options.work_flops) throw round_past_work_limit(tolerance, spec, reached);
     try {
       EstimateRound round(scene, spec, wanted, dense);
       // Screen at the ends and the middle: a basis that misses there is raised before the whole sweep.
       const Screening screened = round.screen();
       if (screened.rounding > tolerance) throw tolerance_below_rounding(tolerance, screened.rounding);
       if (screened.worst > tolerance) {
-        raise(screened.worst);
+        raise(screened.worst, round);
         continue;
       }
       RoundDiagram solved = round.diagram(progress);
@@ -550,10 +596,12 @@ CampbellWithErrors campbell_with_error_estimate(const Scene& scene, const Campbe
           for (const ErrorBudget& b : curve) rounding = std::max(rounding, b.method);
         }
         if (rounding > tolerance) throw tolerance_below_rounding(tolerance, rounding);
-        raise(worst);
+        raise(worst, round);
         continue;
       }
-      return round.with_engine_order_budgets(std::move(solved), tolerance);
+      CampbellWithErrors result = round.with_engine_order_budgets(std::move(solved), tolerance);
+      result.work_flops = spent + round.work();
+      return result;
     } catch (const ReducedSweepUnavailable&) {
       dense = true;
     }

@@ -198,7 +198,7 @@ StaticLimitsResult check_static_limits(const Scene& scene) {
 }
 
 FrequencyMarginResult check_frequency_margin(const Scene& scene, double tolerance,
-                                             const std::function<void(int, int)>& progress) {
+                                             const std::function<void(int, int)>& progress, double work_flops) {
   const RequirementsSpec& req = requirements_of(scene);
   if (!req.frequency_margin) throw InputError(fmt::format("{}: requirements.frequency_margin: missing", scene.source));
   const StaticLimitsResult within = check_static_limits(scene);
@@ -219,7 +219,9 @@ FrequencyMarginResult check_frequency_margin(const Scene& scene, double toleranc
   // Track more modes until the highest one tracked stays above the threshold over the whole range.
   for (int count = std::min(4, dofs);; count = std::min(2 * count, dofs)) {
     options.mode_count = count;
+    options.work_flops = work_flops;
     const CampbellWithErrors campbell = campbell_with_error_estimate(scene, options, tolerance, progress);
+    work_flops -= campbell.work_flops;
     const auto lowest = [](const CampbellCurve& c) {
       return *std::min_element(c.frequency_hz.begin(), c.frequency_hz.end());
     };

@@ -7,6 +7,7 @@
 // undamped blade one reduced basis for the whole speed range, every frequency bounded against the
 // whole Ritz model; otherwise (damping, or the dense or ARPACK solver asked for) a whole solve per speed.
 #include <functional>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,9 @@ struct CampbellOptions {
   bool closest_approaches = false;    // also find each curve's closest approach to each line
   int threads = 0;                    // the richer models of the estimate beside the base model unless 1 (0: per core)
   std::string speeds_text{};          // the speeds as the user gave them, for messages (e.g. "0:600:61")
+  // campbell_with_error_estimate: the work its rounds may take, counted as their whole-model
+  // eigensolves (whole_eigensolve_flops); a round that would pass it is not started.
+  double work_flops = std::numeric_limits<double>::infinity();
 };
 
 struct CampbellCurve {
@@ -103,6 +107,7 @@ struct CampbellWithErrors {
   // Per approach (same order), absolute on its distance: the frequency's budget there times
   // kΩ/(2πf), the distance's sensitivity to a relative error of f.
   std::vector<ErrorBudget> approach_budget;
+  double work_flops = 0;  // the whole-model eigensolves of every round, counted as CampbellOptions::work_flops
 
   ErrorBudget worst() const;                       // each part the largest over points and crossings
   ErrorBudget worst_at(std::size_t speed) const;   // each part the largest over the curves there
@@ -116,7 +121,8 @@ struct CampbellWithErrors {
 // whole estimate is within `tolerance` at every speed; the reduced sweep's part is held to
 // tolerance/20. InputError when the tolerance cannot be met (terms_for_tolerance) or is out of
 // range. Crossings carry their estimate but do not steer the
-// terms (near a tangency their amplification is unbounded).
+// terms (near a tangency their amplification is unbounded). WorkLimitError, naming the terms it
+// would take and the estimate reached, when the next round would pass options.work_flops.
 CampbellWithErrors campbell_with_error_estimate(const Scene& scene, const CampbellOptions& options, double tolerance,
                                                 const std::function<void(int, int)>& progress = {});
 

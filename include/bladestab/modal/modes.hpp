@@ -17,6 +17,10 @@ const char* to_string(ModeFamily);  // ModeFamily: model.hpp
 enum class EigenSolverKind { automatic, dense, arpack };
 const char* to_string(EigenSolverKind);
 
+// The work of one whole dense eigensolve of the first-order system of a model with `dofs` dofs
+// (2·dofs states): ~25 (2n)³ flops (Hessenberg reduction, QR iterations and the vectors).
+inline double whole_eigensolve_flops(double dofs) { return 25 * 8 * dofs * dofs * dofs; }
+
 // Eigenvalues λ (one per conjugate pair, Im λ ≥ 0) with their dof-space vectors q.
 struct Eigenpairs {
   Eigen::VectorXcd values;

@@ -54,9 +54,11 @@ struct FrequencyMarginResult {
   double speed_lo_rad_s = 0, speed_hi_rad_s = 0;  // the range checked: its part within the static limits
 };
 
-// `progress(done, total)` counts the diagram's speeds.
+// `progress(done, total)` counts the diagram's speeds. `work_flops`: what the Campbell diagrams may
+// take together (CampbellOptions::work_flops), each with more modes tracked than the one before.
 FrequencyMarginResult check_frequency_margin(const Scene& scene, double tolerance,
-                                             const std::function<void(int, int)>& progress = {});
+                                             const std::function<void(int, int)>& progress = {},
+                                             double work_flops = std::numeric_limits<double>::infinity());
 
 struct RubStabilityResult {
   double required = 0;          // requirements.max_fmax_over_fcr
