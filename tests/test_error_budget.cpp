@@ -228,6 +228,16 @@ TEST_CASE("a growth past 1e218 a period is an answer whose checks say what they 
   CHECK(a.floquet.multipliers.allFinite());
 }
 
+TEST_CASE("a monodromy matrix of 1e271 is checked on its own scale: a refusal, never a crash", "[budget][parallel]") {
+  // A thick (d̄ = 0.3), 4-term blade under a cosine load twice a revolution at 250 rad/s: one budget
+  // variant's Φ reaches 4e271, whose eigenvectors came out non-finite and crashed the LU of the
+  // independent check (seed 2033, `boundaries`); another's passes the double range.
+  const Scene scene = paper_scene({"load.pulses_per_rev=2", "load.approximation=\"cosine\"", "blade.slenderness=0.3",
+                                   "model.coriolis=true", "load.profile=\"cosine\"", "load.contact_time_rev=0.05",
+                                   "model.terms=4", "operation.speed_rad_s=250"});
+  CHECK_THROWS_WITH(analyse_stability(scene, {}), Catch::Contains("overflows the double range"));
+}
+
 TEST_CASE("the first release's wrong answers are right now (issue table)", "[budget][parallel][long_under_sanitizers]") {
   // Each against the value the issue measured with independent integrations.
   CHECK(analyse_stability(paper_scene({"model.terms=40"}), {}).floquet.max_abs_multiplier ==

@@ -36,11 +36,16 @@ struct DominantCheck {
 // itself. Where ρ is ill-conditioned (a near-defective pair), the residual stands for it.
 DominantCheck check_dominant(const Eigen::MatrixXd& phi, const LinearPeriodicSystem& sys, const CoefficientVariation& load,
                              double rtol) {
-  Eigen::EigenSolver<Eigen::MatrixXd> eig(phi, true);
-  if (eig.info() != Eigen::Success) throw NumericalError("the eigenvectors of the monodromy matrix did not converge");
+  // Φ/max|Φ_ij| has Φ's eigenvectors: past divergence Φ reaches 1e271, where the solver's norms of
+  // Φ's own columns overflow and its eigenvectors come out non-finite.
+  const double scale = phi.cwiseAbs().maxCoeff();
+  Eigen::EigenSolver<Eigen::MatrixXd> eig(phi / scale, true);
+  if (eig.info() != Eigen::Success || !eig.eigenvectors().allFinite()) {
+    throw NumericalError("the eigenvectors of the monodromy matrix did not converge");
+  }
   Eigen::Index k = 0;
   eig.eigenvalues().cwiseAbs().maxCoeff(&k);
-  const cplx rho = eig.eigenvalues()(k);
+  const cplx rho = scale * eig.eigenvalues()(k);
   Eigen::VectorXcd v = eig.eigenvectors().col(k).normalized();
   Eigen::VectorXcd start, end;  // v as integrated, and x(T)
   DominantCheck c;
@@ -51,7 +56,8 @@ DominantCheck check_dominant(const Eigen::MatrixXd& phi, const LinearPeriodicSys
     v *= std::conj(v(largest)) / std::abs(v(largest));
     const Eigen::VectorXd x = v.real();
     const Eigen::VectorXd xT = rkf45_propagate(sys, load, x, rtol, rtol * 1e-3);
-    c.residual = ((xT - rho.real() * x).norm() + v.imag().norm() * (1 + std::abs(rho))) / std::abs(rho);
+    // stableNorm: x(T) grows like ρ, up to 1e271, whose squares overflow.
+    c.residual = ((xT - rho.real() * x).stableNorm() + v.imag().norm() * (1 + std::abs(rho))) / std::abs(rho);
     start = x.cast<cplx>();
     end = xT.cast<cplx>();
   } else {
@@ -60,7 +66,7 @@ DominantCheck check_dominant(const Eigen::MatrixXd& phi, const LinearPeriodicSys
     const Eigen::MatrixXd XT = rkf45_propagate(sys, load, X, rtol, rtol * 1e-3);
     end = XT.col(0).cast<cplx>() + cplx(0, 1) * XT.col(1).cast<cplx>();
     start = v;
-    c.residual = (end - rho * v).norm() / std::abs(rho);
+    c.residual = (end - rho * v).stableNorm() / std::abs(rho);
   }
   // wᴴ is row k of V⁻¹ (wᴴv = 1); ‖w‖‖v‖ is ρ's condition number κ: ~1 for the blade's separate
   // multipliers, 1e7 for the double one on a damped Mathieu boundary, where ρ' was 9e-4 off (its
