@@ -22,6 +22,7 @@
 #include "json_output.hpp"
 #include "number_options.hpp"
 #include "options.hpp"
+#include "notes.hpp"
 #include "output_files.hpp"
 #include "progress.hpp"
 #include "static_limits_output.hpp"
@@ -99,13 +100,17 @@ Json curve_fidelity_json(const StabilityMap& m, const PrintedDigits& digits) {
 
 // Where the scene itself sits: a labelled marker for the chart and the point's numbers.
 void write_scene_point(Json& json, const MapPoint& p) {
-  std::string label = fmt::format("scene: max|ρ| = {:.4g}", p.max_abs_multiplier);
+  std::string label = p.undecided.empty() ? fmt::format("scene: max|ρ| = {:.4g}", p.max_abs_multiplier)
+                                          : std::string("scene: max|ρ| undecided");
   if (p.nearest_boundary) {
     label += fmt::format("\nnearest boundary ({:+d}) at F̄ = {:.4g}, ΔF̄ = {:+.3g}", p.nearest_boundary->multiplier,
                          p.nearest_boundary->fbar, p.nearest_boundary->fbar - p.fbar);
   }
   json["markers"] = Json::array({{{"x", p.x}, {"y", p.fbar}, {"label", label}}});
-  Json point = {{"x", p.x}, {"y", p.fbar}, {"max_abs_multiplier", p.max_abs_multiplier}};
+  Json point = {{"x", p.x},
+                {"y", p.fbar},
+                {"max_abs_multiplier", number_or_null(p.max_abs_multiplier)},
+                {"undecided", p.undecided.empty() ? Json(nullptr) : Json(p.undecided)}};
   if (p.nearest_boundary) {
     point["nearest_boundary_fbar"] = p.nearest_boundary->fbar;
     point["nearest_boundary_multiplier"] = p.nearest_boundary->multiplier;
@@ -115,6 +120,11 @@ void write_scene_point(Json& json, const MapPoint& p) {
     point["nearest_boundary_fbar"] = nullptr;
   }
   json["scene_point"] = point;
+}
+
+// Why the undecided shading points have no verdict: the first one's ladder, and the limit.
+std::string undecided_text(const StabilityMap& m) {
+  return fmt::format("{} (--max-seconds {:g})", m.undecided_reason, work_limits().seconds);
 }
 
 // `m` as printed (as_printed).
@@ -149,6 +159,9 @@ std::string map_json(const Scene& scene, const BladeModel& model, const MapOptio
   for (const MapSample& p : m.samples) {
     json["samples"].push_back({{"x", p.x}, {"y", p.fbar}, {"max_abs_multiplier", number_or_null(p.max_abs_multiplier)}});
   }
+  json["undecided_points"] = Json::array();
+  for (const MapSample& p : m.undecided) json["undecided_points"].push_back({{"x", p.x}, {"y", p.fbar}});
+  json["undecided_reason"] = m.undecided.empty() ? Json(nullptr) : Json(undecided_text(m));
   json["curve_fidelity"] = curve_fidelity_json(m, digits);
   json["curves"] = Json::array();
   for (const BoundaryCurve& c : m.curves) {
@@ -309,9 +322,14 @@ void print_map_table(const Scene& scene, const BladeModel& model, const std::str
                                "against twice as many)", sf.reduction_error, sf.reduction_vectors,
                                sf.checked.size())
                  : std::string("; the whole Ritz model (fewer vectors missed the tolerance)"));
+  if (!m.undecided.empty()) {
+    fmt::print("undecided {} shading points, shaded blank: {}\n", m.undecided.size(), undecided_text(m));
+  }
   if (m.scene_point) {
     const MapPoint& p = *m.scene_point;
-    fmt::print("scene     ({:g}, F̄ = {:g}): max|ρ| = {:.6g}{}\n", p.x, p.fbar, p.max_abs_multiplier,
+    fmt::print("scene     ({:g}, F̄ = {:g}): max|ρ| {}{}\n", p.x, p.fbar,
+               p.undecided.empty() ? fmt::format("= {:.6g}", p.max_abs_multiplier)
+                                   : fmt::format("undecided: {} (--max-seconds {:g})", p.undecided, work_limits().seconds),
                p.nearest_boundary ? fmt::format("; nearest boundary along F̄ at {:.6g} ({:+d}, mode {}, order {}), "
                                                 "ΔF̄ = {:+.3g}",
                                                 p.nearest_boundary->fbar, p.nearest_boundary->multiplier,
@@ -389,6 +407,10 @@ Command register_map(CLI::App& app) {
     const std::vector<std::string> files =
         write_outputs(*out, base, {{base + "_curves.csv", curves_csv(printed)}, {base + "_grid.csv", grid_csv(printed)}},
                       json, "map", *chart);
+    if (!m.undecided.empty()) {
+      print_note(fmt::format("map: {} of the {} shading points are undecided (listed in undecided_points): {}",
+                             m.undecided.size(), m.samples.size(), undecided_text(m)));
+    }
     switch (options->output_format()) {
       case OutputFormat::json: print_json_answer(json); break;
       case OutputFormat::csv: fmt::print("{}", curves_csv(printed)); break;

@@ -158,8 +158,15 @@ std::vector<TracedCurve> close_folds(std::vector<TracedCurve> curves, const std:
 std::vector<BoundaryCurve> drawn_curves(const std::vector<TracedCurve>& curves, const CurveWindow& w);
 
 // The Floquet multipliers at one map point on the automatic reduction with `vectors` per load level
-// (0: the whole Ritz model), to `tolerance` (map_shading.cpp).
-FloquetResult point_multipliers(const BladeModel& model, const Scene& scene, int vectors, double tolerance);
+// (0: the whole Ritz model), to `tolerance`, the ladder within `max_flops` (map_shading.cpp).
+FloquetResult point_multipliers(const BladeModel& model, const Scene& scene, int vectors, double tolerance,
+                                double max_flops);
+
+// The work each point's Floquet ladder may take: a quarter of the map's work spread over the
+// shading grid's points (the refinement adds about as many again near the boundaries).
+inline double point_work_flops(const MapOptions& o) {
+  return o.work_flops / (4.0 * static_cast<double>(o.grid_x.size() * o.grid_fbar.size()));
+}
 
 // The shading's reduction: the window's vectors, doubled while the check on the grid fails
 // (map_shading.cpp).

@@ -3,10 +3,12 @@
 #include <limits>
 #include <map>
 #include <optional>
+#include <string>
 #include <tuple>
 #include <unordered_map>
 #include <utility>
 
+#include "bladestab/base/numerical_error.hpp"
 #include "bladestab/blade/reduction.hpp"
 #include "bladestab/blade/static_limits.hpp"
 #include "bladestab/blade/undamped_modes.hpp"
@@ -31,6 +33,14 @@ std::optional<Combination> combination_at(const BladeModel& model, const Scene& 
   if (!(static_margin(model, at.operation.speed_rad_s, mean) > 0)) return std::nullopt;
   const UndampedModes modes = undamped_modes(model, at.operation.speed_rad_s, mean, count, false);
   return nearest_combination(modes.omega2.head(count).cwiseSqrt(), load.angular_frequency, r.multipliers(0), max_order);
+}
+
+// The map's Floquet options: the automatic method to `tolerance` without the independent check,
+// its ladder within `max_flops`.
+FloquetOptions with_work(double tolerance, double max_flops) {
+  FloquetOptions o{FloquetMethod::automatic, 0, tolerance, false};
+  o.max_flops = max_flops;
+  return o;
 }
 
 // A shading sample named by its combination, at lattice point (i, j).
@@ -97,27 +107,34 @@ ShadingFidelity check_shading(const BladeModel& model, const Scene& scene, const
     if (at != previous && o.grid_x[at % nx] > 0) points.emplace_back(o.grid_x[at % nx], o.grid_fbar[at / nx]);
     previous = at;
   }
+  // A point whose ladders do not converge within their work cannot check the reduction: +∞, so
+  // the vectors are doubled toward the whole Ritz model, which needs no check.
   const std::vector<double> part = run_indexed(points.size(), o.threads, [&](std::size_t k) {
     const Scene at = window.point(scene, points[k].first, points[k].second);
-    const FloquetResult r = point_multipliers(model, at, vectors, o.tolerance / 4);
-    const FloquetResult richer = point_multipliers(model, at, 2 * vectors, o.tolerance / 4);
-    return (2 * std::abs(r.max_abs_multiplier - richer.max_abs_multiplier) + r.error_estimate + richer.error_estimate) /
-           std::max(1.0, r.max_abs_multiplier);
+    try {
+      const FloquetResult r = point_multipliers(model, at, vectors, o.tolerance / 4, point_work_flops(o));
+      const FloquetResult richer = point_multipliers(model, at, 2 * vectors, o.tolerance / 4, point_work_flops(o));
+      return (2 * std::abs(r.max_abs_multiplier - richer.max_abs_multiplier) + r.error_estimate +
+              richer.error_estimate) / std::max(1.0, r.max_abs_multiplier);
+    } catch (const WorkLimitError&) {
+      return std::numeric_limits<double>::infinity();
+    }
   });
   for (std::size_t k = 0; k < points.size(); ++k) {
-    f.checked.push_back({points[k].first, points[k].second, part[k]});
+    if (std::isfinite(part[k])) f.checked.push_back({points[k].first, points[k].second, part[k]});
     f.reduction_error = std::max(f.reduction_error, part[k]);
   }
   f.tolerance_met = f.reduction_error <= o.tolerance;
   return f;
 }
 
-// A lattice point's max|ρ| (NaN where it has no periodic load), the combination it is named by and
-// its error relative to max(1, max|ρ|).
+// A lattice point's max|ρ| (NaN where it has no periodic load or is undecided), the combination it
+// is named by and its error relative to max(1, max|ρ|); `undecided`: why its ladder stopped.
 struct PointValue {
   double max_abs_multiplier = std::numeric_limits<double>::quiet_NaN();
   std::optional<Combination> combination;
   double relative_error = 0;
+  std::string undecided;
 };
 
 // The shading on the fine lattice: the grid's cells split 2^k times in each direction. Lattice
@@ -201,10 +218,15 @@ private:
       const double x = lattice_x(points[k].first), fbar = lattice_y(points[k].second);
       if (x > 0) {
         const Scene at = window_.point(scene_, x, fbar);
-        const FloquetResult r = point_multipliers(model_, at, map_.shading_fidelity.reduction_vectors, o_.tolerance);
-        v.max_abs_multiplier = r.max_abs_multiplier;
-        v.combination = combination_at(model_, at, r, stable_below_, window_.max_order);
-        v.relative_error = r.error_estimate / std::max(1.0, r.max_abs_multiplier);
+        try {
+          const FloquetResult r = point_multipliers(model_, at, map_.shading_fidelity.reduction_vectors, o_.tolerance,
+                                                    point_work_flops(o_));
+          v.max_abs_multiplier = r.max_abs_multiplier;
+          v.combination = combination_at(model_, at, r, stable_below_, window_.max_order);
+          v.relative_error = r.error_estimate / std::max(1.0, r.max_abs_multiplier);
+        } catch (const WorkLimitError& e) {
+          v.undecided = e.what();
+        }
       }
       progress_.tick();
       return v;
@@ -214,6 +236,10 @@ private:
       max_error_ = std::max(max_error_, values[k].relative_error);
       value_[key(i, j)] = values[k].max_abs_multiplier;
       map_.samples.push_back({lattice_x(i), lattice_y(j), values[k].max_abs_multiplier});
+      if (!values[k].undecided.empty()) {
+        map_.undecided.push_back(map_.samples.back());
+        if (map_.undecided_reason.empty()) map_.undecided_reason = values[k].undecided;
+      }
       if (values[k].combination) named_.push_back({i, j, *values[k].combination, map_.samples.back()});
     }
   }
@@ -283,15 +309,16 @@ private:
 // the load's series by the automatic method, the true pulse train (load.approximation = "exact")
 // by its piecewise monodromy — the free flight's exponential and the contact's Magnus steps
 // (pulse_monodromy.hpp).
-FloquetResult point_multipliers(const BladeModel& model, const Scene& scene, int vectors, double tolerance) {
+FloquetResult point_multipliers(const BladeModel& model, const Scene& scene, int vectors, double tolerance,
+                                double max_flops) {
   const LoadSeries load = load_series(scene);
   const ReductionSpec reduction = vectors > 0 ? ReductionSpec{ReductionKind::automatic, vectors, 0}
                                               : ReductionSpec{ReductionKind::none, 0, 0};
   const PeriodicSystem sys = periodic_system(model, scene, load, reduction);
   if (load.exact_pulse) {
-    return pulse_train_multipliers(sys, periodic_pulse(pulse_train(scene)), {FloquetMethod::automatic, 0, tolerance, false});
+    return pulse_train_multipliers(sys, periodic_pulse(pulse_train(scene)), with_work(tolerance, max_flops));
   }
-  return floquet_multipliers(sys, {FloquetMethod::automatic, 0, tolerance, false});
+  return floquet_multipliers(sys, with_work(tolerance, max_flops));
 }
 
 ShadingFidelity shading_fidelity(const BladeModel& model, const Scene& scene, const CurveWindow& window,

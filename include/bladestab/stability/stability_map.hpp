@@ -8,8 +8,9 @@
 // and splits, like a quadtree, every cell whose corners disagree about stability or that holds a
 // traced boundary point, until the cells reach the requested resolution.
 #include <functional>
-#include <optional>
 #include <limits>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include <Eigen/Dense>
@@ -36,7 +37,9 @@ struct MapOptions {
   int threads = 0;  // worker threads (0: one per core)
   // The work of the map, in dense eigensolver flops (boundary_level_flops): the curves' model is not
   // raised to a level whose check and trace lines would pass half of it (CurveFidelity::
-  // work_limited). Deterministic, unlike a clock.
+  // work_limited). Each shading point's Floquet ladder may take work_flops / (4 · grid points)
+  // (FloquetOptions::max_flops); a point that has not converged within it is left undecided
+  // (StabilityMap::undecided). Deterministic, unlike a clock.
   double work_flops = std::numeric_limits<double>::infinity();
 };
 
@@ -87,7 +90,8 @@ struct ShadingFidelity {
 // The scene's own point on the map: its max|ρ| (on the shading's model, at the map's tolerance)
 // and the nearest boundary drawn along F̄ at its θ or Ω.
 struct MapPoint {
-  double x = 0, fbar = 0, max_abs_multiplier = 0;
+  double x = 0, fbar = 0, max_abs_multiplier = 0;  // NaN where undecided
+  std::string undecided;  // why its Floquet ladder stopped short of its tolerance (its work, as a shading point's)
   struct Nearest {
     double fbar = 0;
     int multiplier = 0, mode = 0, order = 0;
@@ -109,11 +113,15 @@ struct CombinationRegion {
 struct StabilityMap {
   MapPlane plane = MapPlane::theta_fmax;
   std::vector<double> grid_x, grid_fbar;
-  Eigen::MatrixXd max_abs_multiplier;  // rows: F̄, columns: x; NaN where the point has no periodic load
+  Eigen::MatrixXd max_abs_multiplier;  // rows: F̄, columns: x; NaN where the point has no periodic load or is undecided
   int cells_x = 0, cells_y = 0;        // the fine lattice: the grid's cells split 2^k times
   std::vector<MapSample> samples;      // every evaluated point, the grid's included
   std::vector<MapCell> cells;          // the refinement's leaves, covering the window
   double max_error_estimate = 0;
+  // The shading points whose Floquet ladder did not converge within their work (MapOptions::
+  // work_flops; max|ρ| NaN): shaded as a verdict of their own. `undecided_reason`: the first one's.
+  std::vector<MapSample> undecided;
+  std::string undecided_reason;
   std::vector<BoundaryCurve> curves;
   std::vector<CombinationRegion> combinations;  // by x, then F̄
   CurveFidelity curve_fidelity;
