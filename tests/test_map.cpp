@@ -390,3 +390,34 @@ TEST_CASE("map: a curve model the work limit cannot raise is drawn at its level 
   CHECK(limited.curve_fidelity.budget.total() > o.tolerance);
   CHECK(limited.curves.size() >= 4);
 }
+
+TEST_CASE("map: a shading point whose ladder outgrows its work is undecided, and the others stand", "[map][mathieu][parallel]") {
+  // Mathieu's equation along θ at F̄ = 0.6: the longer the period 2π/θ, the more Magnus steps a point
+  // needs. With 3e5 flops for the map (3e5 / 20 a point) the two lowest θ cannot converge; they are
+  // listed as undecided (NaN), and the other three keep the values of the unlimited map.
+  const Scene scene = paper_scene({"model.theory=euler-bernoulli", "model.terms=1", "model.axial=false",
+                                   "model.basis=sine", "operation.speed_rad_s=300"});
+  MapOptions o;
+  o.plane = MapPlane::theta_fmax;
+  o.grid_x = linspace(20, 400, 5);
+  o.grid_fbar = {0.6};
+  o.trace = linspace(0, 1, 5);
+  o.approximation = 8;
+  o.tolerance = 1e-8;
+  const StabilityMap whole = stability_map(scene, o);
+  REQUIRE(whole.undecided.empty());
+  o.work_flops = 3e5;
+  const StabilityMap limited = stability_map(scene, o);
+  REQUIRE(limited.undecided.size() == 2);
+  CHECK(limited.undecided[0].x == 20);
+  CHECK(limited.undecided[1].x == 115);
+  CHECK_THAT(limited.undecided_reason, Catch::Contains("all that the work limit affords"));
+  for (int i = 0; i < 5; ++i) {
+    if (i < 2) {
+      CHECK(std::isnan(limited.max_abs_multiplier(0, i)));
+    } else {
+      CHECK(limited.max_abs_multiplier(0, i) == whole.max_abs_multiplier(0, i));
+    }
+  }
+  CHECK(limited.curves.size() == whole.curves.size());
+}
