@@ -292,19 +292,25 @@ void print(const SceneOptions& options, const Scene& scene, const BladeModel& mo
 // The boundary eigenproblems' cost before they start: the real balance has H·n unknowns (H
 // harmonics: 2k for the −1 family, 2k + 1 for +1; n dofs of the reduced model), linearized to
 // twice that in θ. Every run solves both families at k and k + 2 on the scene's model and at k on
-// the richer basis: a lower bound of the work, with dgeev's ~26 N³ flops and its matrices (~32 N²
-// bytes) for each.
+// the richer basis, and an automatic reduction's at min(k, 4) on the whole model: a lower bound of
+// the work, with dgeev's ~26 N³ flops and its matrices (~32 N² bytes) for each.
 void check_boundary_work(const Scene& scene, const BladeModel& model, const BoundaryRequest& request) {
-  const PeriodicSystem sys =
-      periodic_system(model, scene, load_series(scene), boundary_reduction(model, scene, request));
+  const ReductionSpec reduction = boundary_reduction(model, scene, request);
+  const PeriodicSystem sys = periodic_system(model, scene, load_series(scene), reduction);
   const int k = request.first_approximation, n = sys.kept_modes;
   const int richer = richer_basis_dofs(scene.model, n, sys.all_modes);
   const bool in_theta = !request.theta_rad_s;
+  const bool whole_compared = reduction.kind == ReductionKind::automatic && n < sys.all_modes;
+  const int k_whole = std::min(k, whole_model_approximation);
   const double flops = boundary_level_flops(k, n, in_theta) + boundary_level_flops(k + 2, n, in_theta) +
-                       boundary_level_flops(k, richer, in_theta);
-  const double largest = (in_theta ? 2 : 1) * (2 * k + 5) * static_cast<double>(std::max(n, richer));
+                       boundary_level_flops(k, richer, in_theta) +
+                       (whole_compared ? boundary_level_flops(k_whole, sys.all_modes, in_theta) : 0.0);
+  const double largest = (in_theta ? 2 : 1) * std::max((2 * k + 5) * static_cast<double>(std::max(n, richer)),
+                                                       (2 * k_whole + 1.0) * (whole_compared ? sys.all_modes : 0));
   check_work(fmt::format("--approximation {} with model.terms = {}", k, scene.model.terms),
-             fmt::format("the boundary equations of {} dofs", n), flops / dense_flops_per_second,
+             whole_compared ? fmt::format("the boundary equations of {} dofs and the reduction's comparison with the whole "
+                                          "model of {} dofs at k = {}", n, sys.all_modes, k_whole)
+                             : fmt::format("the boundary equations of {} dofs", n), flops / dense_flops_per_second,
              32 * largest * largest);
 }
 

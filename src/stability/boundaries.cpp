@@ -26,9 +26,6 @@ constexpr double check_monodromy_tolerance = 1e-10;  // on Φ(T) of the multipli
 // fastest kept frequency times the period (≈ 2π·check_reach·order radians a period); at 20 the
 // paper blade's boundary at θ = 300 rad/s lost its Coriolis-coupled axial mode (1280 Hz) and moved 2 %.
 constexpr double check_reach = 200;
-// The automatic reduction is also compared with the whole model at this k (or the answer's, if
-// lower): a few whole-model levels cost about as much as all the reduced ones.
-constexpr int whole_model_approximation = 4;
 
 double value_of(const Boundary& b, bool in_load) { return in_load ? b.peak_force_n : b.theta_rad_s; }
 

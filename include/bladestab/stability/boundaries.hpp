@@ -88,6 +88,10 @@ struct BoundaryAnalysis {
 // doubled by the linearization in θ (in_theta), at dgeev's ~26 N³ flops.
 double boundary_level_flops(int k, int dofs, bool in_theta);
 
+// The automatic reduction is also compared with the whole model at this k (or the answer's, if
+// lower): a few whole-model levels cost about as much as all the reduced ones.
+inline constexpr int whole_model_approximation = 4;
+
 // Dofs of the richer-basis model the basis part is measured against, for a model of `dofs` of its
 // `all_dofs`: a reduced model keeps its size (the same vectors, or the same cut-off), the whole
 // Ritz model grows with the terms (reference_terms).
