@@ -49,15 +49,9 @@ void check_work(const std::string& cause, const std::string& what, double second
                                limits.megabytes));
 }
 
-EigensolveWork converged_modes_work(ModelSpec spec, bool two_planes) {
-  EigensolveWork work;
-  for (int level = 0; level <= (spec.basis == BasisKind::sine ? 2 : 1); ++level) {
-    const double dofs = dof_layout(spec, two_planes).size();
-    work.flops += whole_eigensolve_flops(dofs);
-    work.bytes = std::max(work.bytes, eigensolve_bytes(dofs));
-    spec.terms = reference_terms(spec.basis, spec.terms);
-  }
-  return work;
+EigensolveWork converged_modes_work(const ModelSpec& spec, bool two_planes) {
+  const ReferenceSolves solves = reference_solves(spec, two_planes);
+  return {solves.flops, eigensolve_bytes(solves.largest_dofs)};
 }
 
 }  // namespace bladestab::cli

@@ -102,15 +102,10 @@ PathWithinLimits campbell_speeds(const BladeModel& model, const CampbellOptions&
   return path;
 }
 
-// The least work of a round at `spec`, in flops: the screen's whole solves of the model and of its
-// richer models (EstimateRound::work).
-double least_round_work(const Scene& scene, ModelSpec spec) {
-  double flops = 0;
-  for (int model = 0; model <= (spec.basis == BasisKind::sine ? 2 : 1); ++model) {
-    flops += 3 * whole_eigensolve_flops(dof_layout(spec, scene.blade.two_planes()).size());
-    spec.terms = reference_terms(spec.basis, spec.terms);
-  }
-  return flops;
+// The least work of a round at `spec`, in flops: the screen's whole solves, at three speeds, of the
+// model and of its richer models (EstimateRound::work).
+double least_round_work(const Scene& scene, const ModelSpec& spec) {
+  return 3 * reference_solves(spec, scene.blade.two_planes()).flops;
 }
 
 // The round at `spec` would pass CampbellOptions::work_flops; `reached`: the terms and whole

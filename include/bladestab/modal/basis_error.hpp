@@ -46,6 +46,15 @@ double frequency_rounding(const Eigen::MatrixXd& absolute_stiffness, const Eigen
 // the rate of convergence.
 int reference_terms(BasisKind basis, int terms);
 
+// One whole dense eigensolve (whole_eigensolve_flops, modes.hpp) of a model of `spec` and one of
+// each richer model its estimate compares with (one for the Legendre basis, two for the sine
+// basis, reference_terms): their flops together and the largest model's dofs.
+struct ReferenceSolves {
+  double flops = 0;
+  int largest_dofs = 0;
+};
+ReferenceSolves reference_solves(ModelSpec spec, bool two_planes);
+
 // How fast the Ritz basis converges on a blade, which sets how far one comparison |f_N − f_ref|
 // understates the error and whether more terms can reach a tolerance:
 //   exponential  Legendre on smooth properties (the uniform blade, or a table of two stations);
