@@ -9,6 +9,8 @@
 #include <atomic>
 #include <functional>
 #include <mutex>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include <Eigen/Dense>
@@ -167,6 +169,12 @@ FloquetResult point_multipliers(const BladeModel& model, const Scene& scene, int
 inline double point_work_flops(const MapOptions& o) {
   return o.work_flops / (4.0 * static_cast<double>(o.grid_x.size() * o.grid_fbar.size()));
 }
+
+// A shading point's (or the scene point's) multipliers, to the map's tolerance within its work
+// (point_work_flops); none where its ladder did not converge within it, `undecided` then saying
+// why (map_shading.cpp).
+std::optional<FloquetResult> decided_multipliers(const BladeModel& model, const Scene& scene, int vectors,
+                                                 const MapOptions& o, std::string& undecided);
 
 // The shading's reduction: the window's vectors, doubled while the check on the grid fails
 // (map_shading.cpp).

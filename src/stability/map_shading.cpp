@@ -218,14 +218,10 @@ private:
       const double x = lattice_x(points[k].first), fbar = lattice_y(points[k].second);
       if (x > 0) {
         const Scene at = window_.point(scene_, x, fbar);
-        try {
-          const FloquetResult r = point_multipliers(model_, at, map_.shading_fidelity.reduction_vectors, o_.tolerance,
-                                                    point_work_flops(o_));
-          v.max_abs_multiplier = r.max_abs_multiplier;
-          v.combination = combination_at(model_, at, r, stable_below_, window_.max_order);
-          v.relative_error = r.error_estimate / std::max(1.0, r.max_abs_multiplier);
-        } catch (const WorkLimitError& e) {
-          v.undecided = e.what();
+        if (const auto r = decided_multipliers(model_, at, map_.shading_fidelity.reduction_vectors, o_, v.undecided)) {
+          v.max_abs_multiplier = r->max_abs_multiplier;
+          v.combination = combination_at(model_, at, *r, stable_below_, window_.max_order);
+          v.relative_error = r->error_estimate / std::max(1.0, r->max_abs_multiplier);
         }
       }
       progress_.tick();
@@ -319,6 +315,16 @@ FloquetResult point_multipliers(const BladeModel& model, const Scene& scene, int
     return pulse_train_multipliers(sys, periodic_pulse(pulse_train(scene)), with_work(tolerance, max_flops));
   }
   return floquet_multipliers(sys, with_work(tolerance, max_flops));
+}
+
+std::optional<FloquetResult> decided_multipliers(const BladeModel& model, const Scene& scene, int vectors,
+                                                 const MapOptions& o, std::string& undecided) {
+  try {
+    return point_multipliers(model, scene, vectors, o.tolerance, point_work_flops(o));
+  } catch (const WorkLimitError& e) {
+    undecided = e.what();
+    return std::nullopt;
+  }
 }
 
 ShadingFidelity shading_fidelity(const BladeModel& model, const Scene& scene, const CurveWindow& window,

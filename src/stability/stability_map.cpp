@@ -2,9 +2,9 @@
 
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "bladestab/base/input_error.hpp"
-#include "bladestab/base/numerical_error.hpp"
 #include "stability/map_parts.hpp"
 
 namespace bladestab {
@@ -27,14 +27,9 @@ std::optional<MapPoint> scene_point(const Scene& scene, const BladeModel& model,
   MapPoint p;
   p.x = scene_x;
   p.fbar = scene_fbar;
-  try {
-    p.max_abs_multiplier = point_multipliers(model, window.point(scene, scene_x, scene_fbar),
-                                             map.shading_fidelity.reduction_vectors, o.tolerance, point_work_flops(o))
-                               .max_abs_multiplier;
-  } catch (const WorkLimitError& e) {
-    p.max_abs_multiplier = std::numeric_limits<double>::quiet_NaN();
-    p.undecided = e.what();
-  }
+  const std::optional<FloquetResult> r = decided_multipliers(model, window.point(scene, scene_x, scene_fbar),
+                                                             map.shading_fidelity.reduction_vectors, o, p.undecided);
+  p.max_abs_multiplier = r ? r->max_abs_multiplier : std::numeric_limits<double>::quiet_NaN();
   const std::vector<Boundary> along = map.curve_fidelity.drawn ? window.along_fbar(scene, curves.model, speed, scene_theta)
                                                                : std::vector<Boundary>{};
   for (const Boundary& b : along) {
