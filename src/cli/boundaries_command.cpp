@@ -205,8 +205,8 @@ void print_csv(const BoundaryOutput& o) {
 // the largest the work limit (BoundaryRequest::work_flops, from --max-seconds) affords.
 std::string harmonics_reached(const BoundaryAnalysis& result, const BoundaryRequest& request) {
   if (!result.work_limited) return fmt::format("with up to {} harmonics per family", request.max_approximation);
-  return fmt::format("with up to {} harmonics per family, all that the work limit affords (--max-seconds {:g})",
-                     result.approximation + 2, work_limits().seconds);
+  return with_max_seconds(
+      fmt::format("with up to {} harmonics per family, all that the work limit affords", result.approximation + 2));
 }
 
 void print_table(const BoundaryOutput& o) {

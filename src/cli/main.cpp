@@ -76,7 +76,7 @@ int main(int argc, char** argv) {
   } catch (const bladestab::InputError& e) {
     return report("error", e.what(), 2);
   } catch (const bladestab::WorkLimitError& e) {
-    return report("failed", fmt::format("{} (--max-seconds {:g})", e.what(), work_limits().seconds), 1);
+    return report("failed", with_max_seconds(e.what()), 1);
   } catch (const std::bad_alloc&) {
     return report("failed", "out of memory", 1);
   } catch (const std::exception& e) {

@@ -122,11 +122,6 @@ void write_scene_point(Json& json, const MapPoint& p) {
   json["scene_point"] = point;
 }
 
-// Why the undecided shading points have no verdict: the first one's ladder, and the limit.
-std::string undecided_text(const StabilityMap& m) {
-  return fmt::format("{} (--max-seconds {:g})", m.undecided_reason, work_limits().seconds);
-}
-
 // `m` as printed (as_printed).
 std::string map_json(const Scene& scene, const BladeModel& model, const MapOptions& o, const StabilityMap& m,
                      const PrintedDigits& digits) {
@@ -161,7 +156,7 @@ std::string map_json(const Scene& scene, const BladeModel& model, const MapOptio
   }
   json["undecided_points"] = Json::array();
   for (const MapSample& p : m.undecided) json["undecided_points"].push_back({{"x", p.x}, {"y", p.fbar}});
-  json["undecided_reason"] = m.undecided.empty() ? Json(nullptr) : Json(undecided_text(m));
+  json["undecided_reason"] = m.undecided.empty() ? Json(nullptr) : Json(with_max_seconds(m.undecided_reason));
   json["curve_fidelity"] = curve_fidelity_json(m, digits);
   json["curves"] = Json::array();
   for (const BoundaryCurve& c : m.curves) {
@@ -323,13 +318,13 @@ void print_map_table(const Scene& scene, const BladeModel& model, const std::str
                                sf.checked.size())
                  : std::string("; the whole Ritz model (fewer vectors missed the tolerance)"));
   if (!m.undecided.empty()) {
-    fmt::print("undecided {} shading points, shaded blank: {}\n", m.undecided.size(), undecided_text(m));
+    fmt::print("undecided {} shading points, shaded blank: {}\n", m.undecided.size(), with_max_seconds(m.undecided_reason));
   }
   if (m.scene_point) {
     const MapPoint& p = *m.scene_point;
     fmt::print("scene     ({:g}, F̄ = {:g}): max|ρ| {}{}\n", p.x, p.fbar,
                p.undecided.empty() ? fmt::format("= {:.6g}", p.max_abs_multiplier)
-                                   : fmt::format("undecided: {} (--max-seconds {:g})", p.undecided, work_limits().seconds),
+                                   : "undecided: " + with_max_seconds(p.undecided),
                p.nearest_boundary ? fmt::format("; nearest boundary along F̄ at {:.6g} ({:+d}, mode {}, order {}), "
                                                 "ΔF̄ = {:+.3g}",
                                                 p.nearest_boundary->fbar, p.nearest_boundary->multiplier,
@@ -409,7 +404,7 @@ Command register_map(CLI::App& app) {
                       json, "map", *chart);
     if (!m.undecided.empty()) {
       print_note(fmt::format("map: {} of the {} shading points are undecided (listed in undecided_points): {}",
-                             m.undecided.size(), m.samples.size(), undecided_text(m)));
+                             m.undecided.size(), m.samples.size(), with_max_seconds(m.undecided_reason)));
     }
     switch (options->output_format()) {
       case OutputFormat::json: print_json_answer(json); break;

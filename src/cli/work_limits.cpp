@@ -49,6 +49,10 @@ void check_work(const std::string& cause, const std::string& what, double second
                                limits.megabytes));
 }
 
+std::string with_max_seconds(const std::string& message) {
+  return fmt::format("{} (--max-seconds {:g})", message, work_limits().seconds);
+}
+
 EigensolveWork converged_modes_work(const ModelSpec& spec, bool two_planes) {
   const ReferenceSolves solves = reference_solves(spec, two_planes);
   return {solves.flops, eigensolve_bytes(solves.largest_dofs)};

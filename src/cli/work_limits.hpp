@@ -21,6 +21,9 @@ struct WorkLimits {
 // The limits of this thread's run (one command runs on a thread at a time).
 WorkLimits& work_limits();
 
+// `message` with the option that set the work limit it met: "… (--max-seconds 600)".
+std::string with_max_seconds(const std::string& message);
+
 // Adds --max-seconds and --max-memory to a command.
 void add_work_limit_options(CLI::App& command);
 
