@@ -238,6 +238,49 @@ TEST_CASE("a monodromy matrix of 1e271 is checked on its own scale: a refusal, n
   CHECK_THROWS_WITH(analyse_stability(scene, {}), Catch::Contains("overflows the double range"));
 }
 
+// The 9-pulse triangular train on 8 sine terms (seed 2036, `boundaries`), at θ = 2409.6 rad/s: inside
+// the order-1 tongue of mode 2, where 1e-4 raises the basis to 200 terms.
+namespace {
+Scene nine_pulse_scene() {
+  return paper_scene({"load.pulses_per_rev=9", "model.basis=\"sine\"", "load.profile=\"triangular\"",
+                      "load.approximation=\"cosine\"", "model.terms=8", "load.pulse_frequency_hz=383.5"});
+}
+}  // namespace
+
+TEST_CASE("a verdict stops raising the fidelity where its estimate decides it, and agrees with the tolerance's answer",
+          "[budget][parallel]") {
+  const Scene scene = nine_pulse_scene();
+  const StabilityAnswer full = analyse_stability(scene, {FloquetMethod::automatic, 0, 1e-4});
+  StabilityRequest request{FloquetMethod::automatic, 0, 1e-4};
+  request.verdict_only = true;
+  const StabilityAnswer verdict = analyse_stability(scene, request);
+  REQUIRE(full.tolerance_met);
+  CHECK_FALSE(full.stable);
+  CHECK_FALSE(verdict.stable);
+  CHECK(verdict.floquet.max_abs_multiplier - 1 > verdict.budget.total());
+  CHECK(verdict.model.terms < full.model.terms);
+  // The verdict's estimate covers its distance from the answer at 1e-4 (that one's error included).
+  CHECK(std::abs(verdict.floquet.max_abs_multiplier - full.floquet.max_abs_multiplier) <=
+        verdict.budget.total() + full.budget.total());
+}
+
+TEST_CASE("the systems of the fidelity rounds count against the work: a round past it is not started",
+          "[budget][parallel]") {
+  // 8 sine terms and the variants' 8 and 16 (24, 24 and 48 dofs) take 8 (2·24³ + 48³) = 1.1e6 flops
+  // (periodic_system_flops); 16 terms add 8.8e6, 32 terms 7.1e7.
+  const Scene scene = nine_pulse_scene();
+  StabilityRequest request{FloquetMethod::automatic, 0, 1e-4};
+  request.work_flops = 4 * 2e7;
+  const StabilityAnswer a = analyse_stability(scene, request);
+  CHECK(a.model.terms == 16);
+  CHECK(a.work_limited);
+  CHECK_FALSE(a.tolerance_met);
+  CHECK_THAT(a.tolerance_unmet, Catch::Contains("raising it to 32 terms per field") &&
+                                    Catch::Contains("would pass the work limit"));
+  request.work_flops = 4 * 1e6;
+  CHECK_THROWS_AS(analyse_stability(scene, request), WorkLimitError);
+}
+
 TEST_CASE("the first release's wrong answers are right now (issue table)", "[budget][parallel][long_under_sanitizers]") {
   // Each against the value the issue measured with independent integrations.
   CHECK(analyse_stability(paper_scene({"model.terms=40"}), {}).floquet.max_abs_multiplier ==

@@ -105,6 +105,11 @@ struct BoundaryOutput {
   double region_end(double end, bool at_window) const {
     return at_window ? end / unit : digits.relative(end / unit, result.total().total());
   }
+  // max|ρ| at a region's middle to its check's estimate.
+  double middle_rho(const InstabilityRegion& r) const {
+    return digits.relative(r.middle_max_abs_multiplier,
+                           r.middle_error_estimate / std::max(1.0, r.middle_max_abs_multiplier));
+  }
 };
 
 void print_json(const BoundaryOutput& o) {
@@ -173,9 +178,9 @@ void print_json(const BoundaryOutput& o) {
                                {"decided", r.undecided.empty()},
                                {"undecided", r.undecided.empty() ? Json(nullptr) : Json(r.undecided)},
                                {"middle_max_abs_multiplier",
-                                r.undecided.empty() ? Json(o.digits.relative(r.middle_max_abs_multiplier,
-                                                                             region_check_tolerance))
-                                                    : Json(nullptr)}});
+                                r.undecided.empty() ? Json(o.middle_rho(r)) : Json(nullptr)},
+                               {"middle_error_estimate",
+                                r.undecided.empty() ? Json(o.digits.estimate(r.middle_error_estimate)) : Json(nullptr)}});
   }
   print_json_answer(json_text(json));
 }
@@ -263,7 +268,7 @@ void print_table(const BoundaryOutput& o) {
       return open ? "(window)" : unconverged ? "(not converged)" : "";
     };
     const std::string verdict = r.undecided.empty()
-                                    ? fmt::format("max|ρ| = {:.4g} at the middle", r.middle_max_abs_multiplier)
+                                    ? fmt::format("max|ρ| = {} ± {:.1g} at the middle", o.middle_rho(r), r.middle_error_estimate)
                                     : "undecided: the check at the middle failed, " + r.undecided;
     fmt::print("  {}{}{:.6g} … {:.6g}{}{}  multiplier {}  mode {}  order {}  ({})\n",
                end(r.lower_open, r.lower_unconverged), r.lower_open || r.lower_unconverged ? " " : "",

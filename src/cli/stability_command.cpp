@@ -34,6 +34,12 @@ constexpr std::initializer_list<FloquetMethod> methods{FloquetMethod::hill, Floq
                                                       FloquetMethod::monodromy, FloquetMethod::monodromy_rkf45,
                                                       FloquetMethod::automatic};
 
+// Why the tolerance is not met, as the output prints it: "--tolerance …", with the option that set
+// the work limit where that stopped the fidelity.
+std::string unmet_text(const StabilityAnswer& a) {
+  return "--" + (a.work_limited ? with_max_seconds(a.tolerance_unmet) : a.tolerance_unmet);
+}
+
 std::string truncation(const FloquetResult& r, bool exact_pulse) {
   if (r.method == FloquetMethod::monodromy_rkf45) return "RKF45 at 1/1000 of the tolerance and at 1/100 of that";
   if (exact_pulse) return fmt::format("{} Magnus steps through the contact, exact between pulses", r.steps);
@@ -114,7 +120,7 @@ void print_json(const Scene& scene, const StabilityAnswer& a, const PrintedDigit
   json["max_real_exponent"] = shown.real_exponent();
   json["stable"] = a.stable;
   json["tolerance_met"] = a.tolerance_met;
-  json["tolerance_unmet"] = a.tolerance_met ? Json(nullptr) : Json("--" + a.tolerance_unmet);
+  json["tolerance_unmet"] = a.tolerance_met ? Json(nullptr) : Json(unmet_text(a));
   write_error_budget(json, a.budget, digits);
   json["checks"] = checks_json(r.checks, shown);
   json["multipliers"] = Json::array();
@@ -161,7 +167,7 @@ void print_table(const Scene& scene, const StabilityAnswer& a) {
                               to_string(scene.load.profile), load.relative_tail));
   fmt::print("method     {}, {}\n", to_string(r.method), truncation(r, load.exact_pulse));
   fmt::print("error      {} on max|ρ|{}\n", describe_error_budget(a.budget),
-             a.tolerance_met ? "" : "  — --" + a.tolerance_unmet);
+             a.tolerance_met ? "" : "  — " + unmet_text(a));
   fmt::print("checks     det Φ vs Liouville {}, reciprocal pairs {}, RKF45 on the dominant vector: multiplier {}, "
              "residual {}\n\n",
              check_value(r.checks.determinant_error), check_value(r.checks.reciprocal_error),
@@ -293,7 +299,7 @@ Command register_stability(CLI::App& app) {
     const StabilityAnswer answer = analyse_stability(scene, request);
     if (exporting) export_matrices(*export_path, scene, answer, *tolerance, options->printed_digits());
     print(*options, scene, answer);
-    if (!answer.tolerance_met) print_note("stability: --" + answer.tolerance_unmet + "; the answer stands with its estimate");
+    if (!answer.tolerance_met) print_note("stability: " + unmet_text(answer) + "; the answer stands with its estimate");
   };
 }
 

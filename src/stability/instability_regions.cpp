@@ -16,7 +16,7 @@ namespace {
 
 struct Verdict {
   bool unstable = false;
-  double max_abs = 0;     // max|ρ| (decided)
+  double max_abs = 0, error = 0;  // max|ρ| and its whole estimate (decided)
   std::string undecided;  // why there is no verdict: the analysis's one-line failure
 };
 
@@ -28,9 +28,9 @@ Verdict verdict_at(const Scene& at, int multiplier, const StabilityRequest& requ
     const StabilityAnswer a = analyse_stability(at, request);
     const std::complex<double> rho = a.floquet.multipliers(0);
     const bool real_of_sign = std::abs(rho.imag()) <= 1e-6 * std::abs(rho) && rho.real() * multiplier > 0;
-    return {!a.stable && real_of_sign, a.floquet.max_abs_multiplier, {}};
+    return {!a.stable && real_of_sign, a.floquet.max_abs_multiplier, a.budget.total(), {}};
   } catch (const NumericalError& e) {
-    return {false, 0, e.what()};
+    return {false, 0, 0, e.what()};
   }
 }
 
@@ -87,6 +87,7 @@ std::vector<InstabilityRegion> instability_regions(const Scene& scene, const Bou
   // The verdicts together may take a quarter of the request's work, in equal shares (a quarter of a
   // share for each of its monodromy ladders, StabilityRequest::work_flops).
   StabilityRequest verdict{FloquetMethod::automatic, 0, tolerance, 0, {}};
+  verdict.verdict_only = true;
   verdict.work_flops = request.work_flops / (4.0 * std::max<std::size_t>(1, candidates.size()));
   const std::vector<Verdict> verdicts = run_indexed(candidates.size(), request.threads, [&](std::size_t i) {
     const InstabilityRegion& r = candidates[i];
@@ -97,6 +98,7 @@ std::vector<InstabilityRegion> instability_regions(const Scene& scene, const Bou
     if (!verdicts[i].unstable && verdicts[i].undecided.empty()) continue;
     regions.push_back(candidates[i]);
     regions.back().middle_max_abs_multiplier = verdicts[i].max_abs;
+    regions.back().middle_error_estimate = verdicts[i].error;
     regions.back().undecided = verdicts[i].undecided;
   }
   std::sort(regions.begin(), regions.end(),

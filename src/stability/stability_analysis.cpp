@@ -85,10 +85,10 @@ VariantRho variant_max_rho(const Scene& scene, const Fidelity& f, double tol, do
   return {r.max_abs_multiplier, r.error_estimate};
 }
 
-// The variants of the budget, each differing from `f` in one part only. They do not depend on the
-// answer, so they run beside it (WorkPool), the richer reduction first: its model is the largest.
-// An answer that fails (its exception unwinding past the variants) cancels them: the running ones
-// stop at their next level instead of finishing work nobody takes.
+// The variants of the budget, each differing from `f` in one part only (`fidelities`). They do not
+// depend on the answer, so they run beside it (WorkPool), the richer reduction first: its model is the
+// largest. An answer that fails (its exception unwinding past the variants) cancels them: the running
+// ones stop at their next level instead of finishing work nobody takes.
 struct BudgetVariants {
   static constexpr std::size_t none = static_cast<std::size_t>(-1);
   BudgetVariants() = default;
@@ -96,20 +96,19 @@ struct BudgetVariants {
   ~BudgetVariants() {
     if (stop) stop->cancel();
   }
+  std::vector<Fidelity> fidelities;
   std::unique_ptr<Cancellation> stop = std::make_unique<Cancellation>();
   std::unique_ptr<WorkPool<VariantRho>> tasks;
   std::size_t basis = none, reduction = none, load = none;
   double basis_factor = 1, reduction_factor = 1;
 };
 
-BudgetVariants start_variants(const Scene& scene, const Fidelity& f, double tol, double max_flops, int threads) {
-  const double variant_tol = tol / 8;
-  std::vector<Fidelity> variants;
-  const auto add = [&](Fidelity variant) {
-    variants.push_back(std::move(variant));
-    return variants.size() - 1;
-  };
+BudgetVariants plan_variants(const Scene& scene, const Fidelity& f) {
   BudgetVariants v;
+  const auto add = [&v](Fidelity variant) {
+    v.fidelities.push_back(std::move(variant));
+    return v.fidelities.size() - 1;
+  };
   if (f.reduction.kind == ReductionKind::automatic) {
     Fidelity richer = f;
     richer.reduction.vectors = 2 * f.reduction.vectors;
@@ -135,13 +134,26 @@ BudgetVariants start_variants(const Scene& scene, const Fidelity& f, double tol,
     exact.load = exact_pulse_mean(pulse_train(scene));
     v.load = add(exact);
   }
-  const std::size_t count = variants.size();
+  return v;
+}
+
+void start_variants(BudgetVariants& v, const Scene& scene, double tol, double max_flops, int threads) {
+  const double variant_tol = tol / 8;
   v.tasks = std::make_unique<WorkPool<VariantRho>>(
-      threads, count,
-      [&scene, variant_tol, max_flops, variants = std::move(variants), &stop = *v.stop](std::size_t i) {
+      threads, v.fidelities.size(),
+      [&scene, variant_tol, max_flops, variants = v.fidelities, &stop = *v.stop](std::size_t i) {
         return variant_max_rho(scene, variants[i], variant_tol, max_flops, stop);
       });
-  return v;
+}
+
+// The flops of building a round's systems at fidelity `f`: the answer's and its budget variants'.
+double round_build_flops(const Scene& scene, const Fidelity& f) {
+  const bool two_planes = scene.blade.two_planes();
+  double flops = periodic_system_flops(dof_layout(f.model, two_planes).size());
+  for (const Fidelity& variant : plan_variants(scene, f).fidelities) {
+    flops += periodic_system_flops(dof_layout(variant.model, two_planes).size());
+  }
+  return flops;
 }
 
 // Each part: factor · |ρ − ρ_variant| plus the variant's own error. `taken` after each variant.
@@ -182,19 +194,52 @@ std::string fixed_part(const ErrorBudget& b, double scale, const Fidelity& f, bo
   return fmt::format("its method part {:.2g} did not come down", b.method / scale);
 }
 
-}  // namespace
+// Whether the estimate decides the verdict (StabilityRequest::verdict_only, `stable` below).
+bool verdict_decided(const StabilityAnswer& a) {
+  const double rho = a.floquet.max_abs_multiplier, error = a.budget.total();
+  return rho > 1 + error || rho + error <= 1 + 1e-9;
+}
 
-StabilityAnswer analyse_stability(const Scene& scene, const StabilityRequest& request) {
-  Fidelity f{scene.model, scene.model.reduction, load_series(scene)};
-  if (!f.load.frequency_known) {
-    throw InputError("operation.speed_rad_s = 0: the pulses have no frequency; give load.pulse_frequency_hz "
-                     "(in Hz, > 0) or a speed > 0");
+// The next round's fidelity: the largest part of the budget that the scene leaves free, raised; or,
+// where none is or the basis part alone is beyond what more terms can reach (basis_can_reach: the
+// sine basis and a section table converge algebraically; 10 sine terms toward 1e-6 ran for ten
+// minutes, the fan blade's table at 250 rad/s, F̄ = 1.75 raised 16 terms to 81 and more for over a
+// minute), why the tolerance is not met.
+struct NextRound {
+  std::optional<Fidelity> fidelity;
+  std::string unmet;
+};
+
+NextRound next_round(const Scene& scene, const Fidelity& f, const StabilityAnswer& a, double tol, bool vectors_free,
+                     const PeriodicSystem& sys) {
+  const ErrorBudget& b = a.budget;
+  const double scale = std::max(1.0, a.floquet.max_abs_multiplier), allowed = tol * scale;
+  const bool basis_reachable =
+      basis_can_reach(basis_convergence(scene.blade, f.model.basis), f.model.terms, b.basis / scale, tol);
+  Fidelity next = f;
+  if (b.basis >= std::max(b.reduction, b.load) && basis_reachable) {
+    next.model.terms = std::min(max_terms, reference_terms(f.model.basis, f.model.terms));
+    return {next, {}};
   }
-  const bool vectors_free = f.reduction.kind == ReductionKind::automatic && f.reduction.vectors == 0;
+  if ((basis_reachable || b.basis <= allowed) && b.reduction >= b.load && vectors_free &&
+      12 * f.reduction.vectors < sys.all_modes) {
+    // Only while the budget's richer variant (twice as many again) stays a reduced model.
+    next.reduction.vectors *= 2;
+    return {next, {}};
+  }
+  return {std::nullopt, b.basis > allowed ? tolerance_not_met(tol, f.model, b.basis / scale).what()
+                                          : fmt::format("tolerance {}: not met (estimated error {:.2g}): {}", tol,
+                                                        b.total() / scale, fixed_part(b, scale, f, vectors_free, sys))};
+}
+
+// The first round's fidelity: the scene's, with the reduction's vectors chosen. The true train
+// integrates only through the contacts: the whole Ritz model is cheap unless the contact is long
+// against its stiffest period, and it resolves the pulse's high harmonics, which the narrow tongues
+// of the true train depend on. `built` counts that check's system.
+Fidelity first_fidelity(const Scene& scene, bool vectors_free, double& built) {
+  Fidelity f{scene.model, scene.model.reduction, load_series(scene)};
   if (vectors_free && f.load.exact_pulse) {
-    // The true train integrates only through the contacts: the whole Ritz model is cheap unless the
-    // contact is long against its stiffest period, and it resolves the pulse's high harmonics,
-    // which the narrow tongues of the true train depend on.
+    built += periodic_system_flops(dof_layout(f.model, scene.blade.two_planes()).size());
     const PeriodicSystem whole = system_at(scene, {f.model, {ReductionKind::none, 0, 0}, f.load});
     const PulseTrain train = pulse_train(scene);
     if (minimum_magnus_steps(whole) * train.contact_time_s / train.period_s <= 4096) f.reduction.kind = ReductionKind::none;
@@ -202,14 +247,32 @@ StabilityAnswer analyse_stability(const Scene& scene, const StabilityRequest& re
   if (f.reduction.kind == ReductionKind::automatic && f.reduction.vectors == 0) {
     f.reduction.vectors = default_reduction_vectors;
   }
-  const double tol = request.tolerance;
+  return f;
+}
+
+}  // namespace
+
+StabilityAnswer analyse_stability(const Scene& scene, const StabilityRequest& request) {
+  if (!load_series(scene).frequency_known) {
+    throw InputError("operation.speed_rad_s = 0: the pulses have no frequency; give load.pulse_frequency_hz "
+                     "(in Hz, > 0) or a speed > 0");
+  }
+  const bool vectors_free = scene.model.reduction.kind == ReductionKind::automatic && scene.model.reduction.vectors == 0;
+  const double tol = request.tolerance, ladder_flops = request.work_flops / 4, build_flops = request.work_flops / 4;
+  double built = 0;  // the systems' flops so far (periodic_system_flops)
+  Fidelity f = first_fidelity(scene, vectors_free, built);
+  built += round_build_flops(scene, f);
+  if (built > build_flops) {
+    throw WorkLimitError(fmt::format("the stability analysis's systems ({} terms per field and its error budget's "
+                                     "variants) would take {:.2g} flops, past its share {:.2g} of the work limit",
+                                     f.model.terms, built, build_flops));
+  }
   StabilityAnswer a;
   int done = 0;  // progress over the rounds: the answer's levels, then its variants
   while (true) {
-    const double ladder_flops = request.work_flops / 4;
-    BudgetVariants variants = start_variants(scene, f, tol, ladder_flops, request.threads);
-    const int variant_count = (variants.basis != BudgetVariants::none) + (variants.reduction != BudgetVariants::none) +
-                              (variants.load != BudgetVariants::none);
+    BudgetVariants variants = plan_variants(scene, f);
+    start_variants(variants, scene, tol, ladder_flops, request.threads);
+    const int variant_count = static_cast<int>(variants.fidelities.size());
     FloquetOptions options{request.method, request.harmonics, tol / 4, true, {}, ladder_flops};
     int levels = 0;
     if (request.progress) {
@@ -226,28 +289,30 @@ StabilityAnswer analyse_stability(const Scene& scene, const StabilityRequest& re
     a.reduced_size = sys.kept_modes;
     a.full_size = sys.all_modes;
     a.theta_rad_s = sys.angular_frequency;
-    const double scale = std::max(1.0, a.floquet.max_abs_multiplier), allowed = tol * scale;
-    if (a.budget.total() <= allowed) break;
-    // Raise the largest part that the scene leaves free; stop where none is, or where the basis
-    // part alone is beyond what more terms can reach (basis_can_reach: the sine basis and a section
-    // table converge algebraically; 10 sine terms toward 1e-6 ran for ten minutes, the fan blade's
-    // table at 250 rad/s, F̄ = 1.75 raised 16 terms to 81 and more for over a minute).
-    const ErrorBudget& b = a.budget;
-    const bool basis_reachable =
-        basis_can_reach(basis_convergence(scene.blade, f.model.basis), f.model.terms, b.basis / scale, tol);
-    if (b.basis >= std::max(b.reduction, b.load) && basis_reachable) {
-      f.model.terms = std::min(max_terms, reference_terms(f.model.basis, f.model.terms));
-    } else if ((basis_reachable || b.basis <= allowed) && b.reduction >= b.load && vectors_free &&
-               12 * f.reduction.vectors < sys.all_modes) {
-      // Only while the budget's richer variant (twice as many again) stays a reduced model.
-      f.reduction.vectors *= 2;
-    } else {
+    if (a.budget.total() <= tol * std::max(1.0, a.floquet.max_abs_multiplier)) break;
+    if (request.verdict_only && verdict_decided(a)) {
       a.tolerance_met = false;
-      a.tolerance_unmet = b.basis > allowed ? tolerance_not_met(tol, f.model, b.basis / scale).what()
-                                            : fmt::format("tolerance {}: not met (estimated error {:.2g}): {}", tol,
-                                                          b.total() / scale, fixed_part(b, scale, f, vectors_free, sys));
+      a.tolerance_unmet = fmt::format("tolerance {}: not sought past the verdict, decided at estimated error {:.2g}",
+                                      tol, a.budget.total());
       break;
     }
+    NextRound next = next_round(scene, f, a, tol, vectors_free, sys);
+    const double next_built = next.fidelity ? built + round_build_flops(scene, *next.fidelity) : built;
+    if (next.fidelity && next_built > build_flops) {
+      a.work_limited = true;
+      next = {std::nullopt, fmt::format("tolerance {}: not met (estimated error {:.2g}): raising it to {} terms per "
+                                        "field and {} reduction vectors would pass the work limit",
+                                        tol, a.budget.total() / std::max(1.0, a.floquet.max_abs_multiplier),
+                                        next.fidelity->model.terms,
+                                        next.fidelity->reduction.vectors)};
+    }
+    if (!next.fidelity) {
+      a.tolerance_met = false;
+      a.tolerance_unmet = next.unmet;
+      break;
+    }
+    built = next_built;
+    f = *next.fidelity;
   }
   a.model = f.model;
   a.reference_terms = reference_terms(f.model.basis, f.model.terms);

@@ -30,14 +30,16 @@ struct InstabilityRegion {
   // highest k reached, not an estimate.
   bool lower_unconverged = false, upper_unconverged = false;
   int multiplier = -1, mode = 0, order = 0;  // mode and order 0 where both ends are the window's
-  double middle_max_abs_multiplier = 0;  // the check: max|ρ| at the middle, > 1 + its error
+  // The check: max|ρ| at the middle, > 1 + its error, and that error (absolute; the check raises the
+  // fidelity only until the estimate decides the verdict, StabilityRequest::verdict_only).
+  double middle_max_abs_multiplier = 0, middle_error_estimate = 0;
   // Set where the check failed (its analysis's one-line NumericalError, e.g. its share of
   // BoundaryRequest::work_flops spent): the interval may be a region or a gap, and is listed.
   std::string undecided;
 };
 
 // `analysis` from boundaries_with_error_estimate(scene, request); each middle is checked by
-// analyse_stability at `tolerance`.
+// analyse_stability at `tolerance`, or as far as decides it.
 std::vector<InstabilityRegion> instability_regions(const Scene& scene, const BoundaryRequest& request,
                                                    const BoundaryAnalysis& analysis, double tolerance = 1e-4);
 

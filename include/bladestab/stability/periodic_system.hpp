@@ -27,6 +27,12 @@ struct PeriodicSystem : LinearPeriodicSystem {
 
 PeriodicSystem periodic_system(const ReducedSystem& reduced, const LoadSeries& load);
 
+// The flops of building the system of a Ritz model of `dofs` dofs (periodic_system below): its
+// assembly and the whole model's static-limit check and reduction, about three dense symmetric-definite
+// eigensolves (dsygvx, ≈ (8/3) n³ each for a few vectors). Measured 2.5–3 n³ at the CLI's dense rate
+// (4e9 flops/s) on 300–720 dofs: an upper bound there.
+inline double periodic_system_flops(double dofs) { return 8 * dofs * dofs * dofs; }
+
 // The blade reduced by `reduction` for this load.
 PeriodicSystem periodic_system(const BladeModel& model, double speed_rad_s, const Eigen::MatrixXd& damping,
                                const LoadSeries& load, const ReductionSpec& reduction = {});

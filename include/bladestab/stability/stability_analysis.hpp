@@ -39,8 +39,15 @@ struct StabilityRequest {
   std::function<void(int, int)> progress = {};
   // The work of one fidelity round, in eigensolver flops (magnus_step_work): the answer's and each
   // variant's monodromy ladder may take a quarter of it (FloquetOptions::max_flops); a ladder that
-  // would pass its share throws WorkLimitError. Deterministic, unlike a clock.
+  // would pass its share throws WorkLimitError. The systems built over all rounds (the answer's and
+  // the variants', periodic_system_flops) may take another quarter: the first round's throw
+  // WorkLimitError past it, a later round is not started (StabilityAnswer::work_limited).
+  // Deterministic, unlike a clock.
   double work_flops = std::numeric_limits<double>::infinity();
+  // Stop raising the fidelity once the estimate decides the verdict: max|ρ| above 1 by more than the
+  // total estimate, or below 1 + 1e-9 with it (the `stable` floor). For callers that need only
+  // stable or not (instability_regions' middles); the answer then says the tolerance is not met.
+  bool verdict_only = false;
 };
 
 struct StabilityAnswer {
@@ -49,6 +56,7 @@ struct StabilityAnswer {
   bool stable = true;           // max|ρ| ≤ 1 + the total estimate
   bool tolerance_met = true;    // false where a fidelity fixed by the scene keeps the total above it
   std::string tolerance_unmet;  // why not, in one line ("tolerance 1e-06: not met with 10 terms per field …")
+  bool work_limited = false;    // … because the next round's systems would pass the work (StabilityRequest::work_flops)
   ModelSpec model;              // the Ritz model used (terms raised to the tolerance)
   int reference_terms = 0;      // the richer basis of the basis part
   ReductionSpec reduction;      // as used (vectors chosen)
