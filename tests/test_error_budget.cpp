@@ -306,6 +306,24 @@ TEST_CASE("answers do not depend on --threads: stability's budget and campbell's
     CHECK(a[0].budget.method == a[1].budget.method);
     CHECK(a[0].model.terms == a[1].model.terms);
   }
+  SECTION("stability: the failure reported where two variants fail, in turn or side by side") {
+    // A thick blade (d̄ = 0.99) at 3000 rad/s with little work: the reduction variant's ladder and the
+    // basis variant's both stop at the work limit, at different levels (fuzz seed 2038).
+    const Scene scene = paper_scene({"load.contact_time_rev=0.08", "operation.speed_rad_s=3000", "model.terms=5",
+                                     "blade.slenderness=0.99", "load.pulse_frequency_hz=430.02"});
+    std::string failure[2];
+    for (int t = 1; t <= 2; ++t) {
+      StabilityRequest request{FloquetMethod::automatic, 0, 1e-4, t};
+      request.work_flops = 8e8;
+      try {
+        analyse_stability(scene, request);
+      } catch (const WorkLimitError& e) {
+        failure[t - 1] = e.what();
+      }
+    }
+    CHECK_THAT(failure[0], Catch::Contains("within 512 Magnus steps per period"));
+    CHECK(failure[0] == failure[1]);
+  }
   SECTION("campbell: the richer models in turn or on a second thread") {
     CampbellOptions o;
     for (int k = 0; k < 21; ++k) o.speeds_rad_s.push_back(30.0 * k);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <stdexcept>
 
 namespace bladestab {
 
@@ -44,7 +45,6 @@ void TaskRunner::run_unstarted() {
         failure = std::current_exception();
         for (std::size_t f = first_failure_; i < f && !first_failure_.compare_exchange_weak(f, i);) {
         }
-        cancellation_->cancel();
       }
     }
     {
@@ -52,9 +52,20 @@ void TaskRunner::run_unstarted() {
       end_[i] = end;
       failure_[i] = failure;
       ++settled_count_;
+      cancel_after_failure();
     }
     settled_.notify_all();
   }
+}
+
+// The flag the running tasks poll is set once a task has failed and every task before it has
+// ended: a task before the failure, which a run in turn finishes (or fails in) first, is never cut
+// short, so what the pool reports does not depend on the thread count. Called with lock_ held.
+void TaskRunner::cancel_after_failure() {
+  const std::size_t failed = first_failure_;
+  if (failed == std::numeric_limits<std::size_t>::max()) return;
+  const auto before = end_.begin() + static_cast<std::ptrdiff_t>(failed);
+  if (std::none_of(end_.begin(), before, [](End e) { return e == End::pending; })) cancellation_->cancel();
 }
 
 void TaskRunner::rethrow_first(std::unique_lock<std::mutex>& lock) {
@@ -65,11 +76,17 @@ void TaskRunner::rethrow_first(std::unique_lock<std::mutex>& lock) {
   throw WorkCancelled();
 }
 
+// Task i and every task before it settled: the lowest failure among them is the one a run in turn
+// meets first, whatever order the caller asks in and whichever thread ran what.
 void TaskRunner::wait_for(std::size_t i) {
+  if (i >= count_) throw std::out_of_range("TaskRunner::wait_for: no such task");
   run_unstarted();
   std::unique_lock<std::mutex> lock(lock_);
-  settled_.wait(lock, [this, i] { return end_.at(i) != End::pending; });
-  if (end_[i] == End::failed) std::rethrow_exception(failure_[i]);
+  const auto through_i = end_.begin() + static_cast<std::ptrdiff_t>(i) + 1;
+  settled_.wait(lock, [&] { return std::none_of(end_.begin(), through_i, [](End e) { return e == End::pending; }); });
+  for (std::size_t j = 0; j <= i; ++j) {
+    if (end_[j] == End::failed) std::rethrow_exception(failure_[j]);
+  }
   if (end_[i] == End::skipped) rethrow_first(lock);
 }
 

@@ -12,8 +12,10 @@
 //
 // A task that throws cancels the tasks after it that have not started (those before it all run,
 // as they would one at a time), and the exception of the lowest index that failed is rethrown —
-// the one a run on one thread reports. Long tasks may poll a Cancellation: it is set when a task
-// fails, or by whoever holds it (a task that stops for it throws WorkCancelled).
+// the one a run on one thread reports: get(i) waits for tasks 0 … i and rethrows the lowest
+// failure among them, in whatever order the results are asked for. Long tasks may poll a
+// Cancellation: it is set once a task has failed and every task before it has ended, or by whoever
+// holds it (a task that stops for it throws WorkCancelled).
 #include <atomic>
 #include <condition_variable>
 #include <cstddef>
@@ -59,8 +61,9 @@ public:
   // No unstarted task starts any more; the running ones finish.
   ~TaskRunner();
 
-  // Runs the unstarted tasks on the caller, then waits for task i; rethrows its exception, or, for
-  // a task that was cancelled, the exception that cancelled it.
+  // Runs the unstarted tasks on the caller, then waits for tasks 0 … i; rethrows the exception of
+  // the lowest of them that failed, or, for a task i that was cancelled, the exception that
+  // cancelled it.
   void wait_for(std::size_t i);
   // The same for every task; the exception of the lowest index rethrown.
   void wait_all();
@@ -68,6 +71,7 @@ public:
 private:
   enum class End { pending, done, failed, skipped };
   void run_unstarted();
+  void cancel_after_failure();
   [[noreturn]] void rethrow_first(std::unique_lock<std::mutex>& lock);
 
   std::size_t count_;
@@ -93,7 +97,7 @@ public:
         results_(count),
         runner_(threads, count, [this](std::size_t i) { results_[i].emplace(task_(i)); }, cancellation) {}
 
-  // Task i's result (at most once per task), or its exception.
+  // Task i's result (at most once per task), or the lowest failure among tasks 0 … i (wait_for).
   Result get(std::size_t i) {
     runner_.wait_for(i);
     return std::move(*results_[i]);
