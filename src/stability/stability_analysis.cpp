@@ -232,14 +232,26 @@ NextRound next_round(const Scene& scene, const Fidelity& f, const StabilityAnswe
                                                         b.total() / scale, fixed_part(b, scale, f, vectors_free, sys))};
 }
 
+// Adds `flops` of systems to `built`, the analysis's so far; past `limit`, its share of the work
+// (StabilityRequest::work_flops), the analysis ends before building them.
+void charge_systems(double& built, double flops, double limit, int terms) {
+  built += flops;
+  if (built > limit) {
+    throw WorkLimitError(fmt::format("the stability analysis's systems ({} terms per field and its error budget's "
+                                     "variants) would take {:.2g} flops, past its share {:.2g} of the work limit",
+                                     terms, built, limit));
+  }
+}
+
 // The first round's fidelity: the scene's, with the reduction's vectors chosen. The true train
 // integrates only through the contacts: the whole Ritz model is cheap unless the contact is long
 // against its stiffest period, and it resolves the pulse's high harmonics, which the narrow tongues
-// of the true train depend on. `built` counts that check's system.
-Fidelity first_fidelity(const Scene& scene, bool vectors_free, double& built) {
+// of the true train depend on. That check's system and the round's are charged to `built`.
+Fidelity first_fidelity(const Scene& scene, bool vectors_free, double& built, double limit) {
   Fidelity f{scene.model, scene.model.reduction, load_series(scene)};
   if (vectors_free && f.load.exact_pulse) {
-    built += periodic_system_flops(dof_layout(f.model, scene.blade.two_planes()).size());
+    charge_systems(built, periodic_system_flops(dof_layout(f.model, scene.blade.two_planes()).size()), limit,
+                   f.model.terms);
     const PeriodicSystem whole = system_at(scene, {f.model, {ReductionKind::none, 0, 0}, f.load});
     const PulseTrain train = pulse_train(scene);
     if (minimum_magnus_steps(whole) * train.contact_time_s / train.period_s <= 4096) f.reduction.kind = ReductionKind::none;
@@ -247,6 +259,7 @@ Fidelity first_fidelity(const Scene& scene, bool vectors_free, double& built) {
   if (f.reduction.kind == ReductionKind::automatic && f.reduction.vectors == 0) {
     f.reduction.vectors = default_reduction_vectors;
   }
+  charge_systems(built, round_build_flops(scene, f), limit, f.model.terms);
   return f;
 }
 
@@ -260,13 +273,7 @@ StabilityAnswer analyse_stability(const Scene& scene, const StabilityRequest& re
   const bool vectors_free = scene.model.reduction.kind == ReductionKind::automatic && scene.model.reduction.vectors == 0;
   const double tol = request.tolerance, ladder_flops = request.work_flops / 4, build_flops = request.work_flops / 4;
   double built = 0;  // the systems' flops so far (periodic_system_flops)
-  Fidelity f = first_fidelity(scene, vectors_free, built);
-  built += round_build_flops(scene, f);
-  if (built > build_flops) {
-    throw WorkLimitError(fmt::format("the stability analysis's systems ({} terms per field and its error budget's "
-                                     "variants) would take {:.2g} flops, past its share {:.2g} of the work limit",
-                                     f.model.terms, built, build_flops));
-  }
+  Fidelity f = first_fidelity(scene, vectors_free, built, build_flops);
   StabilityAnswer a;
   int done = 0;  // progress over the rounds: the answer's levels, then its variants
   while (true) {
@@ -293,7 +300,7 @@ StabilityAnswer analyse_stability(const Scene& scene, const StabilityRequest& re
     if (request.verdict_only && verdict_decided(a)) {
       a.tolerance_met = false;
       a.tolerance_unmet = fmt::format("tolerance {}: not sought past the verdict, decided at estimated error {:.2g}",
-                                      tol, a.budget.total());
+                                      tol, a.budget.total() / std::max(1.0, a.floquet.max_abs_multiplier));
       break;
     }
     NextRound next = next_round(scene, f, a, tol, vectors_free, sys);
