@@ -81,9 +81,10 @@ CheckOutcome rub_outcome(const Scene& scene, const RubStabilityResult& r) {
   CheckOutcome o;
   o.name = "rub_stability";
   o.passed = r.passed;
-  const std::string onset = r.onset_fmax_over_fcr ? fmt::format("{:.6g}", *r.onset_fmax_over_fcr)
-                                                  : fmt::format("> {:g}", r.window_fmax_over_fcr);
-  o.summary = fmt::format("lowest onset F̄ = {} (required stable to {:g}) at {:.6g} rad/s; max|ρ| = {:.6g} at F̄ = {:.4g}",
+  // "F̄ = 0.62", or "F̄ > 2" where no region opens within the window.
+  const std::string onset = r.onset_fmax_over_fcr ? fmt::format("F̄ = {:.6g}", *r.onset_fmax_over_fcr)
+                                                  : fmt::format("F̄ > {:g}", r.window_fmax_over_fcr);
+  o.summary = fmt::format("lowest onset {} (required stable to {:g}) at {:.6g} rad/s; max|ρ| = {:.6g} at F̄ = {:.4g}",
                           onset, r.required, r.speed_rad_s, r.max_abs_multiplier, r.check_fmax_over_fcr);
   const std::string scope = fmt::format(
       "θ = {}·Ω over {:g} to {:g} rad/s, load {} ({}), damping {}; regions of order <= {} sought up to F̄ = {:g} "
@@ -119,11 +120,11 @@ CheckOutcome rub_outcome(const Scene& scene, const RubStabilityResult& r) {
                            r.mode, r.order, sign_text(r.multiplier), *r.onset_fmax_over_fcr, estimate,
                            r.speed_rad_s, r.required, floquet, scope, unconverged);
   } else if (!r.check_stable) {
-    o.detail = fmt::format("no ±1 region opens below F̄ = {} in the range, but {}: a combination resonance "
+    o.detail = fmt::format("no ±1 region opens below F̄ = {:g} in the range, but {}: a combination resonance "
                            "(multipliers leaving the unit circle away from ±1); {}{}",
-                           onset, floquet, scope, unconverged);
+                           r.window_fmax_over_fcr, floquet, scope, unconverged);
   } else {
-    o.detail = fmt::format("the lowest onset, F̄ = {}{} at {:.9g} rad/s{}, is above the required {:g}; {}; {}{}", onset,
+    o.detail = fmt::format("the lowest onset, {}{} at {:.9g} rad/s{}, is above the required {:g}; {}; {}{}", onset,
                            r.onset_fmax_over_fcr ? fmt::format(" ({})", estimate) : "",
                            r.speed_rad_s,
                            r.onset_fmax_over_fcr ? fmt::format(" (mode {}, order {}, multiplier {})", r.mode, r.order,
