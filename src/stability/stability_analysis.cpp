@@ -85,26 +85,17 @@ VariantRho variant_max_rho(const Scene& scene, const Fidelity& f, double tol, do
   return {r.max_abs_multiplier, r.error_estimate};
 }
 
-// The variants of the budget, each differing from `f` in one part only (`fidelities`). They do not
-// depend on the answer, so they run beside it (WorkPool), the richer reduction first: its model is the
-// largest. An answer that fails (its exception unwinding past the variants) cancels them: the running
-// ones stop at their next level instead of finishing work nobody takes.
-struct BudgetVariants {
+// The variants of the budget, each differing from `f` in one part only (`fidelities`), with the
+// factors their differences are taken at.
+struct VariantPlan {
   static constexpr std::size_t none = static_cast<std::size_t>(-1);
-  BudgetVariants() = default;
-  BudgetVariants(BudgetVariants&&) = default;
-  ~BudgetVariants() {
-    if (stop) stop->cancel();
-  }
   std::vector<Fidelity> fidelities;
-  std::unique_ptr<Cancellation> stop = std::make_unique<Cancellation>();
-  std::unique_ptr<WorkPool<VariantRho>> tasks;
   std::size_t basis = none, reduction = none, load = none;
   double basis_factor = 1, reduction_factor = 1;
 };
 
-BudgetVariants plan_variants(const Scene& scene, const Fidelity& f) {
-  BudgetVariants v;
+VariantPlan plan_variants(const Scene& scene, const Fidelity& f) {
+  VariantPlan v;
   const auto add = [&v](Fidelity variant) {
     v.fidelities.push_back(std::move(variant));
     return v.fidelities.size() - 1;
@@ -137,38 +128,56 @@ BudgetVariants plan_variants(const Scene& scene, const Fidelity& f) {
   return v;
 }
 
-void start_variants(BudgetVariants& v, const Scene& scene, double tol, double max_flops, int threads) {
+// The planned variants running: they do not depend on the answer, so they run beside it
+// (WorkPool), the richer reduction first: its model is the largest. An answer that fails (its
+// exception unwinding past the variants) cancels them: the running ones stop at their next level
+// instead of finishing work nobody takes.
+struct RunningVariants {
+  RunningVariants() = default;
+  RunningVariants(RunningVariants&&) = default;
+  ~RunningVariants() {
+    if (stop) stop->cancel();
+  }
+  std::unique_ptr<Cancellation> stop = std::make_unique<Cancellation>();
+  std::unique_ptr<WorkPool<VariantRho>> tasks;
+};
+
+RunningVariants start_variants(const VariantPlan& plan, const Scene& scene, double tol, double max_flops,
+                               int threads) {
   const double variant_tol = tol / 8;
+  RunningVariants v;
   v.tasks = std::make_unique<WorkPool<VariantRho>>(
-      threads, v.fidelities.size(),
-      [&scene, variant_tol, max_flops, variants = v.fidelities, &stop = *v.stop](std::size_t i) {
+      threads, plan.fidelities.size(),
+      [&scene, variant_tol, max_flops, variants = plan.fidelities, &stop = *v.stop](std::size_t i) {
         return variant_max_rho(scene, variants[i], variant_tol, max_flops, stop);
       });
+  return v;
 }
 
 // The flops of building a round's systems at fidelity `f`: the answer's and its budget variants'.
-double round_build_flops(const Scene& scene, const Fidelity& f) {
+double round_build_flops(const Scene& scene, const Fidelity& f, const VariantPlan& plan) {
   const bool two_planes = scene.blade.two_planes();
   double flops = periodic_system_flops(dof_layout(f.model, two_planes).size());
-  for (const Fidelity& variant : plan_variants(scene, f).fidelities) {
+  for (const Fidelity& variant : plan.fidelities) {
     flops += periodic_system_flops(dof_layout(variant.model, two_planes).size());
   }
   return flops;
 }
 
 // Each part: factor · |ρ − ρ_variant| plus the variant's own error. `taken` after each variant.
-ErrorBudget budget_of(const FloquetResult& r, BudgetVariants& v, const std::function<void()>& taken) {
+ErrorBudget budget_of(const FloquetResult& r, const VariantPlan& plan, RunningVariants& running,
+                      const std::function<void()>& taken) {
   const auto part = [&](std::size_t variant, double factor) {
-    if (variant == BudgetVariants::none) return 0.0;
-    const VariantRho x = v.tasks->get(variant);
+    if (variant == VariantPlan::none) return 0.0;
+    const VariantRho x = running.tasks->get(variant);
     taken();
     return factor * std::abs(r.max_abs_multiplier - x.rho) + x.error;
   };
   ErrorBudget b;
   b.method = r.error_estimate;
-  b.basis = part(v.basis, v.basis_factor);
-  b.reduction = part(v.reduction, v.reduction_factor);
-  b.load = part(v.load, 1);
+  b.basis = part(plan.basis, plan.basis_factor);
+  b.reduction = part(plan.reduction, plan.reduction_factor);
+  b.load = part(plan.load, 1);
   return b;
 }
 
@@ -246,9 +255,13 @@ void charge_systems(double& built, double flops, double limit, int terms) {
 // The first round's fidelity: the scene's, with the reduction's vectors chosen. The true train
 // integrates only through the contacts: the whole Ritz model is cheap unless the contact is long
 // against its stiffest period, and it resolves the pulse's high harmonics, which the narrow tongues
-// of the true train depend on. That check's system and the round's are charged to `built`.
+// of the true train depend on. That check's system is charged to `built`.
 Fidelity first_fidelity(const Scene& scene, bool vectors_free, double& built, double limit) {
   Fidelity f{scene.model, scene.model.reduction, load_series(scene)};
+  if (!f.load.frequency_known) {
+    throw InputError("operation.speed_rad_s = 0: the pulses have no frequency; give load.pulse_frequency_hz "
+                     "(in Hz, > 0) or a speed > 0");
+  }
   if (vectors_free && f.load.exact_pulse) {
     charge_systems(built, periodic_system_flops(dof_layout(f.model, scene.blade.two_planes()).size()), limit,
                    f.model.terms);
@@ -259,27 +272,23 @@ Fidelity first_fidelity(const Scene& scene, bool vectors_free, double& built, do
   if (f.reduction.kind == ReductionKind::automatic && f.reduction.vectors == 0) {
     f.reduction.vectors = default_reduction_vectors;
   }
-  charge_systems(built, round_build_flops(scene, f), limit, f.model.terms);
   return f;
 }
 
 }  // namespace
 
 StabilityAnswer analyse_stability(const Scene& scene, const StabilityRequest& request) {
-  if (!load_series(scene).frequency_known) {
-    throw InputError("operation.speed_rad_s = 0: the pulses have no frequency; give load.pulse_frequency_hz "
-                     "(in Hz, > 0) or a speed > 0");
-  }
   const bool vectors_free = scene.model.reduction.kind == ReductionKind::automatic && scene.model.reduction.vectors == 0;
   const double tol = request.tolerance, ladder_flops = request.work_flops / 4, build_flops = request.work_flops / 4;
   double built = 0;  // the systems' flops so far (periodic_system_flops)
   Fidelity f = first_fidelity(scene, vectors_free, built, build_flops);
+  VariantPlan plan = plan_variants(scene, f);
+  charge_systems(built, round_build_flops(scene, f, plan), build_flops, f.model.terms);
   StabilityAnswer a;
   int done = 0;  // progress over the rounds: the answer's levels, then its variants
   while (true) {
-    BudgetVariants variants = plan_variants(scene, f);
-    start_variants(variants, scene, tol, ladder_flops, request.threads);
-    const int variant_count = static_cast<int>(variants.fidelities.size());
+    RunningVariants variants = start_variants(plan, scene, tol, ladder_flops, request.threads);
+    const int variant_count = static_cast<int>(plan.fidelities.size());
     FloquetOptions options{request.method, request.harmonics, tol / 4, true, {}, ladder_flops};
     int levels = 0;
     if (request.progress) {
@@ -289,37 +298,39 @@ StabilityAnswer analyse_stability(const Scene& scene, const StabilityRequest& re
     a.floquet = floquet_of(scene, f, sys, options);
     done += levels;
     int variants_left = variant_count;
-    a.budget = budget_of(a.floquet, variants, [&] {
+    a.budget = budget_of(a.floquet, plan, variants, [&] {
       ++done, --variants_left;
       if (request.progress) request.progress(done, done + variants_left);
     });
     a.reduced_size = sys.kept_modes;
     a.full_size = sys.all_modes;
     a.theta_rad_s = sys.angular_frequency;
-    if (a.budget.total() <= tol * std::max(1.0, a.floquet.max_abs_multiplier)) break;
+    const double relative = a.budget.total() / std::max(1.0, a.floquet.max_abs_multiplier);
+    if (relative <= tol) break;
+    a.tolerance_met = false;  // until a raised round meets it
     if (request.verdict_only && verdict_decided(a)) {
-      a.tolerance_met = false;
-      a.tolerance_unmet = fmt::format("tolerance {}: not sought past the verdict, decided at estimated error {:.2g}",
-                                      tol, a.budget.total() / std::max(1.0, a.floquet.max_abs_multiplier));
+      a.tolerance_unmet =
+          fmt::format("tolerance {}: not sought past the verdict, decided at estimated error {:.2g}", tol, relative);
       break;
     }
-    NextRound next = next_round(scene, f, a, tol, vectors_free, sys);
-    const double next_built = next.fidelity ? built + round_build_flops(scene, *next.fidelity) : built;
-    if (next.fidelity && next_built > build_flops) {
-      a.work_limited = true;
-      next = {std::nullopt, fmt::format("tolerance {}: not met (estimated error {:.2g}): raising it to {} terms per "
-                                        "field and {} reduction vectors would pass the work limit",
-                                        tol, a.budget.total() / std::max(1.0, a.floquet.max_abs_multiplier),
-                                        next.fidelity->model.terms,
-                                        next.fidelity->reduction.vectors)};
-    }
+    const NextRound next = next_round(scene, f, a, tol, vectors_free, sys);
     if (!next.fidelity) {
-      a.tolerance_met = false;
       a.tolerance_unmet = next.unmet;
       break;
     }
+    VariantPlan next_plan = plan_variants(scene, *next.fidelity);
+    const double next_built = built + round_build_flops(scene, *next.fidelity, next_plan);
+    if (next_built > build_flops) {
+      a.work_limited = true;
+      a.tolerance_unmet = fmt::format("tolerance {}: not met (estimated error {:.2g}): raising it to {} terms per "
+                                      "field and {} reduction vectors would pass the work limit",
+                                      tol, relative, next.fidelity->model.terms, next.fidelity->reduction.vectors);
+      break;
+    }
+    a.tolerance_met = true;
     built = next_built;
     f = *next.fidelity;
+    plan = std::move(next_plan);
   }
   a.model = f.model;
   a.reference_terms = reference_terms(f.model.basis, f.model.terms);
