@@ -14,6 +14,8 @@
 
 #include "bladestab/transient/transient.hpp"
 #include "bladestab/transient/transient_checks.hpp"
+#include "bladestab/transient/transient_error.hpp"
+#include "support/json.hpp"
 #include "support/run_cli.hpp"
 #include "support/scenes.hpp"
 
@@ -257,6 +259,40 @@ TEST_CASE("the CLI: an unstable run is a result: it stops at the small-deflectio
   CHECK(WEXITSTATUS(run.status) == 0);
   CHECK(run.out.find("\"stopped\": {") != std::string::npos);
   CHECK(run.out.find("beyond the small-deflection range of 0.1 L") != std::string::npos);
-  CHECK(run.out.find("\"growth_per_revolution\": 2.19922") != std::string::npos);
+  // The growth as printed, to its whole error, which covers the distance to the Floquet value.
+  const testing_support::Json j = testing_support::parse_json(run.out);
+  const double growth = j["growth_per_revolution"].number, error = j["error_estimate"]["growth_per_revolution"].number;
+  CAPTURE(growth, error);
+  CHECK(std::abs(growth - 2.1992274) <= 1.5 * error);
+  CHECK(error < 1e-3);
   CHECK(run.wrote_csv);
+}
+
+TEST_CASE("the CLI: by default each tip peak comes with its whole error, printed to the digits it supports, and a much "
+          "richer model lies within it", "[transient][honesty][slow]") {
+  // 12 terms, one revolution of the scene's half-sine train, against 30 terms (Legendre: far closer
+  // to the continuum than the 12-term error), integrated in this process without the CLI.
+  const CliRun run = run_transient_cli("--set model.terms=12 --revolutions 1 --format json");
+  INFO("stderr: " << run.err);
+  REQUIRE(WIFEXITED(run.status));
+  REQUIRE(WEXITSTATUS(run.status) == 0);
+  const testing_support::Json j = testing_support::parse_json(run.out);
+  const Scene rich = paper_scene({"model.terms=30"});
+  TransientOptions o;
+  o.revolutions = 1;
+  o.self_check = false;
+  const std::vector<TransientQuantity> truth = transient_quantities(run_transient(assemble_model(rich), rich, o));
+  const std::pair<const char*, std::size_t> printed[] = {{"peak_tip_lateral_m", 0}, {"mean_tip_axial_m", 3}};
+  for (const auto& [name, index] : printed) {
+    const double value = j[name].number, error = j["error_estimate"][name].number;
+    CAPTURE(name, value, error, truth[index].value);
+    // Covered: the estimate bounds the computed value's error; printing moves it by at most half a
+    // unit of the error's decade.
+    CHECK(std::abs(value - truth[index].value) <= 1.5 * error);
+    // No digit below the error's decade.
+    const double unit = std::pow(10.0, std::floor(std::log10(error)));
+    CHECK(std::abs(value / unit - std::round(value / unit)) < 1e-6);
+  }
+  const CliRun without = run_transient_cli("--set model.terms=12 --revolutions 1 --no-error-estimate");
+  CHECK(without.out.find("error      not estimated (--no-error-estimate)") != std::string::npos);
 }

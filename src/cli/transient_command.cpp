@@ -8,6 +8,7 @@
 
 #include "bladestab/base/constants.hpp"
 #include "bladestab/base/input_error.hpp"
+#include "bladestab/modal/basis_error.hpp"
 #include "support/message_text.hpp"
 #include "bladestab/transient/response_analysis.hpp"
 #include "bladestab/transient/transient.hpp"
@@ -114,6 +115,38 @@ TransientResult as_printed(TransientResult r, const PrintedRun& shown) {
   return r;
 }
 
+// Quantity `name` of the estimate (transient_error.hpp), where the run has one that is bounded.
+const TransientQuantity* estimated(const std::optional<TransientErrorEstimate>& e, const std::string& name) {
+  if (!e) return nullptr;
+  for (const TransientQuantity& q : e->quantities) {
+    if (q.name == name && q.budget.unbounded.empty()) return &q;
+  }
+  return nullptr;
+}
+
+// The numbers the estimate covers, to the digits their whole error supports (raw: as computed): the
+// tip peaks and mean, the vibration energy (to the relative error of its peak), the growth.
+void with_whole_error(TransientResult& r, Summary& s, const TransientResult& raw_result, const Summary& raw,
+                      const std::optional<TransientErrorEstimate>& e, const PrintedDigits& digits) {
+  if (const TransientQuantity* q = estimated(e, "peak_tip_lateral_m")) {
+    s.peak_lateral_m = digits.absolute(raw.peak_lateral_m, q->budget.total());
+  }
+  if (const TransientQuantity* q = estimated(e, "peak_tip_axial_change_m")) {
+    s.peak_axial_m = digits.absolute(raw.peak_axial_m, q->budget.total());
+  }
+  if (const TransientQuantity* q = estimated(e, "mean_tip_axial_m")) {
+    s.mean_axial_m = digits.absolute(raw.mean_axial_m, q->budget.total());
+  }
+  if (const TransientQuantity* q = estimated(e, "peak_vibration_energy_j"); q && q->value > 0) {
+    const double relative = q->budget.total() / q->value;
+    s.checks.vibration_energy_j = digits.absolute(raw.checks.vibration_energy_j, relative * raw.checks.vibration_energy_j);
+  }
+  if (const TransientQuantity* q = estimated(e, "growth_per_revolution")) {
+    r.growth.growth = digits.absolute(raw_result.growth.growth, q->budget.total());
+    r.growth.error_estimate = digits.measure(q->budget.total());
+  }
+}
+
 // The spectra and peaks like the series they come from; the dominant frequencies, interpolated
 // between the spectrum's bins, to 6 digits.
 Summary as_printed(Summary s, const PrintedRun& shown) {
@@ -214,19 +247,36 @@ std::string load_description(const Scene& scene) {
                      l.contact_time_rev, l.friction);
 }
 
-// JSON error_estimate (each quantity's whole estimate) and error_budget (its parts).
-void error_fields(Json& json, const TransientErrorEstimate& e) {
-  json["error_reference_terms"] = e.reference_terms;
-  for (const TransientQuantity& q : e.quantities) {
-    json["error_estimate"][q.name] = q.budget.total();
-    json["error_budget"][q.name] = {{"value", q.value},           {"basis", q.budget.basis},
-                                    {"reduction", q.budget.reduction}, {"load", q.budget.load},
-                                    {"method", q.budget.method},       {"unbounded", q.budget.unbounded}};
+// JSON error_estimate (each quantity's whole estimate) and error_budget (its parts, the value to the
+// digits its estimate supports), or error_unavailable (why there is none).
+void error_fields(Json& json, const std::optional<TransientErrorEstimate>& e, const std::string& unavailable,
+                  const PrintedDigits& digits) {
+  if (!e) {
+    if (!unavailable.empty()) json["error_unavailable"] = unavailable;
+    return;
+  }
+  json["error_reference_terms"] = e->reference_terms;
+  for (const TransientQuantity& q : e->quantities) {
+    const double total = q.budget.total();
+    json["error_estimate"][q.name] = digits.measure(total);
+    json["error_budget"][q.name] = {{"value", digits.absolute(q.value, total)},
+                                    {"basis", digits.measure(q.budget.basis)},
+                                    {"reduction", q.budget.reduction},
+                                    {"load", q.budget.load},
+                                    {"method", digits.measure(q.budget.method)},
+                                    {"unbounded", q.budget.unbounded}};
   }
 }
 
+// The run's estimate as the outputs print it.
+struct PrintedError {
+  const std::optional<TransientErrorEstimate>& estimate;
+  const std::string& unavailable;
+  const PrintedDigits& digits;
+};
+
 std::string summary_json(const Scene& scene, const BladeModel& model, const TransientResult& r, const Summary& s,
-                         bool adaptive, bool with_series, const std::optional<TransientErrorEstimate>& error) {
+                         bool adaptive, bool with_series, const PrintedError& error) {
   Json json;
   json["title"] = fmt::format("{} — {}", scene_title(scene), load_description(scene));
   json["scene"] = scene.source;
@@ -234,7 +284,7 @@ std::string summary_json(const Scene& scene, const BladeModel& model, const Tran
   json["speed_rad_s"] = scene.operation.speed_rad_s;
   json["revolutions_run"] = r.samples.back().revolutions;
   summary_fields(json, r, s, adaptive);
-  if (error) error_fields(json, *error);
+  error_fields(json, error.estimate, error.unavailable, error.digits);
   if (with_series) {  // what the chart draws
     json["revolutions"] = column(r, &TransientSample::revolutions);
     json["tip_lateral_m"] = column(r, &TransientSample::tip_lateral_m);
@@ -276,6 +326,21 @@ void check_transient_work(const BladeModel& model, const Scene& scene, const Tra
              seconds, bytes);
 }
 
+// The richer model of the whole-error estimate (reference_terms), or none where it cannot be built or
+// its run would pass the work limits: `why_not` then says so.
+std::optional<BladeModel> richer_model(const Scene& scene, const TransientOptions& o, std::string& why_not) {
+  ModelSpec spec = scene.model;
+  spec.terms = reference_terms(spec.basis, spec.terms);
+  try {
+    BladeModel richer = assemble_model(scene, spec);
+    check_transient_work(richer, scene, o);
+    return richer;
+  } catch (const InputError& e) {
+    why_not = fmt::format("{}; --no-error-estimate leaves it out", e.what());
+    return std::nullopt;
+  }
+}
+
 // The method line(s) of the table: the fast method's pieces and its check, or why RKF45 ran.
 void print_method(const TransientOptions& o, const TransientResult& r) {
   if (r.method == TransientMethod::fast && r.contact) {
@@ -300,18 +365,33 @@ void print_method(const TransientOptions& o, const TransientResult& r) {
   if (r.stopped) fmt::print("stopped    at revolution {:.4g}: {}\n", r.stopped->revolution, r.stopped->reason);
 }
 
-void print_error(const TransientErrorEstimate& e) {
-  std::vector<std::string> parts;
-  for (const TransientQuantity& q : e.quantities) {
-    parts.push_back(fmt::format("{} {:.6g} ± {:.2g} (basis {:.2g}, method {:.2g}{})", q.name, q.value, q.budget.total(),
-                                q.budget.basis, q.budget.method, q.budget.unbounded.empty() ? "" : ", not all bounded"));
+void print_error(const PrintedError& error) {
+  if (!error.estimate) {
+    fmt::print("error      {}\n", error.unavailable.empty() ? "not estimated (--no-error-estimate): the digits are the "
+                                                               "time stepping's, not the continuum model's"
+                                                             : "not estimated: " + error.unavailable);
+    return;
   }
-  fmt::print("error      against the continuum model (basis: against {} terms): {}\n", e.reference_terms,
+  std::vector<std::string> parts;
+  for (const TransientQuantity& q : error.estimate->quantities) {
+    const double total = q.budget.total();
+    parts.push_back(fmt::format("{} {} ± {} (basis {}, method {}{})", q.name, error.digits.absolute(q.value, total),
+                                error.digits.measure(total), error.digits.measure(q.budget.basis),
+                                error.digits.measure(q.budget.method),
+                                q.budget.unbounded.empty() ? "" : ", not all bounded"));
+  }
+  fmt::print("error      against the continuum model (basis: against {} terms): {}\n", error.estimate->reference_terms,
              fmt::join(parts, "; "));
 }
 
+// A length in mm as printed, with its whole error where the estimate has one.
+std::string millimetres(double printed_m, const TransientQuantity* q) {
+  return q ? fmt::format("{:.6g} ± {:.2g} mm", 1e3 * printed_m, 1e3 * q->budget.total())
+           : fmt::format("{:.6g} mm", 1e3 * printed_m);
+}
+
 void print_table(const Scene& scene, const BladeModel& model, const TransientOptions& o, const TransientResult& r,
-                 const Summary& s) {
+                 const Summary& s, const std::optional<TransientErrorEstimate>& error) {
     fmt::print("scene      {}\nmodel      {}\n", scene.source, describe_model(model));
     fmt::print("load       {}\n", load_description(scene));
     print_method(o, r);
@@ -324,10 +404,10 @@ void print_table(const Scene& scene, const BladeModel& model, const TransientOpt
                                         r.fixed.step_s, r.fixed.steps_per_period, r.fixed.parasitic_growth),
                r.steps.accepted, r.steps.rejected, r.steps.evaluations, r.steps.smallest_step, r.steps.largest_step);
     const auto hz = [](const std::optional<double>& f) { return f ? fmt::format("{:.5g} Hz", *f) : std::string("n/a"); };
-    fmt::print("tip        lateral peak {:.6g} mm, dominant {}; axial mean {:.6g} mm (static {:.6g} mm), "
-               "peak {:.6g} mm, dominant {}\n",
-               1e3 * s.peak_lateral_m, hz(s.lateral_hz), 1e3 * s.mean_axial_m, 1e3 * r.static_tip_axial_m,
-               1e3 * s.peak_axial_m, hz(s.axial_hz));
+    fmt::print("tip        lateral peak {}, dominant {}; axial mean {} (static {:.6g} mm), peak {}, dominant {}\n",
+               millimetres(s.peak_lateral_m, estimated(error, "peak_tip_lateral_m")), hz(s.lateral_hz),
+               millimetres(s.mean_axial_m, estimated(error, "mean_tip_axial_m")), 1e3 * r.static_tip_axial_m,
+               millimetres(s.peak_axial_m, estimated(error, "peak_tip_axial_change_m")), hz(s.axial_hz));
     if (r.contact) {
       fmt::print("casing     {} contacts, {:.6g} ms in all; peak force {:.6g} kN (F̄ = {:.4g}) at the deepest overlap "
                  "{:.4g} µm of the penalty wall (k = {:.4g} N/m)\n",
@@ -376,14 +456,15 @@ struct TransientArgs {
   double revolutions = 10, tolerance = 1e-8, max_deflection = 0.1;
   std::string step = "adaptive", out = ".", chart = "png", name = "transient", method = "fast";
   int steps_per_period = 0, samples = 200, threads = 0;
-  bool follower = false, with_error = false;
+  bool follower = false, with_error = true;
 };
 
 void add_transient_options(CLI::App& command, TransientArgs& a) {
   add_scene_options(command, a.scene);
-  command.add_flag("--error-estimate", a.with_error,
-                   "estimate each reported quantity's error against the continuum model (runs the same transient "
-                   "on a richer Ritz model; JSON error_estimate, error_budget)");
+  command.add_flag("--error-estimate,!--no-error-estimate", a.with_error,
+                   "estimate each reported quantity's error against the continuum model (the default: runs the same "
+                   "transient on a richer Ritz model beside it; JSON error_estimate, error_budget); "
+                   "--no-error-estimate leaves it out");
   add_threads_option(command, a.threads);
   command.add_option("--method", a.method,
                      "fast (default: exact free flight, Magnus through each contact, checked against RKF45; load.mode "
@@ -445,28 +526,33 @@ Command register_transient(CLI::App& app) {
     const bool for_people = args->scene.output_format() == OutputFormat::table;
     o.progress = progress_reporter("transient: revolutions", for_people);
     check_transient_work(model, scene, o);
-    const TransientResult r = run_transient(model, scene, o);
+    std::string error_unavailable;
+    const std::optional<BladeModel> richer = args->with_error ? richer_model(scene, o, error_unavailable) : std::nullopt;
+    EstimatedTransient run = richer ? run_transient_with_error(model, *richer, scene, o)
+                                    : EstimatedTransient{run_transient(model, scene, o), std::nullopt, error_unavailable};
+    const TransientResult& r = run.result;
+    const std::optional<TransientErrorEstimate>& error = run.error;
     const double sample_rate = args->samples * scene.operation.speed_rad_s / two_pi;
     const Summary s = summarize(r, sample_rate);
     refuse_failed_run(s, r, o, args->tolerance, args->revolutions, scene.blade.length);
 
-    std::optional<TransientErrorEstimate> error;
-    if (args->with_error) error = estimate_transient_error(scene, o, r);
     const PrintedDigits digits = args->scene.printed_digits();
     const PrintedRun shown(digits, o.adaptive ? std::optional(args->tolerance) : std::nullopt);
-    const TransientResult printed = as_printed(r, shown);
-    const Summary printed_summary = as_printed(s, shown);
+    TransientResult printed = as_printed(r, shown);
+    Summary printed_summary = as_printed(s, shown);
+    with_whole_error(printed, printed_summary, r, s, error, digits);
+    const PrintedError shown_error{error, run.error_unavailable, digits};
     const std::vector<std::string> files =
         write_outputs(args->out, args->name, {{args->name + ".csv", history_csv(printed)}},
-                      summary_json(scene, model, printed, printed_summary, o.adaptive, true, error), "transient", args->chart);
+                      summary_json(scene, model, printed, printed_summary, o.adaptive, true, shown_error), "transient", args->chart);
     switch (args->scene.output_format()) {
       case OutputFormat::json:
-        print_json_answer(summary_json(scene, model, printed, printed_summary, o.adaptive, false, error));
+        print_json_answer(summary_json(scene, model, printed, printed_summary, o.adaptive, false, shown_error));
         break;
       case OutputFormat::csv: fmt::print("{}", history_csv(printed)); break;
       case OutputFormat::table:
-        print_table(scene, model, o, r, s);
-        if (error) print_error(*error);
+        print_table(scene, model, o, printed, printed_summary, error);
+        print_error(shown_error);
         fmt::print("written    {}\n", fmt::join(files, ", "));
     }
   };

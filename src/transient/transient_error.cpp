@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include <fmt/format.h>
+
 #include "bladestab/modal/basis_error.hpp"
+#include "support/work_pool.hpp"
 
 namespace bladestab {
 namespace {
@@ -18,43 +21,55 @@ double relative_method_error(const TransientResult& r, const TransientOptions& o
 }  // namespace
 
 std::vector<TransientQuantity> transient_quantities(const TransientResult& r) {
-  double lateral = 0, axial = 0, energy = 0;
+  double lateral = 0, axial = 0, energy = 0, mean = 0;
   const double start = r.samples.empty() ? 0 : r.samples.front().total_energy_j;
   for (const TransientSample& s : r.samples) {
     lateral = std::max(lateral, std::abs(s.tip_lateral_m));
     axial = std::max(axial, std::abs(s.tip_axial_m - r.static_tip_axial_m));
     energy = std::max(energy, r.initial_vibration_energy_j + s.total_energy_j - start);
+    mean += s.tip_axial_m / static_cast<double>(r.samples.size());
   }
   std::vector<TransientQuantity> q{{"peak_tip_lateral_m", lateral, {}},
                                    {"peak_tip_axial_change_m", axial, {}},
-                                   {"peak_vibration_energy_j", energy, {}}};
+                                   {"peak_vibration_energy_j", energy, {}},
+                                   {"mean_tip_axial_m", mean, {}}};
   if (r.growth.omitted.empty()) q.push_back({"growth_per_revolution", r.growth.growth, {}});
   return q;
 }
 
-TransientErrorEstimate estimate_transient_error(const Scene& scene, const TransientOptions& o,
-                                                const TransientResult& r) {
-  TransientErrorEstimate estimate;
-  ModelSpec richer = scene.model;
-  richer.terms = estimate.reference_terms = reference_terms(scene.model.basis, scene.model.terms);
+namespace {
+
+// The richer model's options: the run's, without its self-check and progress; over `revolutions`.
+// Its own time-stepping error joins the basis part.
+TransientOptions richer_options(const TransientOptions& o, double revolutions) {
   TransientOptions same = o;
   same.self_check = false;
   same.progress = nullptr;
-  if (r.stopped) {
-    // The same window: to the stop, and past it for the growth as the run itself.
-    same.revolutions = r.samples.back().revolutions;
-  }
-  const TransientResult reference = run_transient(assemble_model(scene, richer), scene, same);
+  same.revolutions = revolutions;
+  return same;
+}
+
+// The run `r` against the same run on the richer model.
+TransientErrorEstimate compare_with_richer(const TransientOptions& o, const TransientResult& r, int terms,
+                                           int reference_terms, const TransientResult& reference) {
+  const double reference_method = relative_method_error(reference, richer_options(o, o.revolutions));
+  TransientErrorEstimate estimate;
+  estimate.reference_terms = reference_terms;
   std::vector<TransientQuantity> ours = transient_quantities(r), theirs = transient_quantities(reference);
   const double method = relative_method_error(r, o);
-  const std::vector<int> terms{scene.model.terms, estimate.reference_terms, estimate.reference_terms};
+  const std::vector<int> ladder{terms, reference_terms, reference_terms};
   for (TransientQuantity& q : ours) {
     const auto match = std::find_if(theirs.begin(), theirs.end(), [&](const TransientQuantity& t) { return t.name == q.name; });
     if (match != theirs.end()) {
       // The response to a concentrated tip load converges algebraically in the basis: the
       // difference gets the algebraic tail at the slowest trusted rate (basis_tail's richest model
       // "capped": n[2] = n[1]).
-      q.budget.basis = basis_tail({q.value, match->value, match->value}, terms, BasisConvergence::sine).relative * std::abs(match->value);
+      // The richer run's own time-stepping error joins it.
+      const double own = q.name == "growth_per_revolution" ? reference.growth.error_estimate
+                                                           : reference_method * std::abs(match->value);
+      q.budget.basis =
+          basis_tail({q.value, match->value, match->value}, ladder, BasisConvergence::sine).relative * std::abs(match->value) +
+          own;
     } else {
       q.budget.unbounded.push_back("basis: the richer model reports no " + q.name);
     }
@@ -62,6 +77,55 @@ TransientErrorEstimate estimate_transient_error(const Scene& scene, const Transi
   }
   estimate.quantities = std::move(ours);
   return estimate;
+}
+
+// The revolutions a stopped run is compared over: to its stop.
+double compared_revolutions(const TransientOptions& o, const TransientResult& r) {
+  return r.stopped ? r.samples.back().revolutions : o.revolutions;
+}
+
+}  // namespace
+
+TransientErrorEstimate estimate_transient_error(const Scene& scene, const TransientOptions& o,
+                                                const TransientResult& r) {
+  ModelSpec richer = scene.model;
+  richer.terms = reference_terms(scene.model.basis, scene.model.terms);
+  const TransientResult reference =
+      run_transient(assemble_model(scene, richer), scene, richer_options(o, compared_revolutions(o, r)));
+  return compare_with_richer(o, r, scene.model.terms, richer.terms, reference);
+}
+
+EstimatedTransient run_transient_with_error(const BladeModel& model, const BladeModel& richer, const Scene& scene,
+                                            const TransientOptions& o) {
+  const int richer_terms = richer.spec.terms;
+  Cancellation speculative;
+  TransientOptions beside = richer_options(o, o.revolutions);
+  beside.progress = [&speculative](int, int) {
+    if (speculative.cancelled()) throw WorkCancelled();
+  };
+  std::optional<WorkPool<TransientResult>> pool;
+  pool.emplace(worker_threads(o.threads), 1, [&](std::size_t) { return run_transient(richer, scene, beside); }, &speculative);
+  EstimatedTransient answer;
+  try {
+    answer.result = run_transient(model, scene, o);
+  } catch (...) {
+    speculative.cancel();
+    throw;
+  }
+  try {
+    TransientResult reference;
+    if (answer.result.stopped) {
+      speculative.cancel();
+      pool.reset();  // waits for a running task to stop
+      reference = run_transient(richer, scene, richer_options(o, compared_revolutions(o, answer.result)));
+    } else {
+      reference = pool->get(0);
+    }
+    answer.error = compare_with_richer(o, answer.result, scene.model.terms, richer_terms, reference);
+  } catch (const std::exception& e) {
+    answer.error_unavailable = fmt::format("the run on {} terms failed: {}", richer_terms, e.what());
+  }
+  return answer;
 }
 
 }  // namespace bladestab

@@ -13,6 +13,7 @@
 //   method     the time stepping: the fast method's contact propagators (their step-doubling bound
 //              for each piece of the first contact, or the self-check's measured difference, the
 //              larger) relative to the quantity; RKF45's tolerance; for the growth its fit's estimate
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -30,7 +31,8 @@ struct TransientQuantity {
 };
 
 // The measures of a run the estimate is about: |v(L)| and |u(L) − u_eq(L)| at their peaks, the
-// largest vibration energy E(t) − E_eq, and the growth where the run reports one.
+// largest vibration energy E(t) − E_eq, the mean of u(L) over the samples, and the growth where the
+// run reports one.
 std::vector<TransientQuantity> transient_quantities(const TransientResult& result);
 
 struct TransientErrorEstimate {
@@ -41,5 +43,20 @@ struct TransientErrorEstimate {
 // The run `result` of `scene` with `options`, against the same on the richer model.
 TransientErrorEstimate estimate_transient_error(const Scene& scene, const TransientOptions& options,
                                                 const TransientResult& result);
+
+// A run with its estimate, or why there is none.
+struct EstimatedTransient {
+  TransientResult result;
+  std::optional<TransientErrorEstimate> error;
+  std::string error_unavailable;  // the richer model's run failed: its one line
+};
+
+// The run of `model` and its estimate against `richer` (the scene's model at reference_terms):
+// the richer run starts beside the run (WorkPool, options.threads) over the same revolutions, so
+// the estimate costs little wall time on two cores; a run that stops early is compared over its own
+// window, and the richer model then runs again to that stop. A failure of the richer run (a work
+// limit, a check of its own) leaves the run without an estimate and says why.
+EstimatedTransient run_transient_with_error(const BladeModel& model, const BladeModel& richer, const Scene& scene,
+                                            const TransientOptions& options);
 
 }  // namespace bladestab
