@@ -532,7 +532,9 @@ Command register_transient(CLI::App& app) {
     check_transient_work(model, scene, o);
     std::string error_unavailable;
     const std::optional<BladeModel> richer = args->with_error ? richer_model(scene, o, error_unavailable) : std::nullopt;
-    EstimatedTransient run = richer ? run_transient_with_error(model, *richer, scene, o)
+    // The richer run reports to an embedding (which may stop it), not to the terminal's one line.
+    EstimatedTransient run = richer ? run_transient_with_error(model, *richer, scene, o,
+                                                               progress_reporter("transient: richer model", false))
                                     : EstimatedTransient{run_transient(model, scene, o), std::nullopt, error_unavailable};
     const TransientResult& r = run.result;
     const std::optional<TransientErrorEstimate>& error = run.error;

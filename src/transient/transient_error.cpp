@@ -96,12 +96,14 @@ TransientErrorEstimate estimate_transient_error(const Scene& scene, const Transi
 }
 
 EstimatedTransient run_transient_with_error(const BladeModel& model, const BladeModel& richer, const Scene& scene,
-                                            const TransientOptions& o) {
+                                            const TransientOptions& o,
+                                            const std::function<void(int, int)>& richer_progress) {
   const int richer_terms = richer.spec.terms;
   Cancellation speculative;
   TransientOptions beside = richer_options(o, o.revolutions);
-  beside.progress = [&speculative](int, int) {
+  beside.progress = [&speculative, &richer_progress](int done, int total) {
     if (speculative.cancelled()) throw WorkCancelled();
+    if (richer_progress) richer_progress(done, total);
   };
   std::optional<WorkPool<TransientResult>> pool;
   pool.emplace(worker_threads(o.threads), 1, [&](std::size_t) { return run_transient(richer, scene, beside); }, &speculative);
@@ -117,7 +119,9 @@ EstimatedTransient run_transient_with_error(const BladeModel& model, const Blade
     if (answer.result.stopped) {
       speculative.cancel();
       pool.reset();  // waits for a running task to stop
-      reference = run_transient(richer, scene, richer_options(o, compared_revolutions(o, answer.result)));
+      TransientOptions to_stop = richer_options(o, compared_revolutions(o, answer.result));
+      to_stop.progress = richer_progress;
+      reference = run_transient(richer, scene, to_stop);
     } else {
       reference = pool->get(0);
     }

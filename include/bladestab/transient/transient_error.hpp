@@ -13,6 +13,7 @@
 //   method     the time stepping: the fast method's contact propagators (their step-doubling bound
 //              for each piece of the first contact, or the self-check's measured difference, the
 //              larger) relative to the quantity; RKF45's tolerance; for the growth its fit's estimate
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -55,8 +56,10 @@ struct EstimatedTransient {
 // the richer run starts beside the run (WorkPool, options.threads) over the same revolutions, so
 // the estimate costs little wall time on two cores; a run that stops early is compared over its own
 // window, and the richer model then runs again to that stop. A failure of the richer run (a work
-// limit, a check of its own) leaves the run without an estimate and says why.
+// limit, a check of its own) leaves the run without an estimate and says why. `richer_progress`
+// (optional) hears the richer run's revolutions, from its own thread; what it throws stops the run.
 EstimatedTransient run_transient_with_error(const BladeModel& model, const BladeModel& richer, const Scene& scene,
-                                            const TransientOptions& options);
+                                            const TransientOptions& options,
+                                            const std::function<void(int, int)>& richer_progress = {});
 
 }  // namespace bladestab
