@@ -4,9 +4,10 @@
 # and charts into stability_maps/sinha2005/transients/. Run from the repository root after building
 # into build/. The runs go two at a time (--chart none), then two Python processes draw the charts
 # (scripts/charts draws many per interpreter: Python and matplotlib start once, not per chart).
-# Measured on the two shared cores under other work (load average 5-7): 88 s wall, 57 s of CPU, of
-# it the charts 22 s (1.45 s each) and the t̄c = 0.1/0.3/0.5 force runs 27 s (their 20/60/100 contact
-# pieces per pulse by Magnus); the 10 s target is not met (docs/guide/paper-transients.md).
+# Each run states its whole error (the same run on 24 terms beside it). Measured on the two idle
+# cores: 77 s wall, 148 s of CPU, most of it the richer runs of t̄c = 0.1/0.3/0.5 (20/60/100 contact
+# pieces per pulse by Magnus on 145 states); 18 s wall without the estimates (--no-error-estimate).
+# The 10 s target is not met (docs/guide/paper-transients.md).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scene=stability_maps/sinha2005/blade.toml
