@@ -258,7 +258,8 @@ void error_fields(Json& json, const std::optional<TransientErrorEstimate>& e, co
   json["error_reference_terms"] = e->reference_terms;
   for (const TransientQuantity& q : e->quantities) {
     const double total = q.budget.total();
-    json["error_estimate"][q.name] = digits.measure(total);
+    // A quantity with an unbounded part has no estimate: null, and its budget says why.
+    json["error_estimate"][q.name] = q.budget.unbounded.empty() ? Json(digits.measure(total)) : Json(nullptr);
     json["error_budget"][q.name] = {{"value", digits.absolute(q.value, total)},
                                     {"basis", digits.measure(q.budget.basis)},
                                     {"reduction", q.budget.reduction},
@@ -376,16 +377,22 @@ void print_error(const PrintedError& error) {
                                                              : "not estimated: " + error.unavailable);
     return;
   }
-  std::vector<std::string> parts;
+  std::vector<std::string> parts, unbounded;
   for (const TransientQuantity& q : error.estimate->quantities) {
+    if (!q.budget.unbounded.empty()) {
+      parts.push_back(fmt::format("{} not bounded", q.name));
+      for (const std::string& why : q.budget.unbounded) {
+        if (std::find(unbounded.begin(), unbounded.end(), why) == unbounded.end()) unbounded.push_back(why);
+      }
+      continue;
+    }
     const double total = q.budget.total();
-    parts.push_back(fmt::format("{} {} ± {} (basis {}, method {}{})", q.name, error.digits.absolute(q.value, total),
+    parts.push_back(fmt::format("{} {} ± {} (basis {}, method {})", q.name, error.digits.absolute(q.value, total),
                                 error.digits.measure(total), error.digits.measure(q.budget.basis),
-                                error.digits.measure(q.budget.method),
-                                q.budget.unbounded.empty() ? "" : ", not all bounded"));
+                                error.digits.measure(q.budget.method)));
   }
-  fmt::print("error      against the continuum model (basis: against {} terms): {}\n", error.estimate->reference_terms,
-             fmt::join(parts, "; "));
+  fmt::print("error      against the continuum model (basis: against {} terms): {}{}\n", error.estimate->reference_terms,
+             fmt::join(parts, "; "), unbounded.empty() ? "" : fmt::format(" ({})", fmt::join(unbounded, "; ")));
 }
 
 // A length in mm as printed, with its whole error where the estimate has one.

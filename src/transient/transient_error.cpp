@@ -57,10 +57,16 @@ TransientErrorEstimate compare_with_richer(const TransientOptions& o, const Tran
   estimate.reference_terms = reference_terms;
   std::vector<TransientQuantity> ours = transient_quantities(r), theirs = transient_quantities(reference);
   const double method = relative_method_error(r, o);
+  // A richer run that left the small-deflection range earlier saw a shorter history: no bound.
+  const double ours_end = r.samples.back().revolutions, theirs_end = reference.samples.back().revolutions;
+  const bool shorter = reference.stopped && theirs_end < ours_end;
   const std::vector<int> ladder{terms, reference_terms, reference_terms};
   for (TransientQuantity& q : ours) {
     const auto match = std::find_if(theirs.begin(), theirs.end(), [&](const TransientQuantity& t) { return t.name == q.name; });
-    if (match != theirs.end()) {
+    if (shorter) {
+      q.budget.unbounded.push_back(fmt::format("basis: the richer model left the small-deflection range at revolution "
+                                               "{:.4g}, before this run's end at {:.4g}", theirs_end, ours_end));
+    } else if (match != theirs.end()) {
       // The response to a concentrated tip load converges algebraically in the basis: the
       // difference gets the algebraic tail at the slowest trusted rate (basis_tail's richest model
       // "capped": n[2] = n[1]).
