@@ -116,7 +116,7 @@ import json
 import os
 import sys
 
-from chart_common import DPI, FIGSIZE, FIGSIZES, OUTPUT_FORMATS, InputError, _lay_out  # first: it chooses the backend
+from chart_common import DPI, FIGSIZE, FIGSIZES, OUTPUT_FORMATS, InputError  # first: it chooses the backend
 import matplotlib.pyplot as plt  # noqa: E402
 
 from chart_campbell import chart_campbell
@@ -165,7 +165,7 @@ def render(kind, input_path, output_path):
     fig, ax = plt.subplots(figsize=FIGSIZES.get(kind, FIGSIZE))
     try:
         CHARTS[kind](data, ax)
-        _lay_out(fig)
+        fig.tight_layout()
         metadata = {"Date": None} if fmt == "svg" else {}
         points = getattr(ax, "bladestab_markers", [])
         if fmt == "png" and points:

@@ -4,7 +4,7 @@ import math
 
 import matplotlib
 
-from chart_common import InputError, RAD_S_TO_RPM, _integer, _number, _numbers, _objects, _optional_list, _place_label, _require, _after_layout
+from chart_common import InputError, RAD_S_TO_RPM, _integer, _number, _numbers, _objects, _optional_list, _place_label, _require
 
 # family -> (label prefix, colormap, linestyle)
 CAMPBELL_FAMILIES = {
@@ -147,11 +147,10 @@ def chart_campbell(data, ax):
     ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0,
               fontsize=8, frameon=False)
 
-    # Annotate crossings last, once the layout is final.
+    # Annotate crossings last, once the layout is final enough to measure.
     if len(crossings) <= 12:
-        def place():
-            for c in sorted(crossings, key=lambda c: (c["rpm"], c["freq"])):
-                mode_label = labels.get(c["mode"], f"M{c['mode']}")
-                _place_label(ax, f"{c['order']}EO×{mode_label}\n{c['rpm']:.0f} rpm",
-                             (c["rpm"], c["freq"]))
-        _after_layout(ax.figure, place)
+        ax.figure.tight_layout()  # settle the layout before measuring labels
+        for c in sorted(crossings, key=lambda c: (c["rpm"], c["freq"])):
+            mode_label = labels.get(c["mode"], f"M{c['mode']}")
+            _place_label(ax, f"{c['order']}EO×{mode_label}\n{c['rpm']:.0f} rpm",
+                         (c["rpm"], c["freq"]))

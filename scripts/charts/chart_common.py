@@ -80,21 +80,6 @@ def _integer(value, what):
     return value
 
 
-def _after_layout(fig, place):
-    """Run place() once the figure's layout is final (render lays it out
-    once, then places): labels measured against their axes need it."""
-    if not hasattr(fig, "_bladestab_after_layout"):
-        fig._bladestab_after_layout = []
-    fig._bladestab_after_layout.append(place)
-
-
-def _lay_out(fig):
-    """The figure's one layout pass, then what waits for it."""
-    fig.tight_layout()
-    for place in getattr(fig, "_bladestab_after_layout", []):
-        place()
-
-
 # (dx, dy, ha, va) offsets in points tried in turn for a point annotation.
 LABEL_OFFSETS = [(6, -4, "left", "top"), (-6, 4, "right", "bottom"),
                  (6, 4, "left", "bottom"), (-6, -4, "right", "top"),

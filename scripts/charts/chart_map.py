@@ -8,7 +8,7 @@ from matplotlib.colors import ListedColormap, Normalize
 from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 
-from chart_common import InputError, _after_layout, _display_text, _integer, _number, _numbers, _objects, _optional_list, _optional_object, _place_label, _require  # noqa: E501 (one line: CMakeLists.txt drops it)
+from chart_common import InputError, _display_text, _integer, _number, _numbers, _objects, _optional_list, _optional_object, _place_label, _require  # noqa: E501 (one line: CMakeLists.txt drops it)
 
 STABLE_LIMIT = 1.0 + 1e-9     # default: max|rho| at or below this counts as stable ("stable_below" overrides)
 MAP_SHADE_MIN = 0.05          # smallest upper end of the log10 max|rho| scale
@@ -367,7 +367,6 @@ def chart_map(data, ax):
 
     labelled = [m for m in markers if m["label"]]
     if labelled and len(labelled) <= 12:
-        def place():
-            for m in labelled:
-                _place_label(ax, _display_text(m["label"]), (m["x"], m["y"]))
-        _after_layout(ax.figure, place)
+        ax.figure.tight_layout()  # settle the layout before measuring labels
+        for m in labelled:
+            _place_label(ax, _display_text(m["label"]), (m["x"], m["y"]))

@@ -6,7 +6,7 @@ import numpy as np
 from matplotlib.collections import LineCollection, PolyCollection
 from matplotlib.patches import Patch
 
-from chart_common import DPI, InputError, _after_layout, _display_text, _number, _numbers, _optional_object, _place_label, _require
+from chart_common import DPI, InputError, _display_text, _number, _numbers, _optional_object, _place_label, _require
 
 TRANSIENT_SERIES = ("tip_lateral_m", "tip_axial_m", "tip_axial_velocity_m_s",
                     "axial_force_n")
@@ -222,10 +222,9 @@ def _spectrum_panel(ax, spectrum, peaks, modes):
     ax.legend(loc="upper right", fontsize=8, frameon=True, framealpha=0.85,
               edgecolor="none")
     if marked:
-        def place():
-            for f, height in marked:
-                _place_label(ax, f"{f:.1f} Hz", (f, height))
-        _after_layout(ax.figure, place)
+        ax.figure.tight_layout()  # settle the layout before measuring labels
+        for f, height in marked:
+            _place_label(ax, f"{f:.1f} Hz", (f, height))
 
 
 def chart_transient(data, ax):
