@@ -1,7 +1,7 @@
 // The work pool on its own (support/work_pool.hpp): results by index whatever the thread count,
 // one thread runs everything on the caller, no more threads than asked, the lowest failing index
-// reported as a run in turn would, unstarted tasks cancelled after a failure, and a cancellation
-// from outside.
+// reported as a run in turn would, unstarted tasks cancelled after a failure, a cancellation
+// from outside, and a task that stops for a cancellation of its own.
 #include <catch2/catch.hpp>
 
 #include <atomic>
@@ -183,6 +183,26 @@ TEST_CASE("work pool: a cancellation from outside stops the unstarted tasks, and
   Cancellation flag;
   CHECK_THROWS_WITH(WorkPool<int>(1, 2, [](std::size_t) -> int { throw std::runtime_error("x"); }, &flag).results(), "x");
   CHECK(flag.cancelled());
+}
+
+TEST_CASE("work pool: a task that stops for a cancellation of its own keeps the tasks after it from starting",
+          "[pool][parallel]") {
+  // The flag the task polls is not the pool's (a run inside a task, told to stop by its caller).
+  for (const int threads : {1, 2, 3}) {
+    std::atomic<bool> told{false};
+    std::atomic<int> started{0};
+    WorkPool<int> pool(threads, 200, [&](std::size_t i) {
+      ++started;
+      if (i == 3) told = true;
+      pause_ms(1);
+      if (told) throw WorkCancelled();
+      return static_cast<int>(i);
+    });
+    CHECK_THROWS_AS(pool.results(), WorkCancelled);
+    CAPTURE(threads);
+    // Task 3 and the ones already running beside it, not the other 190-odd.
+    CHECK(started <= 3 + 2 * threads);
+  }
 }
 
 TEST_CASE("work pool: leaving early (the caller's own work failed) waits for the running tasks", "[pool][parallel]") {

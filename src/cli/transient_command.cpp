@@ -536,6 +536,7 @@ Command register_transient(CLI::App& app) {
     o.piece_work_flops = work_limits().seconds * dense_flops_per_second / 4;
     const bool for_people = args->scene.output_format() == OutputFormat::table;
     o.progress = progress_reporter("transient: revolutions", for_people);
+    o.contact_progress = progress_reporter("transient: contact pieces", for_people);
     check_transient_work(model, scene, o);
     std::string error_unavailable;
     const std::optional<BladeModel> richer = args->with_error ? richer_model(scene, o, error_unavailable) : std::nullopt;

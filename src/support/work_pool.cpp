@@ -34,12 +34,13 @@ void TaskRunner::run_unstarted() {
     End end = End::skipped;
     std::exception_ptr failure;
     const bool cancelled_from_outside = cancellation_->cancelled() && first_failure_ == std::numeric_limits<std::size_t>::max();
-    if (i < first_failure_ && !cancelled_from_outside) {
+    if (i < first_failure_ && !cancelled_from_outside && !stopped_) {
       try {
         run_(i);
         end = End::done;
       } catch (const WorkCancelled&) {
         end = End::skipped;
+        stopped_ = true;  // it stopped for a cancellation: the tasks after it do not start
       } catch (...) {
         end = End::failed;
         failure = std::current_exception();

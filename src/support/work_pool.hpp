@@ -15,7 +15,8 @@
 // the one a run on one thread reports: get(i) waits for tasks 0 … i and rethrows the lowest
 // failure among them, in whatever order the results are asked for. Long tasks may poll a
 // Cancellation: it is set once a task has failed and every task before it has ended, or by whoever
-// holds it (a task that stops for it throws WorkCancelled).
+// holds it (a task that stops for it throws WorkCancelled). A task that throws WorkCancelled, for
+// this pool's flag or one of its own, keeps the tasks after it from starting.
 #include <atomic>
 #include <condition_variable>
 #include <cstddef>
@@ -79,6 +80,7 @@ private:
   Cancellation own_;
   Cancellation* cancellation_;
   std::atomic<std::size_t> next_{0}, first_failure_;
+  std::atomic<bool> stopped_{false};  // a task threw WorkCancelled
   std::mutex lock_;
   std::condition_variable settled_;
   std::vector<End> end_;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <mutex>
 #include <optional>
 
 #include <fmt/format.h>
@@ -202,7 +203,8 @@ std::optional<std::pair<double, double>> ExactStepper::contact_offsets(double a,
   return std::pair{std::max(0.0, a - pulse_start), std::min(pulses_.contact_time_s, b - pulse_start)};
 }
 
-void ExactStepper::prepare(const std::vector<double>& landings, int threads) {
+void ExactStepper::prepare(const std::vector<double>& landings, int threads,
+                           const std::function<void(int, int)>& progress) {
   std::vector<std::pair<double, double>> missing;
   for (std::size_t k = 1; k < landings.size(); ++k) {
     if (!(landings[k] > landings[k - 1])) continue;
@@ -214,8 +216,15 @@ void ExactStepper::prepare(const std::vector<double>& landings, int threads) {
     });
     if (!listed) missing.push_back(*offsets);
   }
+  std::mutex reporting;
+  int done = 0;
   std::vector<Integrated> pieces = run_indexed(missing.size(), threads, [&](std::size_t i) {
-    return integrate_contact(missing[i].first, missing[i].second);
+    Integrated piece = integrate_contact(missing[i].first, missing[i].second);
+    if (progress) {
+      const std::lock_guard<std::mutex> lock(reporting);
+      progress(++done, static_cast<int>(missing.size()));
+    }
+    return piece;
   });
   for (Integrated& piece : pieces) keep(std::move(piece));
 }

@@ -68,7 +68,7 @@ TransientResult run_fast_transient(const BladeModel& model, const Scene& scene, 
   const std::vector<Landing> all = landings(stepper, begin, o, check_time);
   std::vector<double> times{0};
   for (const Landing& l : all) times.push_back(l.t);
-  stepper.prepare(times, o.threads);
+  stepper.prepare(times, o.threads, o.contact_progress);
   for (const Landing& l : all) {
     if (l.t <= t) continue;  // the start
     const double energy_before = system.energy(x);

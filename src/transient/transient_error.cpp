@@ -45,6 +45,7 @@ TransientOptions richer_options(const TransientOptions& o, double revolutions) {
   TransientOptions same = o;
   same.self_check = false;
   same.progress = nullptr;
+  same.contact_progress = nullptr;
   same.revolutions = revolutions;
   return same;
 }
@@ -111,6 +112,7 @@ EstimatedTransient run_transient_with_error(const BladeModel& model, const Blade
     if (speculative.cancelled()) throw WorkCancelled();
     if (richer_progress) richer_progress(done, total);
   };
+  beside.contact_progress = beside.progress;
   std::optional<WorkPool<TransientResult>> pool;
   pool.emplace(worker_threads(o.threads), 1, [&](std::size_t) { return run_transient(richer, scene, beside); }, &speculative);
   EstimatedTransient answer;
@@ -126,7 +128,7 @@ EstimatedTransient run_transient_with_error(const BladeModel& model, const Blade
       speculative.cancel();
       pool.reset();  // waits for a running task to stop
       TransientOptions to_stop = richer_options(o, compared_revolutions(o, answer.result));
-      to_stop.progress = richer_progress;
+      to_stop.progress = to_stop.contact_progress = richer_progress;
       reference = run_transient(richer, scene, to_stop);
     } else {
       reference = pool->get(0);

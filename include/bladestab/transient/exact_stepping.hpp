@@ -21,6 +21,7 @@
 // to rounding. A contact piece is integrated by the sixth-order Magnus propagator (ltp/magnus.hpp)
 // with its steps doubled until the propagator has converged (ltp/step_doubling.hpp), once per
 // distinct piece: an endless train reuses the propagators of its first pulse.
+#include <functional>
 #include <limits>
 #include <optional>
 #include <vector>
@@ -53,8 +54,10 @@ public:
 
   // Integrates the contact pieces of the intervals [t_k, t_{k+1}] of `landings` (absolute times)
   // that are not yet known, on up to `threads` threads (the pieces are independent; each comes out
-  // the same on any number of threads).
-  void prepare(const std::vector<double>& landings, int threads);
+  // the same on any number of threads). `progress` (optional) hears (pieces done, pieces to do)
+  // after each piece, one call at a time; what it throws stops the pieces not yet started.
+  void prepare(const std::vector<double>& landings, int threads,
+               const std::function<void(int, int)>& progress = {});
 
   // z over [a, b] inside one pulse period, with no pulse edge inside (a contact piece or free
   // flight); `work` gains the damping's work in free flight (Van Loan's integral, exact). True

@@ -70,6 +70,9 @@ struct TransientOptions {
   bool follower = false;  // the tip load follows the tip slope ψ = v'(L): F cos ψ axially, −F sin ψ laterally
   std::optional<Eigen::VectorXd> initial_state; // x = [f; ḟ]; default: the steady rotating equilibrium
   std::function<void(int, int)> progress;       // (revolutions done, total)
+  // fast, force mode: (contact pieces integrated, their number) before the revolutions start, one
+  // call at a time from the thread that finished the piece; what it throws stops the run.
+  std::function<void(int, int)> contact_progress;
   // fast: the work each contact piece's step doubling may take, in eigensolver flops
   // (magnus_step_work); a piece not converged where its next level would pass it throws
   // WorkLimitError.

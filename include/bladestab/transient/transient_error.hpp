@@ -57,7 +57,8 @@ struct EstimatedTransient {
 // the estimate costs little wall time on two cores; a run that stops early is compared over its own
 // window, and the richer model then runs again to that stop. A failure of the richer run (a work
 // limit, a check of its own) leaves the run without an estimate and says why. `richer_progress`
-// (optional) hears the richer run's revolutions, from its own thread; what it throws stops the run.
+// (optional) hears the richer run's contact pieces and revolutions, from its own threads; what it
+// throws stops the run.
 EstimatedTransient run_transient_with_error(const BladeModel& model, const BladeModel& richer, const Scene& scene,
                                             const TransientOptions& options,
                                             const std::function<void(int, int)>& richer_progress = {});
