@@ -401,8 +401,9 @@ std::string millimetres(double printed_m, const TransientQuantity* q) {
            : fmt::format("{:.6g} mm", 1e3 * printed_m);
 }
 
+// `energy_fraction`: the balance's error over the vibration energy, as computed (a check's measure).
 void print_table(const Scene& scene, const BladeModel& model, const TransientOptions& o, const TransientResult& r,
-                 const Summary& s, const std::optional<TransientErrorEstimate>& error) {
+                 const Summary& s, double energy_fraction, const std::optional<TransientErrorEstimate>& error) {
     fmt::print("scene      {}\nmodel      {}\n", scene.source, describe_model(model));
     fmt::print("load       {}\n", load_description(scene));
     print_method(o, r);
@@ -428,8 +429,7 @@ void print_table(const Scene& scene, const BladeModel& model, const TransientOpt
     }
     fmt::print("energy     balance E(t) − E(0) − W(t) within {:.3g} J{}\n", s.checks.energy_error_j,
                s.checks.vibration_energy_j > 0 ? fmt::format(", {:.3g} of the vibration energy {:.4g} J",
-                                                             s.checks.energy_error_j / s.checks.vibration_energy_j,
-                                                             s.checks.vibration_energy_j)
+                                                             energy_fraction, s.checks.vibration_energy_j)
                                                : std::string(" (no vibration)"));
     if (r.growth.omitted.empty()) {
       fmt::print("growth     {:.7g} ± {:.2g} per revolution ({})\n", r.growth.growth, r.growth.error_estimate,
@@ -565,7 +565,8 @@ Command register_transient(CLI::App& app) {
         break;
       case OutputFormat::csv: fmt::print("{}", history_csv(printed)); break;
       case OutputFormat::table:
-        print_table(scene, model, o, printed, printed_summary, error);
+        print_table(scene, model, o, printed, printed_summary,
+                    s.checks.energy_error_j / std::max(s.checks.vibration_energy_j, 1e-300), error);
         print_error(shown_error);
         fmt::print("written    {}\n", fmt::join(files, ", "));
     }

@@ -59,7 +59,8 @@ TransientErrorEstimate compare_with_richer(const TransientOptions& o, const Tran
   std::vector<TransientQuantity> ours = transient_quantities(r), theirs = transient_quantities(reference);
   const double method = relative_method_error(r, o);
   // A richer run that left the small-deflection range earlier saw a shorter history: no bound.
-  const double ours_end = r.samples.back().revolutions, theirs_end = reference.samples.back().revolutions;
+  const double ours_end = r.samples.empty() ? 0 : r.samples.back().revolutions;
+  const double theirs_end = reference.samples.empty() ? 0 : reference.samples.back().revolutions;
   const bool shorter = reference.stopped && theirs_end < ours_end;
   const std::vector<int> ladder{terms, reference_terms, reference_terms};
   for (TransientQuantity& q : ours) {
