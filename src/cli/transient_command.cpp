@@ -395,15 +395,16 @@ void print_error(const PrintedError& error) {
              fmt::join(parts, "; "), unbounded.empty() ? "" : fmt::format(" ({})", fmt::join(unbounded, "; ")));
 }
 
-// A length in mm as printed, with its whole error where the estimate has one.
-std::string millimetres(double printed_m, const TransientQuantity* q) {
-  return q ? fmt::format("{:.6g} ± {:.2g} mm", 1e3 * printed_m, 1e3 * q->budget.total())
+// A length in mm as printed, with its whole error (as the JSON prints it) where the estimate has one.
+std::string millimetres(double printed_m, const TransientQuantity* q, const PrintedDigits& digits) {
+  return q ? fmt::format("{:.6g} ± {:.6g} mm", 1e3 * printed_m, 1e3 * digits.measure(q->budget.total()))
            : fmt::format("{:.6g} mm", 1e3 * printed_m);
 }
 
 // `energy_fraction`: the balance's error over the vibration energy, as computed (a check's measure).
 void print_table(const Scene& scene, const BladeModel& model, const TransientOptions& o, const TransientResult& r,
-                 const Summary& s, double energy_fraction, const std::optional<TransientErrorEstimate>& error) {
+                 const Summary& s, double energy_fraction, const PrintedError& shown) {
+    const std::optional<TransientErrorEstimate>& error = shown.estimate;
     fmt::print("scene      {}\nmodel      {}\n", scene.source, describe_model(model));
     fmt::print("load       {}\n", load_description(scene));
     print_method(o, r);
@@ -417,9 +418,10 @@ void print_table(const Scene& scene, const BladeModel& model, const TransientOpt
                r.steps.accepted, r.steps.rejected, r.steps.evaluations, r.steps.smallest_step, r.steps.largest_step);
     const auto hz = [](const std::optional<double>& f) { return f ? fmt::format("{:.5g} Hz", *f) : std::string("n/a"); };
     fmt::print("tip        lateral peak {}, dominant {}; axial mean {} (static {:.6g} mm), peak {}, dominant {}\n",
-               millimetres(s.peak_lateral_m, estimated(error, "peak_tip_lateral_m")), hz(s.lateral_hz),
-               millimetres(s.mean_axial_m, estimated(error, "mean_tip_axial_m")), 1e3 * r.static_tip_axial_m,
-               millimetres(s.peak_axial_m, estimated(error, "peak_tip_axial_change_m")), hz(s.axial_hz));
+               millimetres(s.peak_lateral_m, estimated(error, "peak_tip_lateral_m"), shown.digits), hz(s.lateral_hz),
+               millimetres(s.mean_axial_m, estimated(error, "mean_tip_axial_m"), shown.digits),
+               1e3 * r.static_tip_axial_m,
+               millimetres(s.peak_axial_m, estimated(error, "peak_tip_axial_change_m"), shown.digits), hz(s.axial_hz));
     if (r.contact) {
       fmt::print("casing     {} contacts, {:.6g} ms in all; peak force {:.6g} kN (F̄ = {:.4g}) at the deepest overlap "
                  "{:.4g} µm of the penalty wall (k = {:.4g} N/m)\n",
@@ -566,7 +568,7 @@ Command register_transient(CLI::App& app) {
       case OutputFormat::csv: fmt::print("{}", history_csv(printed)); break;
       case OutputFormat::table:
         print_table(scene, model, o, printed, printed_summary,
-                    s.checks.energy_error_j / std::max(s.checks.vibration_energy_j, 1e-300), error);
+                    s.checks.energy_error_j / std::max(s.checks.vibration_energy_j, 1e-300), shown_error);
         print_error(shown_error);
         fmt::print("written    {}\n", fmt::join(files, ", "));
     }
