@@ -40,7 +40,6 @@ std::vector<TransientQuantity> transient_quantities(const TransientResult& r) {
 namespace {
 
 // The richer model's options: the run's, without its self-check and progress; over `revolutions`.
-// Its own time-stepping error joins the basis part.
 TransientOptions richer_options(const TransientOptions& o, double revolutions) {
   TransientOptions same = o;
   same.self_check = false;
@@ -50,10 +49,11 @@ TransientOptions richer_options(const TransientOptions& o, double revolutions) {
   return same;
 }
 
-// The run `r` against the same run on the richer model.
+// The run `r` against the same run on the richer model, whose own time-stepping error joins the basis
+// part.
 TransientErrorEstimate compare_with_richer(const TransientOptions& o, const TransientResult& r, int terms,
                                            int reference_terms, const TransientResult& reference) {
-  const double reference_method = relative_method_error(reference, richer_options(o, o.revolutions));
+  const double reference_method = relative_method_error(reference, o);
   TransientErrorEstimate estimate;
   estimate.reference_terms = reference_terms;
   std::vector<TransientQuantity> ours = transient_quantities(r), theirs = transient_quantities(reference);
@@ -72,7 +72,6 @@ TransientErrorEstimate compare_with_richer(const TransientOptions& o, const Tran
       // The response to a concentrated tip load converges algebraically in the basis: the
       // difference gets the algebraic tail at the slowest trusted rate (basis_tail's richest model
       // "capped": n[2] = n[1]).
-      // The richer run's own time-stepping error joins it.
       const double own = q.name == "growth_per_revolution" ? reference.growth.error_estimate
                                                            : reference_method * std::abs(match->value);
       q.budget.basis =
