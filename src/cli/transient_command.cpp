@@ -8,7 +8,6 @@
 
 #include "bladestab/base/constants.hpp"
 #include "bladestab/base/input_error.hpp"
-#include "bladestab/modal/basis_error.hpp"
 #include "support/message_text.hpp"
 #include "bladestab/transient/response_analysis.hpp"
 #include "bladestab/transient/transient.hpp"
@@ -334,10 +333,8 @@ void check_transient_work(const BladeModel& model, const Scene& scene, const Tra
 // estimate, so a tenth of the upper bound is compared with the limits (still 2.4× and more above
 // the measured times); a richer run slower than that ends at --max-seconds like any run.
 std::optional<BladeModel> richer_model(const Scene& scene, const TransientOptions& o, std::string& why_not) {
-  ModelSpec spec = scene.model;
-  spec.terms = reference_terms(spec.basis, spec.terms);
   try {
-    BladeModel richer = assemble_model(scene, spec);
+    BladeModel richer = assemble_model(scene, richer_model_spec(scene));
     check_transient_work(richer, scene, o, 0.1);
     return richer;
   } catch (const InputError& e) {

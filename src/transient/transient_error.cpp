@@ -93,10 +93,15 @@ double compared_revolutions(const TransientOptions& o, const TransientResult& r)
 
 }  // namespace
 
-TransientErrorEstimate estimate_transient_error(const Scene& scene, const TransientOptions& o,
-                                                const TransientResult& r) {
+ModelSpec richer_model_spec(const Scene& scene) {
   ModelSpec richer = scene.model;
   richer.terms = reference_terms(scene.model.basis, scene.model.terms);
+  return richer;
+}
+
+TransientErrorEstimate estimate_transient_error(const Scene& scene, const TransientOptions& o,
+                                                const TransientResult& r) {
+  const ModelSpec richer = richer_model_spec(scene);
   const TransientResult reference =
       run_transient(assemble_model(scene, richer), scene, richer_options(o, compared_revolutions(o, r)));
   return compare_with_richer(o, r, scene.model.terms, richer.terms, reference);

@@ -41,6 +41,9 @@ struct TransientErrorEstimate {
   std::vector<TransientQuantity> quantities;
 };
 
+// The richer model the estimate runs: the scene's at reference_terms (modal/basis_error.hpp).
+ModelSpec richer_model_spec(const Scene& scene);
+
 // The run `result` of `scene` with `options`, against the same on the richer model.
 TransientErrorEstimate estimate_transient_error(const Scene& scene, const TransientOptions& options,
                                                 const TransientResult& result);
