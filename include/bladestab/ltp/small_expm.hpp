@@ -8,9 +8,12 @@
 // matrix products by the scheme of Bader, Blanes & Casas, "Computing the matrix exponential with
 // an optimized Taylor polynomial approximation", Mathematics 7 (2019) 1174, §4.2 (their y₁₈ with
 // the coefficients that minimize the sum of their magnitudes). X is scaled by 2^−s until
-// ‖X‖₁ ≤ θ₁₈ = 1.0909, where T₁₈'s backward error is below the unit roundoff 2^−53 (their
-// Table 3), then squared s times. The paper's degree-12 Paterson–Stockmeyer polynomial, used here
-// before, costs as many products but reaches only ‖X‖₁ ≤ 0.33: two squarings more per step.
+// α₂ = max(‖X²‖₁^½, ‖X³‖₁^⅓) ≤ θ₁₈ = 1.0909, where T₁₈'s backward error is below the unit
+// roundoff 2^−53 (their Table 3; the bound through α₂ instead of ‖X‖₁ is Al-Mohy & Higham,
+// SIAM J. Matrix Anal. Appl. 31 (2009) 970, Thm. 4.2), then squared s times. X² and X³ are the
+// scheme's own products, so the sharper count costs nothing. The paper's degree-12
+// Paterson–Stockmeyer polynomial costs as many products but reaches only ‖X‖₁ ≤ 0.33: two
+// squarings more per step.
 #include <Eigen/Dense>
 
 namespace bladestab {
