@@ -239,7 +239,7 @@ TEST_CASE("the CLI: a run that broke its energy balance is a one-line error with
 }
 
 TEST_CASE("the CLI: a 2-revolution run gives growth_per_revolution null and says why", "[transient][honesty]") {
-  const CliRun run = run_transient_cli("--set model.terms=6 --revolutions 2 --tolerance 1e-6 --format json");
+  const CliRun run = run_transient_cli("--set model.terms=6 --revolutions 2 --format json");
   INFO("stderr: " << run.err);
   REQUIRE(WIFEXITED(run.status));
   CHECK(WEXITSTATUS(run.status) == 0);

@@ -13,25 +13,21 @@
 #include "bladestab/transient/transient.hpp"
 #include "bladestab/transient/transient_checks.hpp"
 #include "bladestab/transient/transient_error.hpp"
+#include "bladestab/transient/transient_fidelity.hpp"
 #include "chart.hpp"
 #include "commands.hpp"
 #include "embedding.hpp"
 #include "json_output.hpp"
 #include "number_options.hpp"
 #include "options.hpp"
+#include "notes.hpp"
 #include "output_files.hpp"
 #include "progress.hpp"
+#include "transient_output.hpp"
 #include "work_limits.hpp"
 
 namespace bladestab::cli {
 namespace {
-
-struct Summary {
-  Spectrum lateral, axial;  // empty for a history of fewer than 4 samples (a run stopped at once)
-  std::optional<double> lateral_hz, axial_hz;
-  double peak_lateral_m = 0, peak_axial_m = 0, mean_axial_m = 0;
-  TransientChecks checks;
-};
 
 // Column of the history.
 template <class Field>
@@ -45,8 +41,8 @@ std::vector<double> column(const TransientResult& r, Field field) {
 // A value, or null where there is none.
 Json optional_json(const std::optional<double>& value) { return value ? Json(*value) : Json(nullptr); }
 
-Summary summarize(const TransientResult& r, double sample_rate) {
-  Summary s;
+TransientSummary summarize(const TransientResult& r, double sample_rate) {
+  TransientSummary s;
   const std::vector<double> lat = column(r, &TransientSample::tip_lateral_m),
                             ax = column(r, &TransientSample::tip_axial_m);
   if (lat.size() >= 4) {
@@ -114,18 +110,9 @@ TransientResult as_printed(TransientResult r, const PrintedRun& shown) {
   return r;
 }
 
-// Quantity `name` of the estimate (transient_error.hpp), where the run has one that is bounded.
-const TransientQuantity* estimated(const std::optional<TransientErrorEstimate>& e, const std::string& name) {
-  if (!e) return nullptr;
-  for (const TransientQuantity& q : e->quantities) {
-    if (q.name == name && q.budget.unbounded.empty()) return &q;
-  }
-  return nullptr;
-}
-
 // The numbers the estimate covers, to the digits their whole error supports (raw: as computed): the
 // tip peaks and mean, the vibration energy (to the relative error of its peak), the growth.
-void with_whole_error(TransientResult& r, Summary& s, const TransientResult& raw_result, const Summary& raw,
+void with_whole_error(TransientResult& r, TransientSummary& s, const TransientResult& raw_result, const TransientSummary& raw,
                       const std::optional<TransientErrorEstimate>& e, const PrintedDigits& digits) {
   if (const TransientQuantity* q = estimated(e, "peak_tip_lateral_m")) {
     s.peak_lateral_m = digits.absolute(raw.peak_lateral_m, q->budget.total());
@@ -148,7 +135,7 @@ void with_whole_error(TransientResult& r, Summary& s, const TransientResult& raw
 
 // The spectra and peaks like the series they come from; the dominant frequencies, interpolated
 // between the spectrum's bins, to 6 digits.
-Summary as_printed(Summary s, const PrintedRun& shown) {
+TransientSummary as_printed(TransientSummary s, const PrintedRun& shown) {
   s.lateral.amplitude = shown.series(s.lateral.amplitude);
   s.axial.amplitude = shown.series(s.axial.amplitude);
   if (s.lateral_hz) s.lateral_hz = shown.digits.unestimated(*s.lateral_hz);
@@ -196,7 +183,7 @@ void method_fields(Json& json, const TransientResult& r) {
   if (r.stopped) json["stopped"] = {{"revolution", r.stopped->revolution}, {"reason", r.stopped->reason}};
 }
 
-void summary_fields(Json& json, const TransientResult& r, const Summary& s, bool adaptive) {
+void summary_fields(Json& json, const TransientResult& r, const TransientSummary& s, bool adaptive) {
   method_fields(json, r);
   json["dominant_frequency_hz"] = {{"tip_lateral", optional_json(s.lateral_hz)}, {"tip_axial", optional_json(s.axial_hz)}};
   json["peak_tip_lateral_m"] = s.peak_lateral_m;
@@ -234,18 +221,6 @@ void summary_fields(Json& json, const TransientResult& r, const Summary& s, bool
   }
 }
 
-// What loads the tip, in one phrase.
-std::string load_description(const Scene& scene) {
-  const LoadSpec& l = scene.load;
-  const std::string pulses = l.pulse_count == 1 ? "" : fmt::format(" ({} in all)", l.pulse_count == 0 ? std::string("endless") : std::to_string(l.pulse_count));
-  if (l.mode == LoadMode::clearance) {
-    return fmt::format("casing at clearance {:g} mm with {} distortions {:g} mm deep{}, t̄c = {:g}, μ = {:g}", 1e3 * l.clearance,
-                       to_string(l.profile), 1e3 * l.intrusion, pulses, l.contact_time_rev, l.friction);
-  }
-  return fmt::format("{} pulses{}, F̄ = {:g}, t̄c = {:g}, μ = {:g}", to_string(l.profile), pulses, l.fmax_over_fcr,
-                     l.contact_time_rev, l.friction);
-}
-
 // JSON error_estimate (each quantity's whole estimate) and error_budget (its parts, the value to the
 // digits its estimate supports), or error_unavailable (why there is none).
 void error_fields(Json& json, const std::optional<TransientErrorEstimate>& e, const std::string& unavailable,
@@ -268,14 +243,7 @@ void error_fields(Json& json, const std::optional<TransientErrorEstimate>& e, co
   }
 }
 
-// The run's estimate as the outputs print it.
-struct PrintedError {
-  const std::optional<TransientErrorEstimate>& estimate;
-  const std::string& unavailable;
-  const PrintedDigits& digits;
-};
-
-std::string summary_json(const Scene& scene, const BladeModel& model, const TransientResult& r, const Summary& s,
+std::string summary_json(const Scene& scene, const BladeModel& model, const TransientResult& r, const TransientSummary& s,
                          bool adaptive, bool with_series, const PrintedError& error) {
   Json json;
   json["title"] = fmt::format("{} — {}", scene_title(scene), load_description(scene));
@@ -285,6 +253,11 @@ std::string summary_json(const Scene& scene, const BladeModel& model, const Tran
   json["revolutions_run"] = r.samples.back().revolutions;
   summary_fields(json, r, s, adaptive);
   error_fields(json, error.estimate, error.unavailable, error.digits);
+  if (error.tolerance) {
+    json["tolerance"] = *error.tolerance;
+    json["tolerance_met"] = error.tolerance_unmet.empty();
+    json["tolerance_unmet"] = error.tolerance_unmet.empty() ? Json(nullptr) : Json("--" + error.tolerance_unmet);
+  }
   if (with_series) {  // what the chart draws
     json["revolutions"] = column(r, &TransientSample::revolutions);
     json["tip_lateral_m"] = column(r, &TransientSample::tip_lateral_m);
@@ -307,7 +280,10 @@ std::string summary_json(const Scene& scene, const BladeModel& model, const Tran
 // step against RKF45's 6). An upper bound: 24× (t̄c = 0.01) to 84× (t̄c = 0.5) the time measured on
 // the 2-core machine of docs/benchmarks.md for the scene as shipped, 70–112× at 24 terms. `share`
 // scales it for a run whose refusal loses less than the answer (the richer run of the estimate).
-void check_transient_work(const BladeModel& model, const Scene& scene, const TransientOptions& o, double share = 1) {
+// `spent`: the estimates of the rounds before (transient_fidelity.hpp), which the limits cover too.
+// Returns this run's estimate (× share).
+double check_transient_work(const BladeModel& model, const Scene& scene, const TransientOptions& o, double share = 1,
+                            double spent = 0) {
   const double revolution = two_pi / scene.operation.speed_rad_s, duration = o.revolutions * revolution;
   const FixedStep step = transient_step(model, scene, o, duration);
   const bool fast = o.method == TransientMethod::fast && !o.follower && o.adaptive;
@@ -322,20 +298,23 @@ void check_transient_work(const BladeModel& model, const Scene& scene, const Tra
                                      : fast_transient_seconds(steps, intervals, dofs);
   const double bytes = transient_history_bytes(o.revolutions, o.samples_per_revolution);
   check_work(fmt::format("--revolutions {:g} with model.terms = {}", o.revolutions, model.spec.terms),
-             fmt::format("{:.3g} {} steps of a {}-dof model and {:.3g} samples", steps,
+             fmt::format("{:.3g} {} steps of a {}-dof model and {:.3g} samples{}", steps,
                          fast ? (clearance ? "RKF78" : "Magnus") : "RKF45", dofs,
-                         o.revolutions * o.samples_per_revolution),
-             share * seconds, bytes);
+                         o.revolutions * o.samples_per_revolution, spent > 0 ? ", after the rounds before," : ""),
+             spent + share * seconds, bytes);
+  return share * seconds;
 }
 
 // The richer model of the whole-error estimate (reference_terms), or none where it cannot be built or
-// its run would pass the work limits: `why_not` then says so. Its refusal only leaves out the
+// its run would pass the work limits (with `spent`, the rounds before): `why_not` then says so, else
+// `work` is its estimate as charged. Its refusal only leaves out the
 // estimate, so a tenth of the upper bound is compared with the limits (still 2.4× and more above
 // the measured times); a richer run slower than that ends at --max-seconds like any run.
-std::optional<BladeModel> richer_model(const Scene& scene, const TransientOptions& o, std::string& why_not) {
+std::optional<BladeModel> richer_model(const Scene& scene, const TransientOptions& o, double spent,
+                                       std::string& why_not, double& work) {
   try {
     BladeModel richer = assemble_model(scene, richer_model_spec(scene));
-    check_transient_work(richer, scene, o, 0.1);
+    work = check_transient_work(richer, scene, o, 0.1, spent);
     return richer;
   } catch (const InputError& e) {
     why_not = fmt::format("{}; --no-error-estimate leaves it out", e.what());
@@ -343,108 +322,9 @@ std::optional<BladeModel> richer_model(const Scene& scene, const TransientOption
   }
 }
 
-// The method line(s) of the table: the fast method's pieces and its check, or why RKF45 ran.
-void print_method(const TransientOptions& o, const TransientResult& r) {
-  if (r.method == TransientMethod::fast && r.contact) {
-    fmt::print("method     fast: free flight exact (one exponential per distinct interval, {} in all), casing contacts "
-               "by RKF78 at rtol {:g} ({} steps, {} rejected, {} RHS evaluations, {} events located)\n",
-               r.exact.free_exponentials, o.contact_tolerance, r.steps.accepted, r.steps.rejected, r.steps.evaluations,
-               r.steps.event_landings);
-  } else if (r.method == TransientMethod::fast) {
-    fmt::print("method     fast: free flight exact (one exponential per distinct interval, {} in all), {} contact "
-               "piece(s) by Magnus ({} steps in all, propagators within {:.2g} of tolerance {:g})\n",
-               r.exact.free_exponentials, r.exact.contact_pieces, r.exact.magnus_steps, r.exact.contact_error,
-               o.contact_tolerance);
-  } else if (!r.fallback.empty()) {
-    fmt::print("method     rkf45, not fast: {}\n", r.fallback);
-  }
-  if (r.self_check) {
-    fmt::print("check      against RKF45 (rtol {:g}) to revolution {:.4g}: states differ by {:.2g} of the vibration "
-               "(allowed {:.2g}), {:.3g} s\n",
-               r.self_check->rkf45_tolerance, r.self_check->until_revolutions, r.self_check->difference,
-               r.self_check->allowed, r.self_check->seconds);
-  }
-  if (r.stopped) fmt::print("stopped    at revolution {:.4g}: {}\n", r.stopped->revolution, r.stopped->reason);
-}
-
-void print_error(const PrintedError& error) {
-  if (!error.estimate) {
-    fmt::print("error      {}\n", error.unavailable.empty() ? "not estimated (--no-error-estimate): the digits are the "
-                                                               "time stepping's, not the continuum model's"
-                                                             : "not estimated: " + error.unavailable);
-    return;
-  }
-  std::vector<std::string> parts, unbounded;
-  for (const TransientQuantity& q : error.estimate->quantities) {
-    if (!q.budget.unbounded.empty()) {
-      parts.push_back(fmt::format("{} not bounded", q.name));
-      for (const std::string& why : q.budget.unbounded) {
-        if (std::find(unbounded.begin(), unbounded.end(), why) == unbounded.end()) unbounded.push_back(why);
-      }
-      continue;
-    }
-    const double total = q.budget.total();
-    parts.push_back(fmt::format("{} {} ± {} (basis {}, method {})", q.name, error.digits.absolute(q.value, total),
-                                error.digits.measure(total), error.digits.measure(q.budget.basis),
-                                error.digits.measure(q.budget.method)));
-  }
-  fmt::print("error      against the continuum model (basis: against {} terms): {}{}\n", error.estimate->reference_terms,
-             fmt::join(parts, "; "), unbounded.empty() ? "" : fmt::format(" ({})", fmt::join(unbounded, "; ")));
-}
-
-// A length in mm as printed, with its whole error (as the JSON prints it) where the estimate has one.
-std::string millimetres(double printed_m, const TransientQuantity* q, const PrintedDigits& digits) {
-  return q ? fmt::format("{:.6g} ± {:.6g} mm", 1e3 * printed_m, 1e3 * digits.measure(q->budget.total()))
-           : fmt::format("{:.6g} mm", 1e3 * printed_m);
-}
-
-// `energy_fraction`: the balance's error over the vibration energy, as computed (a check's measure).
-void print_table(const Scene& scene, const BladeModel& model, const TransientOptions& o, const TransientResult& r,
-                 const Summary& s, double energy_fraction, const PrintedError& shown) {
-    const std::optional<TransientErrorEstimate>& error = shown.estimate;
-    fmt::print("scene      {}\nmodel      {}\n", scene.source, describe_model(model));
-    fmt::print("load       {}\n", load_description(scene));
-    print_method(o, r);
-    if (r.method == TransientMethod::rkf45) fmt::print("steps      {}: {} accepted, {} rejected, {} RHS evaluations, step {:.3g} … {:.3g} s\n",
-               o.adaptive ? fmt::format("adaptive RKF45, rtol {:g}, steps ≤ {:.4g} s (1/{} of the stiffest period: "
-                                        "its parasitic growth ≤ ×{:.4g})",
-                                        o.tolerance, r.fixed.step_s, r.fixed.steps_per_period, r.fixed.parasitic_growth)
-                          : fmt::format("fixed RKF45, Δt = {:.6g} s = 1/{} of the stiffest period (54), "
-                                        "its parasitic growth ×{:.4g}",
-                                        r.fixed.step_s, r.fixed.steps_per_period, r.fixed.parasitic_growth),
-               r.steps.accepted, r.steps.rejected, r.steps.evaluations, r.steps.smallest_step, r.steps.largest_step);
-    const auto hz = [](const std::optional<double>& f) { return f ? fmt::format("{:.5g} Hz", *f) : std::string("n/a"); };
-    fmt::print("tip        lateral peak {}, dominant {}; axial mean {} (static {:.6g} mm), peak {}, dominant {}\n",
-               millimetres(s.peak_lateral_m, estimated(error, "peak_tip_lateral_m"), shown.digits), hz(s.lateral_hz),
-               millimetres(s.mean_axial_m, estimated(error, "mean_tip_axial_m"), shown.digits),
-               1e3 * r.static_tip_axial_m,
-               millimetres(s.peak_axial_m, estimated(error, "peak_tip_axial_change_m"), shown.digits), hz(s.axial_hz));
-    if (r.contact) {
-      fmt::print("casing     {} contacts, {:.6g} ms in all; peak force {:.6g} kN (F̄ = {:.4g}) at the deepest overlap "
-                 "{:.4g} µm of the penalty wall (k = {:.4g} N/m)\n",
-                 r.contact->closures, 1e3 * r.contact->contact_time_s, 1e-3 * r.contact->peak_force_n,
-                 r.contact->peak_force_n / BladeProperties(scene.blade).critical_load(), 1e6 * r.contact->max_overlap_m,
-                 r.contact->stiffness_n_m);
-    }
-    fmt::print("energy     balance E(t) − E(0) − W(t) within {:.3g} J{}\n", s.checks.energy_error_j,
-               s.checks.vibration_energy_j > 0 ? fmt::format(", {:.3g} of the vibration energy {:.4g} J",
-                                                             energy_fraction, s.checks.vibration_energy_j)
-                                               : std::string(" (no vibration)"));
-    if (r.growth.omitted.empty()) {
-      fmt::print("growth     {:.7g} ± {:.2g} per revolution ({})\n", r.growth.growth, r.growth.error_estimate,
-                 !r.stopped ? "the state's change over each revolution, second half of the run"
-                 : r.continued_change.empty()
-                     ? "the last two ratios of the state's change over a revolution before the stop"
-                     : fmt::format("the state's change over the last whole revolution before the stop, carried on "
-                                   "by that revolution's propagators for {} revolutions", r.continued_change.size()));
-    } else {
-      fmt::print("growth     not reported: {}\n", r.growth.omitted);
-    }
-}
-
 // A run whose own checks failed (the integration, or a response that outgrew the model without
 // stopping at the small-deflection range) is a numerical failure, exit 1: no files, no numbers.
-void refuse_failed_run(const Summary& s, const TransientResult& r, const TransientOptions& o, double tolerance,
+void refuse_failed_run(const TransientSummary& s, const TransientResult& r, const TransientOptions& o, double tolerance,
                        double revolutions, double length) {
   const auto failure = transient_failure(s.checks, length);
   if (!failure || (!failure->integration && r.stopped)) return;
@@ -485,9 +365,10 @@ void add_transient_options(CLI::App& command, TransientArgs& a) {
                     "fraction of the length (default 0.1)");
   add_number_option(command, "--revolutions", a.revolutions, AllowedRange::above(0, 1e5),
                     "length of the run in revolutions (default 10)");
-  add_number_option(command, "--tolerance", a.tolerance, AllowedRange::below(1e-13, 1),
-                    "relative tolerance: of RKF45's adaptive steps (default 1e-8) and of the fast method's contact "
-                    "propagators (default 1e-7)");
+  add_number_option(command, "--tolerance", a.tolerance, AllowedRange::below(1e-12, 1),
+                    "the whole error of each reported quantity, relative: the terms are raised until it is met "
+                    "(with the error estimate), and the time stepping gets a tenth of it (default: the scene's "
+                    "terms; RKF45's steps to 1e-8, the contact propagators to 1e-7)");
   command.add_option("--step", a.step, "adaptive (default) or fixed (the paper's Δt = (1/8)(2π/ω_max), eq. 54)")
       ->check(CLI::IsMember({"adaptive", "fixed"}));
   add_integer_option(command, "--steps-per-period", a.steps_per_period, 8, 100000,
@@ -497,6 +378,52 @@ void add_transient_options(CLI::App& command, TransientArgs& a) {
   add_chart_options(command, a.out, a.chart, "directory for NAME.csv, NAME.json and the chart");
   command.add_option("--name", a.name, "stem of the output files (default transient)");
   command.add_flag("--follower", a.follower, "the tip load follows the tip slope (F cos ψ axially, −F sin ψ laterally)");
+}
+
+// The run's options from the command's: `tolerance` (--tolerance, where given) holds the whole
+// error, so the time stepping (RKF45's steps, the contact propagators) gets a tenth of it.
+TransientOptions transient_options(const TransientArgs& a, std::optional<double> tolerance) {
+  TransientOptions o;
+  o.revolutions = a.revolutions;
+  o.adaptive = a.step == "adaptive";
+  o.steps_per_period = a.steps_per_period;
+  if (tolerance) o.tolerance = o.contact_tolerance = *tolerance / 10;
+  o.samples_per_revolution = a.samples;
+  o.follower = a.follower;
+  o.method = a.method == "fast" && a.step == "adaptive" ? TransientMethod::fast : TransientMethod::rkf45;
+  o.max_lateral_over_length = a.max_deflection;
+  o.threads = a.threads;
+  // Each contact piece may take a quarter of the work --max-seconds allows.
+  o.piece_work_flops = work_limits().seconds * dense_flops_per_second / 4;
+  const bool for_people = a.scene.output_format() == OutputFormat::table;
+  o.progress = progress_reporter("transient: revolutions", for_people);
+  o.contact_progress = progress_reporter("transient: contact pieces", for_people);
+  return o;
+}
+
+// A round's models on `scene`: the run's (refused past the work limits) and, `with_error`, the
+// richer one of its estimate, each with the rounds before (`spent`: their work estimates, to which
+// this round's are added).
+TransientRoundModels round_models(const Scene& scene, const TransientOptions& o, bool with_error, double& spent) {
+  TransientRoundModels m{assemble_model(scene), std::nullopt, {}};
+  double work = check_transient_work(m.model, scene, o, 1, spent), richer_work = 0;
+  if (with_error) m.richer = richer_model(scene, o, spent, m.richer_unavailable, richer_work);
+  spent += work + richer_work;
+  return m;
+}
+
+// The run, its estimate (`with_error`) and, with a `tolerance`, the terms raised to meet it
+// (transient_fidelity.hpp). The richer run reports to an embedding (which may stop it), not to the
+// terminal's one line.
+TransientAtTolerance run_command(const Scene& scene, const TransientOptions& o, std::optional<double> tolerance,
+                                 bool with_error) {
+  double spent = 0;
+  const auto build = [&](const Scene& at) { return round_models(at, o, with_error, spent); };
+  const auto richer_progress = progress_reporter("transient: richer model", false);
+  if (tolerance) return run_transient_to_tolerance(scene, o, *tolerance, build, richer_progress);
+  TransientRoundModels models = build(scene);
+  EstimatedTransient run = run_transient_round(models, scene, o, richer_progress);
+  return {std::move(run), std::move(models.model), true, {}};
 }
 
 }  // namespace
@@ -519,54 +446,35 @@ Command register_transient(CLI::App& app) {
     if (scene.operation.speed_rad_s <= 0) {
       throw InputError("operation.speed_rad_s = 0: the transient is counted in revolutions; give a speed > 0");
     }
-    const BladeModel model = assemble_model(scene);
-    TransientOptions o;
-    o.revolutions = args->revolutions;
-    o.adaptive = args->step == "adaptive";
-    o.steps_per_period = args->steps_per_period;
-    o.tolerance = args->tolerance;
-    if (command->count("--tolerance") > 0) o.contact_tolerance = args->tolerance;
-    o.samples_per_revolution = args->samples;
-    o.follower = args->follower;
-    o.method = args->method == "fast" && args->step == "adaptive" ? TransientMethod::fast : TransientMethod::rkf45;
-    o.max_lateral_over_length = args->max_deflection;
-    o.threads = args->threads;
-    // Each contact piece may take a quarter of the work --max-seconds allows.
-    o.piece_work_flops = work_limits().seconds * dense_flops_per_second / 4;
-    const bool for_people = args->scene.output_format() == OutputFormat::table;
-    o.progress = progress_reporter("transient: revolutions", for_people);
-    o.contact_progress = progress_reporter("transient: contact pieces", for_people);
-    check_transient_work(model, scene, o);
-    std::string error_unavailable;
-    const std::optional<BladeModel> richer = args->with_error ? richer_model(scene, o, error_unavailable) : std::nullopt;
-    // The richer run reports to an embedding (which may stop it), not to the terminal's one line.
-    EstimatedTransient run = richer ? run_transient_with_error(model, *richer, scene, o,
-                                                               progress_reporter("transient: richer model", false))
-                                    : EstimatedTransient{run_transient(model, scene, o), std::nullopt, error_unavailable};
-    const TransientResult& r = run.result;
-    const std::optional<TransientErrorEstimate>& error = run.error;
-    const double sample_rate = args->samples * scene.operation.speed_rad_s / two_pi;
-    const Summary s = summarize(r, sample_rate);
+    const std::optional<double> tolerance =
+        command->count("--tolerance") > 0 ? std::optional(args->tolerance) : std::nullopt;
+    const TransientOptions o = transient_options(*args, tolerance);
+    const TransientAtTolerance run = run_command(scene, o, args->with_error ? tolerance : std::nullopt, args->with_error);
+    const TransientResult& r = run.run.result;
+    const TransientSummary s = summarize(r, args->samples * scene.operation.speed_rad_s / two_pi);
     refuse_failed_run(s, r, o, args->tolerance, args->revolutions, scene.blade.length);
 
     const PrintedDigits digits = args->scene.printed_digits();
-    const PrintedRun shown(digits, o.adaptive ? std::optional(args->tolerance) : std::nullopt);
+    const PrintedRun shown(digits, o.adaptive ? std::optional(o.tolerance) : std::nullopt);
     TransientResult printed = as_printed(r, shown);
-    Summary printed_summary = as_printed(s, shown);
-    with_whole_error(printed, printed_summary, r, s, error, digits);
-    const PrintedError shown_error{error, run.error_unavailable, digits};
+    TransientSummary printed_summary = as_printed(s, shown);
+    with_whole_error(printed, printed_summary, r, s, run.run.error, digits);
+    const PrintedError shown_error{run.run.error, run.run.error_unavailable, digits,
+                                   args->with_error ? tolerance : std::nullopt, run.tolerance_unmet};
     const std::vector<std::string> files =
         write_outputs(args->out, args->name, {{args->name + ".csv", history_csv(printed)}},
-                      summary_json(scene, model, printed, printed_summary, o.adaptive, true, shown_error), "transient", args->chart);
+                      summary_json(scene, run.model, printed, printed_summary, o.adaptive, true, shown_error), "transient",
+                      args->chart);
+    if (!run.tolerance_met) print_note("transient: --" + run.tolerance_unmet + "; the answer stands with its estimate");
     switch (args->scene.output_format()) {
       case OutputFormat::json:
-        print_json_answer(summary_json(scene, model, printed, printed_summary, o.adaptive, false, shown_error));
+        print_json_answer(summary_json(scene, run.model, printed, printed_summary, o.adaptive, false, shown_error));
         break;
       case OutputFormat::csv: fmt::print("{}", history_csv(printed)); break;
       case OutputFormat::table:
-        print_table(scene, model, o, printed, printed_summary,
+        print_table(scene, run.model, o, printed, printed_summary,
                     s.checks.energy_error_j / std::max(s.checks.vibration_energy_j, 1e-300), shown_error);
-        print_error(shown_error);
+        print_error(shown_error, run.model);
         fmt::print("written    {}\n", fmt::join(files, ", "));
     }
   };
