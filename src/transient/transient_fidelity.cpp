@@ -75,6 +75,11 @@ TransientAtTolerance run_transient_to_tolerance(const Scene& scene, const Transi
     if (!answer.tolerance_unmet.empty()) return answer;
     Scene next = round;
     next.model.terms = reference_terms(round.model.basis, round.model.terms);
+    if (next.model.terms <= round.model.terms) {
+      answer.tolerance_unmet = fmt::format("tolerance {}: not met with {} terms per field ({} estimated {:.2g}), the most "
+                                           "a model takes", tolerance, round.model.terms, worst.name, worst.relative);
+      return answer;
+    }
     try {
       models = build(next);
     } catch (const std::exception& e) {
