@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "bladestab/base/numerical_error.hpp"
 #include "bladestab/modal/basis_error.hpp"
 
 namespace bladestab {
@@ -30,12 +31,16 @@ Shortfall worst_quantity(const TransientErrorEstimate& e) {
   return worst;
 }
 
+// "tolerance ε: not met with N terms per field (<quantity> estimated e)".
+std::string not_met(double tolerance, int terms, const Shortfall& worst) {
+  return fmt::format("tolerance {}: not met with {} terms per field ({} estimated {:.2g})", tolerance, terms, worst.name,
+                     worst.relative);
+}
+
 // Why the rounds end at `terms` with `worst` above `tolerance` (empty: raise). `stalled`: the raises
 // in a row, this round's among them, that did not halve the basis part.
 std::string why_not_raised(const Shortfall& worst, double tolerance, int terms, int stalled) {
-  const std::string head =
-      fmt::format("tolerance {}: not met with {} terms per field ({} estimated {:.2g})", tolerance, terms, worst.name,
-                  worst.relative);
+  const std::string head = not_met(tolerance, terms, worst);
   if (!worst.unbounded.empty()) return fmt::format("{}: its error is not bounded ({})", head, worst.unbounded);
   if (worst.basis < worst.relative - worst.basis) {
     return fmt::format("{}: the time stepping's part is the larger; more terms do not lower it", head);
@@ -57,16 +62,16 @@ TransientAtTolerance run_transient_to_tolerance(const Scene& scene, const Transi
                                                 const std::function<void(int, int)>& richer_progress) {
   Scene round = scene;
   TransientRoundModels models = build(round);
+  TransientAtTolerance answer{run_transient_round(models, round, o, richer_progress), models.model, true, {}};
+  if (!answer.run.error) {
+    answer.tolerance_met = false;
+    answer.tolerance_unmet = fmt::format("tolerance {}: not known to be met without the error estimate ({})",
+                                         tolerance, answer.run.error_unavailable);
+    return answer;
+  }
   double previous_basis = std::numeric_limits<double>::infinity();
   int stalled = 0;
   while (true) {
-    TransientAtTolerance answer{run_transient_round(models, round, o, richer_progress), models.model, true, {}};
-    if (!answer.run.error) {
-      answer.tolerance_met = false;
-      answer.tolerance_unmet = fmt::format("tolerance {}: not known to be met without the error estimate ({})",
-                                           tolerance, answer.run.error_unavailable);
-      return answer;
-    }
     const Shortfall worst = worst_quantity(*answer.run.error);
     if (worst.relative <= tolerance) return answer;
     answer.tolerance_met = false;
@@ -76,18 +81,32 @@ TransientAtTolerance run_transient_to_tolerance(const Scene& scene, const Transi
     Scene next = round;
     next.model.terms = reference_terms(round.model.basis, round.model.terms);
     if (next.model.terms <= round.model.terms) {
-      answer.tolerance_unmet = fmt::format("tolerance {}: not met with {} terms per field ({} estimated {:.2g}), the most "
-                                           "a model takes", tolerance, round.model.terms, worst.name, worst.relative);
+      answer.tolerance_unmet = not_met(tolerance, round.model.terms, worst) + ", the most terms a model takes";
       return answer;
     }
+    // A round that may not start, or ends without its estimate, leaves this one's answer standing.
+    std::string stop;
     try {
       models = build(next);
+      stop = models.richer ? "" : models.richer_unavailable;
     } catch (const std::exception& e) {
-      answer.tolerance_unmet = fmt::format("tolerance {}: not met with {} terms per field ({} estimated {:.2g}); {} "
-                                           "terms: {}", tolerance, round.model.terms, worst.name, worst.relative,
-                                           next.model.terms, e.what());
+      stop = e.what();
+    }
+    std::optional<EstimatedTransient> raised;
+    if (stop.empty()) {
+      try {
+        raised = run_transient_round(models, next, o, richer_progress);
+        if (!raised->error) stop = raised->error_unavailable;
+      } catch (const NumericalError& e) {  // its own checks failed; a stop (Ctrl-C, a deadline) goes through
+        stop = e.what();
+      }
+    }
+    if (!stop.empty()) {
+      answer.tolerance_unmet = fmt::format("{}; {} terms: {}", not_met(tolerance, round.model.terms, worst),
+                                           next.model.terms, stop);
       return answer;
     }
+    answer = {std::move(*raised), models.model, true, {}};
     previous_basis = worst.basis;
     round = next;
   }

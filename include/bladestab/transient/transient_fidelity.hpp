@@ -7,8 +7,9 @@
 //  - two raises in a row did not halve the basis part (raising no longer pays; one may not: the
 //    shipped blade's lateral peak over 2 revolutions falls from 0.080 to 0.071 from 6 to 10 terms,
 //    then to 0.0021 at 15);
-//  - the next round may not start (TransientRoundModels throws: a work limit, a model the scene
-//    cannot build);
+//  - the next round may not start (the builder throws: a work limit, a model the scene cannot
+//    build; or it has no richer model), or it fails its own checks (NumericalError), or its
+//    estimate fails: the round before stands;
 //  - the part above the tolerance is not the basis (the time stepping, or an unbounded part).
 // The first estimate predicts nothing about the next: the response to a 0.2 ms tip pulse moves by
 // 8 % from 16 to 24 terms of the scene as shipped and by 0.014 % from 24 to 32, so no rule of
