@@ -20,14 +20,6 @@ using testing_support::paper_scene;
 
 namespace {
 
-// The round builder of a run with its estimate, refusing rounds past `most_terms`.
-TransientRoundBuilder rounds_up_to(int most_terms) {
-  return [most_terms](const Scene& at) {
-    if (at.model.terms > most_terms) throw InputError("model.terms = " + std::to_string(at.model.terms) + ": refused here");
-    return TransientRoundModels{assemble_model(at), assemble_model(at, richer_model_spec(at)), {}};
-  };
-}
-
 // `transient` of the scene at 8 terms, one revolution, with --tolerance and --max-seconds, as JSON.
 testing_support::Outcome run_cli_transient(const std::string& tolerance, const std::string& seconds) {
   return testing_support::run_bladestab({"transient", testing_support::paper_scene_path(), "--set", "model.terms=8",
@@ -43,6 +35,15 @@ TransientOptions one_revolution(double tolerance) {
   return o;
 }
 
+// The round builder of one revolution toward `tolerance` with its estimate, refusing rounds past
+// `most_terms`.
+TransientRoundBuilder rounds_up_to(int most_terms, double tolerance) {
+  return [most_terms, tolerance](const Scene& at) {
+    if (at.model.terms > most_terms) throw InputError("model.terms = " + std::to_string(at.model.terms) + ": refused here");
+    return TransientRoundModels{assemble_model(at), assemble_model(at, richer_model_spec(at)), {}, one_revolution(tolerance)};
+  };
+}
+
 }  // namespace
 
 TEST_CASE("a tolerance 8 terms miss is met by raising them, and a 24-term run lies within the stated errors",
@@ -51,7 +52,7 @@ TEST_CASE("a tolerance 8 terms miss is met by raising them, and a 24-term run li
   // error is 0.057 of it; the raised model states each quantity within 3e-2 of itself.
   const double tolerance = 3e-2;
   const Scene scene = paper_scene({"model.terms=8"});
-  const TransientAtTolerance a = run_transient_to_tolerance(scene, one_revolution(tolerance), tolerance, rounds_up_to(200));
+  const TransientAtTolerance a = run_transient_to_tolerance(scene, tolerance, rounds_up_to(200, tolerance));
   REQUIRE(a.tolerance_met);
   REQUIRE(a.run.error);
   CHECK(a.model.spec.terms > 8);
@@ -73,7 +74,7 @@ TEST_CASE("a tolerance 8 terms miss is met by raising them, and a 24-term run li
 TEST_CASE("a round that may not start ends the raising: the answer before it stands, with the reason",
           "[transient][tolerance]") {
   const Scene scene = paper_scene({"model.terms=8"});
-  const TransientAtTolerance a = run_transient_to_tolerance(scene, one_revolution(1e-6), 1e-6, rounds_up_to(8));
+  const TransientAtTolerance a = run_transient_to_tolerance(scene, 1e-6, rounds_up_to(8, 1e-6));
   CHECK_FALSE(a.tolerance_met);
   CHECK(a.model.spec.terms == 8);
   REQUIRE(a.run.error);
@@ -86,10 +87,12 @@ TEST_CASE("a raised round without an estimate ends the raising: the estimated an
           "[transient][tolerance]") {
   const Scene scene = paper_scene({"model.terms=8"});
   const auto without_richer_past_8 = [](const Scene& at) {
-    if (at.model.terms == 8) return TransientRoundModels{assemble_model(at), assemble_model(at, richer_model_spec(at)), {}};
-    return TransientRoundModels{assemble_model(at), std::nullopt, "no richer model here"};
+    if (at.model.terms == 8) {
+      return TransientRoundModels{assemble_model(at), assemble_model(at, richer_model_spec(at)), {}, one_revolution(1e-6)};
+    }
+    return TransientRoundModels{assemble_model(at), std::nullopt, "no richer model here", one_revolution(1e-6)};
   };
-  const TransientAtTolerance a = run_transient_to_tolerance(scene, one_revolution(1e-6), 1e-6, without_richer_past_8);
+  const TransientAtTolerance a = run_transient_to_tolerance(scene, 1e-6, without_richer_past_8);
   CHECK_FALSE(a.tolerance_met);
   CHECK(a.model.spec.terms == 8);
   CHECK(a.run.error);

@@ -380,6 +380,12 @@ void add_transient_options(CLI::App& command, TransientArgs& a) {
   command.add_flag("--follower", a.follower, "the tip load follows the tip slope (F cos ψ axially, −F sin ψ laterally)");
 }
 
+// The progress lines of a run: "<what>: contact pieces k/n", then "<what>: revolutions k/n".
+void report_progress(TransientOptions& o, const std::string& what, bool for_people) {
+  o.progress = progress_reporter(what + ": revolutions", for_people);
+  o.contact_progress = progress_reporter(what + ": contact pieces", for_people);
+}
+
 // The run's options from the command's: `tolerance` (--tolerance, where given) holds the whole
 // error, so the time stepping (RKF45's steps, the contact propagators) gets a tenth of it.
 TransientOptions transient_options(const TransientArgs& a, std::optional<double> tolerance) {
@@ -395,17 +401,15 @@ TransientOptions transient_options(const TransientArgs& a, std::optional<double>
   o.threads = a.threads;
   // Each contact piece may take a quarter of the work --max-seconds allows.
   o.piece_work_flops = work_limits().seconds * dense_flops_per_second / 4;
-  const bool for_people = a.scene.output_format() == OutputFormat::table;
-  o.progress = progress_reporter("transient: revolutions", for_people);
-  o.contact_progress = progress_reporter("transient: contact pieces", for_people);
+  report_progress(o, "transient", a.scene.output_format() == OutputFormat::table);
   return o;
 }
 
-// A round's models on `scene`: the run's (refused past the work limits) and, `with_error`, the
-// richer one of its estimate, each with the rounds before (`spent`: their work estimates, to which
-// this round's are added).
+// A round on `scene`: the run's model (refused past the work limits) and options, and, `with_error`,
+// the richer model of its estimate; each with the rounds before (`spent`: their work estimates, to
+// which this round's are added).
 TransientRoundModels round_models(const Scene& scene, const TransientOptions& o, bool with_error, double& spent) {
-  TransientRoundModels m{assemble_model(scene), std::nullopt, {}};
+  TransientRoundModels m{assemble_model(scene), std::nullopt, {}, o};
   double work = check_transient_work(m.model, scene, o, 1, spent), richer_work = 0;
   if (with_error) m.richer = richer_model(scene, o, spent, m.richer_unavailable, richer_work);
   spent += work + richer_work;
@@ -413,16 +417,22 @@ TransientRoundModels round_models(const Scene& scene, const TransientOptions& o,
 }
 
 // The run, its estimate (`with_error`) and, with a `tolerance`, the terms raised to meet it
-// (transient_fidelity.hpp). The richer run reports to an embedding (which may stop it), not to the
-// terminal's one line.
+// (transient_fidelity.hpp); a raised round's progress names its terms. The richer run reports to an
+// embedding (which may stop it), not to the terminal's one line.
 TransientAtTolerance run_command(const Scene& scene, const TransientOptions& o, std::optional<double> tolerance,
-                                 bool with_error) {
+                                 bool with_error, bool for_people) {
   double spent = 0;
-  const auto build = [&](const Scene& at) { return round_models(at, o, with_error, spent); };
+  const auto build = [&](const Scene& at) {
+    TransientOptions round = o;
+    if (at.model.terms != scene.model.terms) {
+      report_progress(round, fmt::format("transient: {} terms", at.model.terms), for_people);
+    }
+    return round_models(at, round, with_error, spent);
+  };
   const auto richer_progress = progress_reporter("transient: richer model", false);
-  if (tolerance) return run_transient_to_tolerance(scene, o, *tolerance, build, richer_progress);
+  if (tolerance) return run_transient_to_tolerance(scene, *tolerance, build, richer_progress);
   TransientRoundModels models = build(scene);
-  EstimatedTransient run = run_transient_round(models, scene, o, richer_progress);
+  EstimatedTransient run = run_transient_round(models, scene, richer_progress);
   return {std::move(run), std::move(models.model), true, {}};
 }
 
@@ -449,7 +459,8 @@ Command register_transient(CLI::App& app) {
     const std::optional<double> tolerance =
         command->count("--tolerance") > 0 ? std::optional(args->tolerance) : std::nullopt;
     const TransientOptions o = transient_options(*args, tolerance);
-    const TransientAtTolerance run = run_command(scene, o, args->with_error ? tolerance : std::nullopt, args->with_error);
+    const TransientAtTolerance run = run_command(scene, o, args->with_error ? tolerance : std::nullopt, args->with_error,
+                                                 args->scene.output_format() == OutputFormat::table);
     const TransientResult& r = run.run.result;
     const TransientSummary s = summarize(r, args->samples * scene.operation.speed_rad_s / two_pi);
     refuse_failed_run(s, r, o, args->tolerance, args->revolutions, scene.blade.length);

@@ -51,18 +51,17 @@ std::string why_not_raised(const Shortfall& worst, double tolerance, int terms, 
 
 }  // namespace
 
-EstimatedTransient run_transient_round(const TransientRoundModels& m, const Scene& scene, const TransientOptions& o,
+EstimatedTransient run_transient_round(const TransientRoundModels& m, const Scene& scene,
                                        const std::function<void(int, int)>& richer_progress) {
-  if (!m.richer) return {run_transient(m.model, scene, o), std::nullopt, m.richer_unavailable};
-  return run_transient_with_error(m.model, *m.richer, scene, o, richer_progress);
+  if (!m.richer) return {run_transient(m.model, scene, m.options), std::nullopt, m.richer_unavailable};
+  return run_transient_with_error(m.model, *m.richer, scene, m.options, richer_progress);
 }
 
-TransientAtTolerance run_transient_to_tolerance(const Scene& scene, const TransientOptions& o, double tolerance,
-                                                const TransientRoundBuilder& build,
+TransientAtTolerance run_transient_to_tolerance(const Scene& scene, double tolerance, const TransientRoundBuilder& build,
                                                 const std::function<void(int, int)>& richer_progress) {
   Scene round = scene;
   TransientRoundModels models = build(round);
-  TransientAtTolerance answer{run_transient_round(models, round, o, richer_progress), models.model, true, {}};
+  TransientAtTolerance answer{run_transient_round(models, round, richer_progress), models.model, true, {}};
   if (!answer.run.error) {
     answer.tolerance_met = false;
     answer.tolerance_unmet = fmt::format("tolerance {}: not known to be met without the error estimate ({})",
@@ -95,7 +94,7 @@ TransientAtTolerance run_transient_to_tolerance(const Scene& scene, const Transi
     std::optional<EstimatedTransient> raised;
     if (stop.empty()) {
       try {
-        raised = run_transient_round(models, next, o, richer_progress);
+        raised = run_transient_round(models, next, richer_progress);
         if (!raised->error) stop = raised->error_unavailable;
       } catch (const NumericalError& e) {  // its own checks failed; a stop (Ctrl-C, a deadline) goes through
         stop = e.what();

@@ -25,20 +25,22 @@
 
 namespace bladestab {
 
-// A round's models: the run's, and the richer one of its estimate (none: why not).
+// A round: the run's model and options, and the richer model of its estimate (none: why not).
 struct TransientRoundModels {
   BladeModel model;
   std::optional<BladeModel> richer;
   std::string richer_unavailable;
+  TransientOptions options;
 };
 
 // Builds the models of a round on `scene` (its model.terms raised); throws where its run may not
 // start (InputError, e.g. a work limit).
 using TransientRoundBuilder = std::function<TransientRoundModels(const Scene& scene)>;
 
-// One round: the run of `m.model` with its estimate against `m.richer` (run_transient_with_error),
-// or without one where there is no richer model (error_unavailable: m.richer_unavailable).
-EstimatedTransient run_transient_round(const TransientRoundModels& m, const Scene& scene, const TransientOptions& options,
+// One round: the run of `m.model` with `m.options` and its estimate against `m.richer`
+// (run_transient_with_error), or without one where there is no richer model (error_unavailable:
+// m.richer_unavailable).
+EstimatedTransient run_transient_round(const TransientRoundModels& m, const Scene& scene,
                                        const std::function<void(int, int)>& richer_progress = {});
 
 struct TransientAtTolerance {
@@ -48,10 +50,9 @@ struct TransientAtTolerance {
   std::string tolerance_unmet;  // why not, one line
 };
 
-// The rounds above on `scene` with `options` toward `tolerance` (0 < tolerance < 1). The first
-// round's builder throws through; a later one's ends the rounds with its message as the reason.
-TransientAtTolerance run_transient_to_tolerance(const Scene& scene, const TransientOptions& options, double tolerance,
-                                                const TransientRoundBuilder& build,
+// The rounds above on `scene` toward `tolerance` (0 < tolerance < 1). The first round's builder
+// throws through; a later one's ends the rounds with its message as the reason.
+TransientAtTolerance run_transient_to_tolerance(const Scene& scene, double tolerance, const TransientRoundBuilder& build,
                                                 const std::function<void(int, int)>& richer_progress = {});
 
 }  // namespace bladestab
