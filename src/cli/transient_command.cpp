@@ -229,7 +229,8 @@ void error_fields(Json& json, const std::optional<TransientErrorEstimate>& e, co
     if (!unavailable.empty()) json["error_unavailable"] = unavailable;
     return;
   }
-  json["error_reference_terms"] = e->reference_terms;
+  json["error_reference_terms"] = e->reference_terms.front();
+  if (e->reference_terms.size() > 1) json["error_rate_reference_terms"] = e->reference_terms.back();
   for (const TransientQuantity& q : e->quantities) {
     const double total = q.budget.total();
     // A quantity with an unbounded part has no estimate: null, and its budget says why.
@@ -305,20 +306,24 @@ double check_transient_work(const BladeModel& model, const Scene& scene, const T
   return share * seconds;
 }
 
-// The richer model of the whole-error estimate (reference_terms), or none where it cannot be built or
-// its run would pass the work limits (with `spent`, the rounds before): `why_not` then says so, else
-// `work` is its estimate as charged. Its refusal only leaves out the
-// estimate, so a tenth of the upper bound is compared with the limits (still 2.4× and more above
-// the measured times); a richer run slower than that ends at --max-seconds like any run.
-std::optional<BladeModel> richer_model(const Scene& scene, const TransientOptions& o, double spent,
-                                       std::string& why_not, double& work) {
+// The richer models of the whole-error estimate (richer_model_specs), or none where one cannot be
+// built or its run would pass the work limits (with `spent`, the rounds before): `why_not` then
+// says so, else `work` is their estimate as charged. A refusal only leaves out the estimate, so a
+// tenth of the upper bound is compared with the limits (still 2.4× and more above the measured
+// times); a richer run slower than that ends at --max-seconds like any run.
+std::vector<BladeModel> richer_models(const Scene& scene, const TransientOptions& o, double spent, std::string& why_not,
+                                      double& work) {
+  std::vector<BladeModel> richer;
   try {
-    BladeModel richer = assemble_model(scene, richer_model_spec(scene));
-    work = check_transient_work(richer, scene, o, 0.1, spent);
+    for (const ModelSpec& spec : richer_model_specs(scene)) {
+      richer.push_back(assemble_model(scene, spec));
+      work += check_transient_work(richer.back(), scene, o, 0.1, spent + work);
+    }
     return richer;
   } catch (const InputError& e) {
     why_not = fmt::format("{}; --no-error-estimate leaves it out", e.what());
-    return std::nullopt;
+    work = 0;
+    return {};
   }
 }
 
@@ -409,9 +414,9 @@ TransientOptions transient_options(const TransientArgs& a, std::optional<double>
 // the richer model of its estimate; each with the rounds before (`spent`: their work estimates, to
 // which this round's are added).
 TransientRoundModels round_models(const Scene& scene, const TransientOptions& o, bool with_error, double& spent) {
-  TransientRoundModels m{assemble_model(scene), std::nullopt, {}, o};
+  TransientRoundModels m{assemble_model(scene), {}, {}, o};
   double work = check_transient_work(m.model, scene, o, 1, spent), richer_work = 0;
-  if (with_error) m.richer = richer_model(scene, o, spent, m.richer_unavailable, richer_work);
+  if (with_error) m.richer = richer_models(scene, o, spent, m.richer_unavailable, richer_work);
   spent += work + richer_work;
   return m;
 }

@@ -63,7 +63,8 @@ void print_error_line(const PrintedError& error) {
                                 error.digits.measure(total), error.digits.measure(q.budget.basis),
                                 error.digits.measure(q.budget.method)));
   }
-  fmt::print("error      against the continuum model (basis: against {} terms): {}{}\n", error.estimate->reference_terms,
+  fmt::print("error      against the continuum model (basis: against {} terms): {}{}\n",
+             fmt::join(error.estimate->reference_terms, " and "),
              fmt::join(parts, "; "), unbounded.empty() ? "" : fmt::format(" ({})", fmt::join(unbounded, "; ")));
 }
 

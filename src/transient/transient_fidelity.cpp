@@ -53,8 +53,8 @@ std::string why_not_raised(const Shortfall& worst, double tolerance, int terms, 
 
 EstimatedTransient run_transient_round(const TransientRoundModels& m, const Scene& scene,
                                        const std::function<void(int, int)>& richer_progress) {
-  if (!m.richer) return {run_transient(m.model, scene, m.options), std::nullopt, m.richer_unavailable};
-  return run_transient_with_error(m.model, *m.richer, scene, m.options, richer_progress);
+  if (m.richer.empty()) return {run_transient(m.model, scene, m.options), std::nullopt, m.richer_unavailable};
+  return run_transient_with_error(m.model, m.richer, scene, m.options, richer_progress);
 }
 
 TransientAtTolerance run_transient_to_tolerance(const Scene& scene, double tolerance, const TransientRoundBuilder& build,
@@ -87,7 +87,7 @@ TransientAtTolerance run_transient_to_tolerance(const Scene& scene, double toler
     std::string stop;
     try {
       models = build(next);
-      stop = models.richer ? "" : models.richer_unavailable;
+      stop = models.richer.empty() ? models.richer_unavailable : "";
     } catch (const std::exception& e) {
       stop = e.what();
     }

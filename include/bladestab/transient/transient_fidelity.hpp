@@ -17,6 +17,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "bladestab/blade/model.hpp"
 #include "bladestab/scene/scene.hpp"
@@ -25,10 +26,11 @@
 
 namespace bladestab {
 
-// A round: the run's model and options, and the richer model of its estimate (none: why not).
+// A round: the run's model and options, and the richer models of its estimate (richer_model_specs;
+// none: why not).
 struct TransientRoundModels {
   BladeModel model;
-  std::optional<BladeModel> richer;
+  std::vector<BladeModel> richer;
   std::string richer_unavailable;
   TransientOptions options;
 };
@@ -38,7 +40,7 @@ struct TransientRoundModels {
 using TransientRoundBuilder = std::function<TransientRoundModels(const Scene& scene)>;
 
 // One round: the run of `m.model` with `m.options` and its estimate against `m.richer`
-// (run_transient_with_error), or without one where there is no richer model (error_unavailable:
+// (run_transient_with_error), or without one where there are no richer models (error_unavailable:
 // m.richer_unavailable).
 EstimatedTransient run_transient_round(const TransientRoundModels& m, const Scene& scene,
                                        const std::function<void(int, int)>& richer_progress = {});
