@@ -49,7 +49,7 @@ TransientOptions richer_options(const TransientOptions& o, double revolutions) {
   return same;
 }
 
-// The richer runs' own error of quantity `q` (its value in them: `theirs`): their time stepping's.
+// The richer runs' own error in quantity `name` (its values in them: `theirs`): their time stepping's.
 double richer_runs_error(const std::string& name, const std::vector<TransientResult>& references,
                          const std::vector<double>& theirs, const TransientOptions& o) {
   double own = 0;
@@ -133,9 +133,10 @@ double compared_revolutions(const TransientOptions& o, const TransientResult& r)
 std::vector<ModelSpec> richer_model_specs(const Scene& scene) {
   std::vector<ModelSpec> richer{scene.model};
   richer[0].terms = reference_terms(scene.model.basis, scene.model.terms);
-  if (scene.model.basis == BasisKind::sine) {
+  const int rate_terms = reference_terms(scene.model.basis, richer[0].terms);
+  if (scene.model.basis == BasisKind::sine && rate_terms > richer[0].terms) {
     richer.push_back(richer[0]);
-    richer[1].terms = reference_terms(BasisKind::sine, richer[0].terms);
+    richer[1].terms = rate_terms;
   }
   return richer;
 }
