@@ -296,3 +296,21 @@ TEST_CASE("the CLI: by default each tip peak comes with its whole error, printed
   const CliRun without = run_transient_cli("--set model.terms=12 --revolutions 1 --no-error-estimate");
   CHECK(without.out.find("error      not estimated (--no-error-estimate)") != std::string::npos);
 }
+
+TEST_CASE("a fixed-step run states no error of its own: its estimate bounds none of its quantities",
+          "[transient][honesty]") {
+  // Its error is the step's, not a tolerance's: 4.7e-7 of the axial peak at 1/33 of the stiffest
+  // period, 1.0e-3 at the paper's literal 1/8 (validation.md), where a tolerance would claim 1e-8.
+  const Scene scene = paper_scene({"model.terms=6"});
+  TransientOptions o;
+  o.revolutions = 1;
+  o.method = TransientMethod::rkf45;
+  o.adaptive = false;
+  const TransientErrorEstimate e = estimate_transient_error(scene, o, run_transient(assemble_model(scene), scene, o));
+  REQUIRE_FALSE(e.quantities.empty());
+  for (const TransientQuantity& q : e.quantities) {
+    CAPTURE(q.name);
+    REQUIRE(q.budget.unbounded.size() == 1);
+    CHECK(q.budget.unbounded.front().find("the fixed step (--step fixed) states no error") != std::string::npos);
+  }
+}
