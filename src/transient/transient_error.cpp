@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include <fmt/format.h>
 
@@ -11,9 +12,11 @@
 namespace bladestab {
 namespace {
 
-// The time-stepping error of a run, relative to its quantities.
-double relative_method_error(const TransientResult& r, const TransientOptions& o) {
-  if (r.method == TransientMethod::rkf45) return o.tolerance;
+// The time-stepping error of a run, relative to its quantities; none for RKF45's fixed step (54),
+// which holds no tolerance: its error is the stiffest mode's parasitic growth and the step's
+// truncation, 4.7e-7 of the axial peak at 1/33 of that period (validation.md).
+std::optional<double> relative_method_error(const TransientResult& r, const TransientOptions& o) {
+  if (r.method == TransientMethod::rkf45) return o.adaptive ? std::optional(o.tolerance) : std::nullopt;
   const double propagators = r.exact.contact_error * std::max(1, r.exact.contact_pieces);
   return std::max(propagators, r.self_check ? r.self_check->difference : 0.0);
 }
@@ -49,13 +52,14 @@ TransientOptions richer_options(const TransientOptions& o, double revolutions) {
   return same;
 }
 
-// The richer runs' own error in quantity `name` (its values in them: `theirs`): their time stepping's.
+// The richer runs' own error in quantity `name` (its values in them: `theirs`): their time stepping's
+// (a fixed step's, unknown, leaves the quantity unbounded already: the richer runs share its options).
 double richer_runs_error(const std::string& name, const std::vector<TransientResult>& references,
                          const std::vector<double>& theirs, const TransientOptions& o) {
   double own = 0;
   for (std::size_t k = 0; k < references.size(); ++k) {
     own += name == "growth_per_revolution" ? references[k].growth.error_estimate
-                                           : relative_method_error(references[k], o) * std::abs(theirs[k]);
+                                           : relative_method_error(references[k], o).value_or(0) * std::abs(theirs[k]);
   }
   return own;
 }
@@ -97,17 +101,17 @@ TransientErrorEstimate compare_with_richer(const TransientOptions& o, const Tran
   TransientErrorEstimate estimate{reference_terms, transient_quantities(r)};
   std::vector<std::vector<TransientQuantity>> theirs;
   for (const TransientResult& reference : references) theirs.push_back(transient_quantities(reference));
-  const double method = relative_method_error(r, o);
+  const std::optional<double> method = relative_method_error(r, o);
   const std::string shorter = shorter_history(r, references);
-  // RKF45's fixed step (54) holds no tolerance: its error is the stiffest mode's parasitic growth
-  // and the step's truncation, 4.7e-7 of the axial peak at 1/33 of that period (validation.md).
-  const bool fixed_step = r.method == TransientMethod::rkf45 && !o.adaptive;
   // One richer model: the tail at the slowest trusted rate (basis_tail's richest model "capped",
   // n[2] = n[1]); two: at the rate they measure.
   const std::vector<int> ladder{terms, reference_terms.front(), reference_terms.back()};
   for (TransientQuantity& q : estimate.quantities) {
-    q.budget.method = q.name == "growth_per_revolution" ? r.growth.error_estimate : method * std::abs(q.value);
-    if (fixed_step) q.budget.unbounded.push_back("method: the fixed step (--step fixed) states no error of its own");
+    if (!method) {
+      q.budget.unbounded.push_back("method: the fixed step (--step fixed) states no error of its own");
+    } else {
+      q.budget.method = q.name == "growth_per_revolution" ? r.growth.error_estimate : *method * std::abs(q.value);
+    }
     if (!shorter.empty()) {
       q.budget.unbounded.push_back(shorter);
       continue;
