@@ -234,8 +234,7 @@ TEST_CASE("transient error estimate: the richer runs beside the run give the est
   for (const char* basis : {"legendre", "sine"}) {
     const Scene scene = paper_scene({"model.terms=" + std::string(basis[0] == 's' ? "4" : "8"),
                                      "model.basis=\"" + std::string(basis) + "\""});
-    std::vector<BladeModel> richer;
-    for (const ModelSpec& spec : richer_model_specs(scene)) richer.push_back(assemble_model(scene, spec));
+    const std::vector<BladeModel> richer = assemble_richer_models(scene);
     TransientOptions o;
     o.revolutions = 1;
     const TransientErrorEstimate after =

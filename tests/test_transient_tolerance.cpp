@@ -35,19 +35,12 @@ TransientOptions one_revolution(double tolerance) {
   return o;
 }
 
-// The richer models of the estimate on `scene`.
-std::vector<BladeModel> richer_of(const Scene& scene) {
-  std::vector<BladeModel> richer;
-  for (const ModelSpec& spec : richer_model_specs(scene)) richer.push_back(assemble_model(scene, spec));
-  return richer;
-}
-
 // The round builder of one revolution toward `tolerance` with its estimate, refusing rounds past
 // `most_terms`.
 TransientRoundBuilder rounds_up_to(int most_terms, double tolerance) {
   return [most_terms, tolerance](const Scene& at) {
     if (at.model.terms > most_terms) throw InputError("model.terms = " + std::to_string(at.model.terms) + ": refused here");
-    return TransientRoundModels{assemble_model(at), richer_of(at), {}, one_revolution(tolerance)};
+    return TransientRoundModels{assemble_model(at), assemble_richer_models(at), {}, one_revolution(tolerance)};
   };
 }
 
@@ -95,7 +88,7 @@ TEST_CASE("a raised round without an estimate ends the raising: the estimated an
   const Scene scene = paper_scene({"model.terms=8"});
   const auto without_richer_past_8 = [](const Scene& at) {
     if (at.model.terms == 8) {
-      return TransientRoundModels{assemble_model(at), richer_of(at), {}, one_revolution(1e-6)};
+      return TransientRoundModels{assemble_model(at), assemble_richer_models(at), {}, one_revolution(1e-6)};
     }
     return TransientRoundModels{assemble_model(at), {}, "no richer model here", one_revolution(1e-6)};
   };

@@ -306,19 +306,16 @@ double check_transient_work(const BladeModel& model, const Scene& scene, const T
   return share * seconds;
 }
 
-// The richer models of the whole-error estimate (richer_model_specs), or none where one cannot be
-// built or its run would pass the work limits (with `spent`, the rounds before): `why_not` then
-// says so, else `work` is their estimate as charged. A refusal only leaves out the estimate, so a
-// tenth of the upper bound is compared with the limits (still 2.4× and more above the measured
-// times); a richer run slower than that ends at --max-seconds like any run.
-std::vector<BladeModel> richer_models(const Scene& scene, const TransientOptions& o, double spent, std::string& why_not,
-                                      double& work) {
-  std::vector<BladeModel> richer;
+// The richer models of the whole-error estimate (assemble_richer_models), or none where they cannot
+// be built or their runs would pass the work limits (with `spent`, the rounds before): `why_not`
+// then says so, else `work` is their estimate as charged. A refusal only leaves out the estimate,
+// so a tenth of the upper bound is compared with the limits (still 2.4× and more above the
+// measured times); a richer run slower than that ends at --max-seconds like any run.
+std::vector<BladeModel> checked_richer_models(const Scene& scene, const TransientOptions& o, double spent,
+                                              std::string& why_not, double& work) {
   try {
-    for (const ModelSpec& spec : richer_model_specs(scene)) {
-      richer.push_back(assemble_model(scene, spec));
-      work += check_transient_work(richer.back(), scene, o, 0.1, spent + work);
-    }
+    std::vector<BladeModel> richer = assemble_richer_models(scene);
+    for (const BladeModel& m : richer) work += check_transient_work(m, scene, o, 0.1, spent + work);
     return richer;
   } catch (const InputError& e) {
     why_not = fmt::format("{}; --no-error-estimate leaves it out", e.what());
@@ -416,7 +413,7 @@ TransientOptions transient_options(const TransientArgs& a, std::optional<double>
 TransientRoundModels round_models(const Scene& scene, const TransientOptions& o, bool with_error, double& spent) {
   TransientRoundModels m{assemble_model(scene), {}, {}, o};
   double work = check_transient_work(m.model, scene, o, 1, spent), richer_work = 0;
-  if (with_error) m.richer = richer_models(scene, o, spent, m.richer_unavailable, richer_work);
+  if (with_error) m.richer = checked_richer_models(scene, o, spent, m.richer_unavailable, richer_work);
   spent += work + richer_work;
   return m;
 }

@@ -138,35 +138,27 @@ double compared_revolutions(const TransientOptions& o, const TransientResult& r)
 
 }  // namespace
 
-std::vector<ModelSpec> richer_model_specs(const Scene& scene) {
-  std::vector<ModelSpec> richer{scene.model};
-  richer[0].terms = reference_terms(scene.model.basis, scene.model.terms);
-  const int rate_terms = reference_terms(scene.model.basis, richer[0].terms);
-  if (scene.model.basis == BasisKind::sine && rate_terms > richer[0].terms) {
-    richer.push_back(richer[0]);
-    richer[1].terms = rate_terms;
+std::vector<BladeModel> assemble_richer_models(const Scene& scene) {
+  ModelSpec spec = scene.model;
+  spec.terms = reference_terms(scene.model.basis, scene.model.terms);
+  std::vector<BladeModel> richer{assemble_model(scene, spec)};
+  const int rate_terms = reference_terms(scene.model.basis, spec.terms);
+  if (scene.model.basis == BasisKind::sine && rate_terms > spec.terms) {
+    spec.terms = rate_terms;
+    richer.push_back(assemble_model(scene, spec));
   }
   return richer;
 }
 
-namespace {
-
-std::vector<int> terms_of(const std::vector<ModelSpec>& specs) {
-  std::vector<int> terms;
-  for (const ModelSpec& s : specs) terms.push_back(s.terms);
-  return terms;
-}
-
-}  // namespace
-
 TransientErrorEstimate estimate_transient_error(const Scene& scene, const TransientOptions& o,
                                                 const TransientResult& r) {
-  const std::vector<ModelSpec> richer = richer_model_specs(scene);
   std::vector<TransientResult> references;
-  for (const ModelSpec& spec : richer) {
-    references.push_back(run_transient(assemble_model(scene, spec), scene, richer_options(o, compared_revolutions(o, r))));
+  std::vector<int> terms;
+  for (const BladeModel& m : assemble_richer_models(scene)) {
+    references.push_back(run_transient(m, scene, richer_options(o, compared_revolutions(o, r))));
+    terms.push_back(m.spec.terms);
   }
-  return compare_with_richer(o, r, scene.model.terms, terms_of(richer), references);
+  return compare_with_richer(o, r, scene.model.terms, terms, references);
 }
 
 EstimatedTransient run_transient_with_error(const BladeModel& model, const std::vector<BladeModel>& richer,

@@ -38,17 +38,17 @@ struct TransientQuantity {
 std::vector<TransientQuantity> transient_quantities(const TransientResult& result);
 
 struct TransientErrorEstimate {
-  std::vector<int> reference_terms;  // the richer models' (richer_model_specs)
+  std::vector<int> reference_terms;  // the richer models' (assemble_richer_models)
   std::vector<TransientQuantity> quantities;
 };
 
-// The richer models the estimate runs: the scene's at reference_terms (modal/basis_error.hpp), and
+// The richer models the estimate runs, assembled: the scene's at reference_terms (modal/basis_error.hpp), and
 // for the sine basis also at reference_terms of that (2N and 4N, where 4N is within the limit of
 // terms), whose difference measures the rate of convergence in basis_tail, as `modes` and
 // `stability` measure it: the sine basis at 10 terms of the scene as shipped moves the lateral peak
 // over 20 revolutions by 1.2 % to 20 terms and by 2.6 % more to 40, where 20 terms alone, at the
 // slowest trusted rate, stated 1.4× too little.
-std::vector<ModelSpec> richer_model_specs(const Scene& scene);
+std::vector<BladeModel> assemble_richer_models(const Scene& scene);
 
 // The run `result` of `scene` with `options`, against the same on the richer models.
 TransientErrorEstimate estimate_transient_error(const Scene& scene, const TransientOptions& options,
@@ -61,7 +61,7 @@ struct EstimatedTransient {
   std::string error_unavailable;  // a richer model's run failed: its one line
 };
 
-// The run of `model` and its estimate against `richer` (the models of richer_model_specs): the
+// The run of `model` and its estimate against `richer` (assemble_richer_models): the
 // richer runs start beside the run (WorkPool, options.threads) over the same revolutions, so the
 // estimate costs little wall time on two cores; a run that stops early is compared over its own
 // window, and the richer models then run again to that stop. A failure of a richer run (a work

@@ -26,7 +26,7 @@
 
 namespace bladestab {
 
-// A round: the run's model and options, and the richer models of its estimate (richer_model_specs;
+// A round: the run's model and options, and the richer models of its estimate (assemble_richer_models;
 // none: why not).
 struct TransientRoundModels {
   BladeModel model;
