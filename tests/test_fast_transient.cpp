@@ -206,7 +206,7 @@ TEST_CASE("transient error estimate: the sine basis' estimate against 2N and 4N 
           "[transient][fast][slow][parallel]") {
   // The paper's model (sine basis, 10 terms), 20 revolutions of the scene's half-sine train. Its
   // lateral peak moves by 1.2 % from 10 to 20 terms and by 2.6 % more to 40: against 20 terms alone,
-  // at the slowest trusted rate, the stated error was 1.4× short of the 60-term run's distance.
+  // at the slowest trusted rate, the stated error would be 1.4× short of the 60-term run's distance.
   const Scene scene = paper_scene({"model.basis=\"sine\"", "model.terms=10"});
   Scene rich = scene;
   rich.model.terms = 60;

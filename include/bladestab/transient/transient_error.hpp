@@ -47,7 +47,7 @@ struct TransientErrorEstimate {
 // terms), whose difference measures the rate of convergence in basis_tail, as `modes` and
 // `stability` measure it: the sine basis at 10 terms of the scene as shipped moves the lateral peak
 // over 20 revolutions by 1.2 % to 20 terms and by 2.6 % more to 40, where 20 terms alone, at the
-// slowest trusted rate, stated 1.4× too little.
+// slowest trusted rate, would state 1.4× too little.
 std::vector<BladeModel> assemble_richer_models(const Scene& scene);
 
 // The run `result` of `scene` with `options`, against the same on the richer models.
