@@ -65,6 +65,28 @@ TEST_CASE("fast transient: the history of RKF45 at rtol 1e-12 within 1e-10 of th
   }
 }
 
+TEST_CASE("fast transient: the paper's damping, overdamping the stiffest modes, is an independent integration's history",
+          "[transient][fast]") {
+  // C = (2ζ/Ω) K_E (37) damps mode k by ζ ω_k/Ω: every mode above 4.8 kHz is overdamped. The free
+  // flight's damping work must not go through e^{−Aᵀh}, whose growth e^{2ζω_k²h/Ω} over a sample
+  // interval loses every digit at 8 terms and passes the double range from 10 terms on.
+  const Scene scene = paper_scene({"model.terms=8", "damping.model=\"paper\"", "damping.ratio=0.01"});
+  // Through the pulse and 0.02 revolution of free flight against the self-check's independent
+  // integration at rtol 1e-10, and the damping's work in free flight against the energy balance E(t) − E(0) = W(t).
+  TransientOptions o;
+  o.revolutions = 0.04;
+  const TransientResult fast = run_transient(assemble_model(scene), scene, o);
+  REQUIRE(fast.self_check);
+  CHECK(fast.self_check->difference <= 1e-9);
+  double energy = 0, balance = 0;
+  for (const TransientSample& x : fast.samples) {
+    energy = std::max(energy, x.kinetic_energy_j + x.strain_energy_j);
+    balance = std::max(balance, std::abs(x.energy_balance_error_j));
+  }
+  CHECK(balance <= 1e-9 * energy);
+  CHECK(fast.samples.back().work_j != fast.samples[fast.samples.size() - 2].work_j);  // the damping works
+}
+
 TEST_CASE("fast transient: one pulse in a period of many revolutions is RKF45's history", "[transient][fast]") {
   // pulse_frequency_hz = 1.5e-45: one contact at t = 0, then free flight for the rest of the run.
   // Times are told apart on their own scale (a free flight's length, an offset within the contact),
