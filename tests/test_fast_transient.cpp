@@ -77,6 +77,7 @@ TEST_CASE("fast transient: the paper's damping, overdamping the stiffest modes, 
   o.revolutions = 0.04;
   const TransientResult fast = run_transient(assemble_model(scene), scene, o);
   REQUIRE(fast.self_check);
+  CHECK(fast.self_check->reference == "rkf78");
   CHECK(fast.self_check->difference <= 1e-9);
   double energy = 0, balance = 0;
   for (const TransientSample& x : fast.samples) {

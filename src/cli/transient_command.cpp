@@ -177,7 +177,8 @@ void method_fields(Json& json, const TransientResult& r) {
     }
   }
   if (const std::optional<SelfCheck>& c = r.self_check) {
-    json["self_check"] = {{"until_revolution", c->until_revolutions}, {"rkf45_tolerance", c->rkf45_tolerance},
+    json["self_check"] = {{"until_revolution", c->until_revolutions}, {"reference", c->reference},
+                          {"reference_tolerance", c->reference_tolerance},
                           {"relative_difference", c->difference}, {"allowed", c->allowed}, {"seconds", c->seconds}};
   }
   if (r.stopped) json["stopped"] = {{"revolution", r.stopped->revolution}, {"reason", r.stopped->reason}};

@@ -1,6 +1,5 @@
 #include "bladestab/transient/transient.hpp"
 
-#include <chrono>
 #include <cmath>
 #include <stdexcept>
 
@@ -144,55 +143,6 @@ std::string fast_method_refusal(const BladeModel& model, const Scene& scene, con
   return {};
 }
 
-// The self-check's stretch: through the first contact (at most 0.1 revolution of it) and 0.02
-// revolution of what follows, within the run.
-double check_stretch(const Scene& scene, const TransientOptions& o) {
-  const PulseTrain pulses = pulse_train(scene);
-  const double revolution = two_pi / scene.operation.speed_rad_s;
-  return std::min(o.revolutions, std::min(pulses.contact_time_s / revolution, 0.1) + 0.02) * revolution;
-}
-
-// The RKF45 run the self-check compares with, at rtol 1e-10 to `check_time`: its state there, and
-// how long it took.
-struct ReferenceRun {
-  Eigen::VectorXd state;
-  double seconds = 0;
-};
-constexpr double reference_tolerance = 1e-10;
-
-ReferenceRun reference_run(const BladeModel& model, const Scene& scene, const TransientOptions& o, double check_time) {
-  const auto started = std::chrono::steady_clock::now();
-  TransientOptions reference = o;
-  reference.method = TransientMethod::rkf45;
-  reference.revolutions = check_time * scene.operation.speed_rad_s / two_pi;
-  reference.tolerance = reference_tolerance;
-  reference.progress = nullptr;
-  reference.max_lateral_over_length = HUGE_VAL;
-  ReferenceRun run;
-  run.state = detail::run_rkf45_transient(model, scene, reference).final_state;
-  run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-  return run;
-}
-
-// The fast history's state at `check_time` against the reference's (SelfCheck).
-SelfCheck self_check(const BladeModel& model, const Scene& scene, const TransientOptions& o, double check_time,
-                     const Eigen::VectorXd& fast_state, const ReferenceRun& reference) {
-  SelfCheck check;
-  check.until_revolutions = check_time * scene.operation.speed_rad_s / two_pi;
-  check.rkf45_tolerance = reference_tolerance;
-  check.seconds = reference.seconds;
-  const Eigen::MatrixXd K = model.stiffness(scene.operation.speed_rad_s);
-  const Eigen::VectorXd equilibrium = rotating_equilibrium(model, scene.operation.speed_rad_s);
-  const Eigen::VectorXd start = o.initial_state ? *o.initial_state : equilibrium;
-  const double scale = std::max(detail::energy_norm(K, model.M, start - equilibrium),
-                                detail::energy_norm(K, model.M, reference.state - equilibrium));
-  check.difference = detail::energy_norm(K, model.M, fast_state - reference.state) / scale;
-  // Each contact piece's propagator within the tolerance, RKF45's local errors within its own, and
-  // a margin of 10 for the pieces and steps they add up over.
-  check.allowed = 10 * (o.contact_tolerance + check.rkf45_tolerance);
-  return check;
-}
-
 // The growth per revolution of the run's revolution changes.
 GrowthFit fit_run_growth(const TransientResult& r) {
   GrowthFit fit = !r.continued_change.empty() ? fit_growth(r.continued_change)
@@ -213,30 +163,31 @@ TransientResult run_transient(const BladeModel& model, const Scene& scene, const
     r.growth = fit_run_growth(r);
     return r;
   }
-  const double check_time = o.self_check && !o.reduction ? check_stretch(scene, o) : 0;
+  const double check_time = o.self_check && !o.reduction ? detail::check_stretch(scene, o) : 0;
   // The reference runs beside the fast run where there are threads for it.
-  std::optional<WorkPool<ReferenceRun>> reference;
+  std::optional<WorkPool<detail::ReferenceRun>> reference;
   if (check_time > 0) {
-    reference.emplace(o.threads, 1, [&](std::size_t) { return reference_run(model, scene, o, check_time); });
+    reference.emplace(o.threads, 1, [&](std::size_t) { return detail::reference_run(model, scene, o, check_time); });
   }
   Eigen::VectorXd check_state;
   TransientResult r = scene.load.mode == LoadMode::clearance
                           ? detail::run_fast_clearance_transient(model, scene, o, check_time, check_state)
                           : detail::run_fast_transient(model, scene, o, check_time, check_state);
   if (reference) {
-    ReferenceRun checked_against = reference->get(0);
+    detail::ReferenceRun checked_against = reference->get(0);
     double checked_until = check_time;
     if (check_state.size() == 0) {  // stopped within the stretch: the check covers what ran
       if (!r.stopped) throw std::logic_error("transient: the fast run ended before its self-check's time");
       checked_until = r.stopped->revolution * two_pi / scene.operation.speed_rad_s;
       check_state = r.final_state;
-      checked_against = reference_run(model, scene, o, checked_until);
+      checked_against = detail::reference_run(model, scene, o, checked_until);
     }
-    r.self_check = self_check(model, scene, o, checked_until, check_state, checked_against);
+    r.self_check = detail::self_check(model, scene, o, checked_until, check_state, checked_against);
     if (!(r.self_check->difference <= r.self_check->allowed)) {
-      throw NumericalError(fmt::format("the fast method's state at revolution {:.4g} differs from RKF45's (rtol {:g}) by "
+      throw NumericalError(fmt::format("the fast method's state at revolution {:.4g} differs from {}'s (rtol {:g}) by "
                                        "{:.3g} of the vibration, beyond the stated {:.3g}",
-                                       r.self_check->until_revolutions, r.self_check->rkf45_tolerance,
+                                       r.self_check->until_revolutions, r.self_check->reference,
+                                       r.self_check->reference_tolerance,
                                        r.self_check->difference, r.self_check->allowed));
     }
   }

@@ -3,6 +3,7 @@
 // taken from the state [f; ḟ; W], where a run leaves the small-deflection range, and the energy
 // norm of the state's change over a revolution.
 #include <optional>
+#include <string>
 #include <vector>
 
 #include <Eigen/Dense>
@@ -103,5 +104,23 @@ TransientResult run_fast_transient(const BladeModel& model, const Scene& scene, 
 // Runge–Kutta–Fehlberg 7(8), the contact events located on the exact free flight and on the steps.
 TransientResult run_fast_clearance_transient(const BladeModel& model, const Scene& scene, const TransientOptions& options,
                                              double check_time, Eigen::VectorXd& check_state);
+
+// The self-check's stretch: through the first contact (at most 0.1 revolution of it) and 0.02
+// revolution of what follows, within the run.
+double check_stretch(const Scene& scene, const TransientOptions& options);
+
+// The independent integration the self-check compares with (self_check.cpp): its state [f; ḟ] at
+// the check's time, its method ("rkf78" or "rkf45") and how long it took.
+struct ReferenceRun {
+  Eigen::VectorXd state;
+  std::string method;
+  double seconds = 0;
+};
+ReferenceRun reference_run(const BladeModel& model, const Scene& scene, const TransientOptions& options,
+                           double check_time);
+
+// The fast history's state at `check_time` against the reference's (SelfCheck).
+SelfCheck self_check(const BladeModel& model, const Scene& scene, const TransientOptions& options, double check_time,
+                     const Eigen::VectorXd& fast_state, const ReferenceRun& reference);
 
 }  // namespace bladestab::detail

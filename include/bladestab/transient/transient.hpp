@@ -113,11 +113,14 @@ struct TransientStop {
   std::string reason;
 };
 
-// The fast method's history against RKF45 at a much tighter tolerance over [0, until]: the state
-// at `until` in the energy norm, relative to the largest vibration (‖x − x_eq‖ in that norm) seen.
+// The fast method's history against an independent integration at a much tighter tolerance over
+// [0, until] (RKF78 of Boost.Odeint in force mode, RKF45 in clearance mode, whose contacts are
+// RKF78's): the state at `until` in the energy norm, relative to the largest vibration
+// (‖x − x_eq‖ in that norm) seen.
 struct SelfCheck {
   double until_revolutions = 0;
-  double rkf45_tolerance = 0;
+  std::string reference;  // "rkf78" or "rkf45"
+  double reference_tolerance = 0;
   double difference = 0, allowed = 0;
   double seconds = 0;
 };
