@@ -238,6 +238,23 @@ TEST_CASE("the CLI: a run that broke its energy balance is a one-line error with
   CHECK(!run.wrote_csv);
 }
 
+TEST_CASE("the CLI: a contact the damping makes too stiff for the Magnus ladder is one line with exit 1, and writes "
+          "nothing", "[transient][honesty]") {
+  // The paper's damping (37) at 30 rad/s and ζ = 0.05 damps the stiffest mode by ζω/Ω ≈ 1700: a contact
+  // piece needs ~1.7e6 steps for h‖A‖₁ ≤ 2, past the ladder's 65536 (the self-check running beside the
+  // fast run stops with it).
+  const CliRun run = run_transient_cli("--set damping.model=paper --set damping.ratio=0.05 "
+                                       "--set operation.speed_rad_s=30 --revolutions 3");
+  INFO("stderr: " << run.err);
+  REQUIRE(WIFEXITED(run.status));
+  CHECK(WEXITSTATUS(run.status) == 1);
+  CHECK(run.out.empty());
+  CHECK(std::count(run.err.begin(), run.err.end(), '\n') == 1);
+  CHECK(run.err.find("Magnus steps (h‖A‖₁ ≤ 2 with ‖A‖₁ = 3.31e+09/s") != std::string::npos);
+  CHECK(run.err.find("use fewer terms or a lighter damping") != std::string::npos);
+  CHECK(!run.wrote_csv);
+}
+
 TEST_CASE("the CLI: a 2-revolution run gives growth_per_revolution null and says why", "[transient][honesty]") {
   const CliRun run = run_transient_cli("--set model.terms=6 --revolutions 2 --format json");
   INFO("stderr: " << run.err);

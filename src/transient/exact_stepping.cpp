@@ -174,8 +174,19 @@ ExactStepper::Integrated ExactStepper::integrate_contact(double start, double en
   const double norm = A_free_.cwiseAbs().colwise().sum().maxCoeff() +
                       pulses_.peak_n * B_.cwiseAbs().colwise().sum().maxCoeff();
   const double safe = std::max(1.0, norm * (end - start) / 2);
-  const int first = 1 << static_cast<int>(std::max(0.0, std::ceil(std::log2(safe / 32))));
-  StepDoubling ladder(first, 1 << 16, static_cast<int>(std::min(safe, 1e9)), magnus_step_work(A_free_.rows()),
+  constexpr int most_steps = 1 << 16;
+  const double first_level = std::ceil(std::log2(std::max(1.0, safe / 32)));
+  // Three levels are the fewest whose distances show a contraction (StepDoubling): refuse at once
+  // a piece whose first level leaves room for fewer.
+  if (first_level + 2 > std::log2(most_steps)) {
+    throw NumericalError(fmt::format("exact stepping: the contact piece [{:.6g}, {:.6g}] s needs about {:.3g} Magnus "
+                                     "steps (h‖A‖₁ ≤ 2 with ‖A‖₁ = {:.3g}/s: a damping that overdamps the stiffest "
+                                     "modes, or a long contact on a stiff model), past the {} it may take; use fewer "
+                                     "terms or a lighter damping",
+                                     start, end, safe, norm, most_steps));
+  }
+  const int first = 1 << static_cast<int>(first_level);
+  StepDoubling ladder(first, most_steps, static_cast<int>(std::min(safe, 1e9)), magnus_step_work(A_free_.rows()),
                       piece_work_flops_);
   Integrated result;
   Eigen::MatrixXd previous;

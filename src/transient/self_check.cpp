@@ -26,7 +26,8 @@ constexpr double reference_tolerance = 1e-10;
 
 // [f; ḟ] at `until` from the run's start by RKF78, its steps landing on every pulse edge (where the
 // load or its rate jumps); atol as RKF45's, a millionth of rtol on the scale of the static stretch.
-Eigen::VectorXd rkf78_state(const BladeModel& model, const Scene& scene, const TransientOptions& o, double until) {
+Eigen::VectorXd rkf78_state(const BladeModel& model, const Scene& scene, const TransientOptions& o, double until,
+                            const Cancellation* stop) {
   const TransientSystem system(model, scene, o);
   TransientResult ignored;
   const Eigen::VectorXd start = run_start(model, scene, system, o, ignored).x;
@@ -40,16 +41,19 @@ Eigen::VectorXd rkf78_state(const BladeModel& model, const Scene& scene, const T
     Eigen::Map<Eigen::VectorXd> rate(out.data(), static_cast<Eigen::Index>(out.size()));
     system.derivative(std::min(t, last_inside), state, rate);
   };
+  const auto poll = [stop](const OdeState&, double) {
+    if (stop && stop->cancelled()) throw WorkCancelled();
+  };
   std::vector<double> stops = system.pulses().edges(0, until);
   stops.push_back(until);
   double t = 0;
-  for (const double stop : stops) {
-    if (!(stop > t)) continue;
-    last_inside = std::nextafter(stop, t);
+  for (const double end : stops) {
+    if (!(end > t)) continue;
+    last_inside = std::nextafter(end, t);
     auto stepper = odeint::make_controlled(1e-6 * reference_tolerance, reference_tolerance,
                                            odeint::runge_kutta_fehlberg78<OdeState>());
-    odeint::integrate_adaptive(stepper, rhs, x, t, stop, (stop - t) / 64);
-    t = stop;
+    odeint::integrate_adaptive(stepper, rhs, x, t, end, (end - t) / 64, poll);
+    t = end;
   }
   return Eigen::Map<const Eigen::VectorXd>(x.data(), 2 * model.layout.size());
 }
@@ -72,12 +76,13 @@ double check_stretch(const Scene& scene, const TransientOptions& o) {
   return std::min(o.revolutions, std::min(pulses.contact_time_s / revolution, 0.1) + 0.02) * revolution;
 }
 
-ReferenceRun reference_run(const BladeModel& model, const Scene& scene, const TransientOptions& o, double check_time) {
+ReferenceRun reference_run(const BladeModel& model, const Scene& scene, const TransientOptions& o, double check_time,
+                           const Cancellation* stop) {
   const auto started = std::chrono::steady_clock::now();
   ReferenceRun run;
   const bool clearance = scene.load.mode == LoadMode::clearance;
   run.method = clearance ? "rkf45" : "rkf78";
-  run.state = clearance ? rkf45_state(model, scene, o, check_time) : rkf78_state(model, scene, o, check_time);
+  run.state = clearance ? rkf45_state(model, scene, o, check_time) : rkf78_state(model, scene, o, check_time, stop);
   run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return run;
 }

@@ -164,15 +164,25 @@ TransientResult run_transient(const BladeModel& model, const Scene& scene, const
     return r;
   }
   const double check_time = o.self_check && !o.reduction ? detail::check_stretch(scene, o) : 0;
-  // The reference runs beside the fast run where there are threads for it.
+  // The reference runs beside the fast run where there are threads for it; a fast run that fails
+  // stops it (declared first, the flag outlives the pool that polls it).
+  Cancellation fast_run_failed;
   std::optional<WorkPool<detail::ReferenceRun>> reference;
   if (check_time > 0) {
-    reference.emplace(o.threads, 1, [&](std::size_t) { return detail::reference_run(model, scene, o, check_time); });
+    reference.emplace(o.threads, 1, [&](std::size_t) {
+      return detail::reference_run(model, scene, o, check_time, &fast_run_failed);
+    });
   }
   Eigen::VectorXd check_state;
-  TransientResult r = scene.load.mode == LoadMode::clearance
-                          ? detail::run_fast_clearance_transient(model, scene, o, check_time, check_state)
-                          : detail::run_fast_transient(model, scene, o, check_time, check_state);
+  TransientResult r;
+  try {
+    r = scene.load.mode == LoadMode::clearance
+            ? detail::run_fast_clearance_transient(model, scene, o, check_time, check_state)
+            : detail::run_fast_transient(model, scene, o, check_time, check_state);
+  } catch (...) {
+    fast_run_failed.cancel();
+    throw;
+  }
   if (reference) {
     detail::ReferenceRun checked_against = reference->get(0);
     double checked_until = check_time;

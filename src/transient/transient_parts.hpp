@@ -12,6 +12,7 @@
 #include "bladestab/transient/exact_stepping.hpp"
 #include "bladestab/transient/transient.hpp"
 #include "bladestab/transient/transient_system.hpp"
+#include "support/work_pool.hpp"
 
 namespace bladestab::detail {
 
@@ -110,14 +111,15 @@ TransientResult run_fast_clearance_transient(const BladeModel& model, const Scen
 double check_stretch(const Scene& scene, const TransientOptions& options);
 
 // The independent integration the self-check compares with (self_check.cpp): its state [f; ḟ] at
-// the check's time, its method ("rkf78" or "rkf45") and how long it took.
+// the check's time, its method ("rkf78" or "rkf45") and how long it took. RKF78 polls `stop`
+// after each step (WorkCancelled once it is set).
 struct ReferenceRun {
   Eigen::VectorXd state;
   std::string method;
   double seconds = 0;
 };
 ReferenceRun reference_run(const BladeModel& model, const Scene& scene, const TransientOptions& options,
-                           double check_time);
+                           double check_time, const Cancellation* stop = nullptr);
 
 // The fast history's state at `check_time` against the reference's (SelfCheck).
 SelfCheck self_check(const BladeModel& model, const Scene& scene, const TransientOptions& options, double check_time,
