@@ -255,6 +255,24 @@ TEST_CASE("the CLI: a contact the damping makes too stiff for the Magnus ladder 
   CHECK(!run.wrote_csv);
 }
 
+TEST_CASE("the CLI: a motion the load cannot excite is 0 with an error of 0 and no dominant frequency",
+          "[transient][honesty]") {
+  // Without the Coriolis coupling the lateral equations do not see the axial pulse (it enters them
+  // only through G v, and v starts at rest): the lateral tip stays exactly at 0 on every model.
+  const CliRun run = run_transient_cli("--set model.coriolis=false --set model.terms=6 --revolutions 2 --format json");
+  INFO("stderr: " << run.err);
+  REQUIRE(WIFEXITED(run.status));
+  CHECK(WEXITSTATUS(run.status) == 0);
+  CHECK(run.out.find("\"tip_lateral\": null,") != std::string::npos);
+  CHECK(run.out.find("\"peak_tip_lateral_m\": 0,") != std::string::npos);
+  // Without the axial field the axial pulse moves nothing: the self-check compares rest with rest.
+  const CliRun still = run_transient_cli("--set model.axial=false --set model.terms=6 --revolutions 2 --format json");
+  INFO("stderr: " << still.err);
+  REQUIRE(WIFEXITED(still.status));
+  CHECK(WEXITSTATUS(still.status) == 0);
+  CHECK(still.out.find("\"relative_difference\": 0,") != std::string::npos);
+}
+
 TEST_CASE("the CLI: a 2-revolution run gives growth_per_revolution null and says why", "[transient][honesty]") {
   const CliRun run = run_transient_cli("--set model.terms=6 --revolutions 2 --format json");
   INFO("stderr: " << run.err);

@@ -35,12 +35,12 @@ Spectrum amplitude_spectrum(const std::vector<double>& signal, double rate) {
   return s;
 }
 
-double dominant_frequency(const Spectrum& s, double min_hz) {
+std::optional<double> dominant_frequency(const Spectrum& s, double min_hz) {
   std::size_t best = 0;
   for (std::size_t k = 1; k + 1 < s.amplitude.size(); ++k) {
     if (s.frequency_hz[k] >= min_hz && (best == 0 || s.amplitude[k] > s.amplitude[best])) best = k;
   }
-  if (best == 0) return 0;
+  if (best == 0 || !(s.amplitude[best] > 0)) return std::nullopt;
   const double a = std::log(std::max(s.amplitude[best - 1], 1e-300)), b = std::log(s.amplitude[best]),
                c = std::log(std::max(s.amplitude[best + 1], 1e-300));
   const double offset = (a - c) / (2 * (a - 2 * b + c));

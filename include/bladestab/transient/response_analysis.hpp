@@ -1,6 +1,7 @@
 #pragma once
 // What a transient response says: amplitude spectra (Hann-windowed FFT), dominant frequencies
 // with sub-bin interpolation, and the growth of the envelope per revolution.
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -15,8 +16,9 @@ struct Spectrum {
 Spectrum amplitude_spectrum(const std::vector<double>& signal, double sample_rate_hz);
 
 // The largest peak at or above `min_hz`, refined by a parabola through log amplitudes of the three
-// bins around it (exact for a Gaussian peak; the Hann main lobe is close to one).
-double dominant_frequency(const Spectrum& spectrum, double min_hz = 0);
+// bins around it (exact for a Gaussian peak; the Hann main lobe is close to one); none where there
+// is no bin or every amplitude is zero (a motion the load does not excite).
+std::optional<double> dominant_frequency(const Spectrum& spectrum, double min_hz = 0);
 
 // Growth per revolution of a sequence a_k > 0, one value per revolution that grows like max|ρ|^k
 // (for a transient: the change of the state over revolution k, see TransientResult): exp of the
