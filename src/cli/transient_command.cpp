@@ -179,7 +179,8 @@ void method_fields(Json& json, const TransientResult& r) {
   if (const std::optional<SelfCheck>& c = r.self_check) {
     json["self_check"] = {{"until_revolution", c->until_revolutions}, {"reference", c->reference},
                           {"reference_tolerance", c->reference_tolerance},
-                          {"relative_difference", c->difference}, {"allowed", c->allowed}, {"seconds", c->seconds}};
+                          {"relative_difference", c->difference}, {"allowed", c->allowed},
+                          {"reference_part", c->reference_part}, {"seconds", c->seconds}};
   }
   if (r.stopped) json["stopped"] = {{"revolution", r.stopped->revolution}, {"reason", r.stopped->reason}};
 }
@@ -202,7 +203,8 @@ void summary_fields(Json& json, const TransientResult& r, const TransientSummary
   }
   json["energy_balance"] = {{"max_error_j", s.checks.energy_error_j},
                             {"vibration_energy_j", s.checks.vibration_energy_j},
-                            {"allowed_fraction", TransientChecks::max_energy_error}};
+                            {"allowed_fraction", TransientChecks::max_energy_error},
+                            {"allowed_rounding_j", s.checks.energy_rounding_j}};
   if (r.method == TransientMethod::rkf45) json["steps"] = {{"mode", adaptive ? "adaptive" : "fixed"},
                    {"accepted", r.steps.accepted},
                    {"rejected", r.steps.rejected},

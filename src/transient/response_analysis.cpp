@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <limits>
 #include <numeric>
 #include <stdexcept>
 
@@ -16,18 +17,26 @@ namespace bladestab {
 Spectrum amplitude_spectrum(const std::vector<double>& signal, double rate) {
   const std::size_t n = signal.size();
   if (n < 4) throw std::invalid_argument("a spectrum needs at least 4 samples");
-  const double mean = std::accumulate(signal.begin(), signal.end(), 0.0) / n;
+  // About the first sample: a vibration far below the signal's mean (a feather touch about the
+  // static stretch) keeps its digits, and a constant signal gives exact zeros.
+  std::vector<double> deviation(n);
+  for (std::size_t k = 0; k < n; ++k) deviation[k] = signal[k] - signal[0];
+  const double mean = std::accumulate(deviation.begin(), deviation.end(), 0.0) / n;
   std::vector<double> windowed(n);
   double gain = 0;
   for (std::size_t k = 0; k < n; ++k) {
     const double w = 0.5 - 0.5 * std::cos(2 * pi * k / (n - 1));
-    windowed[k] = w * (signal[k] - mean);
+    windowed[k] = w * (deviation[k] - mean);
     gain += w;
   }
   Eigen::FFT<double> fft;
   std::vector<std::complex<double>> bins;
   fft.fwd(bins, windowed);
   Spectrum s;
+  // Each sample carries the rounding of its own size (the static stretch about which a feather
+  // touch's vibration moves): a peak not above 64 ε of the largest is noise.
+  s.rounding = 64 * std::numeric_limits<double>::epsilon() *
+               std::abs(*std::max_element(signal.begin(), signal.end(), [](double a, double b) { return std::abs(a) < std::abs(b); }));
   for (std::size_t k = 0; k <= n / 2; ++k) {
     s.frequency_hz.push_back(k * rate / n);
     s.amplitude.push_back((k == 0 ? 1.0 : 2.0) * std::abs(bins[k]) / gain);
@@ -40,7 +49,7 @@ std::optional<double> dominant_frequency(const Spectrum& s, double min_hz) {
   for (std::size_t k = 1; k + 1 < s.amplitude.size(); ++k) {
     if (s.frequency_hz[k] >= min_hz && (best == 0 || s.amplitude[k] > s.amplitude[best])) best = k;
   }
-  if (best == 0 || !(s.amplitude[best] > 0)) return std::nullopt;
+  if (best == 0 || !(s.amplitude[best] > s.rounding)) return std::nullopt;
   const double a = std::log(std::max(s.amplitude[best - 1], 1e-300)), b = std::log(s.amplitude[best]),
                c = std::log(std::max(s.amplitude[best + 1], 1e-300));
   const double offset = (a - c) / (2 * (a - 2 * b + c));

@@ -97,15 +97,20 @@ SelfCheck self_check(const BladeModel& model, const Scene& scene, const Transien
   const Eigen::MatrixXd K = model.stiffness(scene.operation.speed_rad_s);
   const Eigen::VectorXd equilibrium = rotating_equilibrium(model, scene.operation.speed_rad_s);
   const Eigen::VectorXd start = o.initial_state ? *o.initial_state : equilibrium;
-  const double scale = std::max(energy_norm(K, model.M, start - equilibrium),
-                                energy_norm(K, model.M, reference.state - equilibrium));
-  // A blade the load leaves at rest (axial pulses on a model without the axial field) has no scale:
-  // its difference counts only if it is not zero.
+  // The reference controls its error relative to the whole state, f_eq included: it resolves a
+  // vibration only down to its tolerance of that state, the scale of a feather touch's check.
+  const double whole = energy_norm(K, model.M, reference.state);
+  const double vibration = std::max(energy_norm(K, model.M, start - equilibrium),
+                                    energy_norm(K, model.M, reference.state - equilibrium));
+  const double scale = std::max(vibration, reference_tolerance * whole);
+  // A blade the load leaves at rest in the zero state (no axial field) has no scale at all: its
+  // difference counts only if it is not zero.
   const double difference = energy_norm(K, model.M, fast_state - reference.state);
   check.difference = scale > 0 ? difference / scale : difference > 0 ? HUGE_VAL : 0.0;
   // Each contact piece's propagator within the tolerance, the reference's local errors within its
-  // own, and a margin of 10 for the pieces and steps they add up over.
-  check.allowed = 10 * (o.contact_tolerance + check.reference_tolerance);
+  // own of the whole state, and a margin of 10 for the pieces and steps they add up over.
+  check.reference_part = scale > 0 ? 10 * reference_tolerance * whole / scale : 0.0;
+  check.allowed = 10 * o.contact_tolerance + check.reference_part;
   return check;
 }
 

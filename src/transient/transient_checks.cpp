@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <fmt/format.h>
 
@@ -9,6 +10,7 @@ namespace bladestab {
 
 TransientChecks check_transient(const TransientResult& r) {
   TransientChecks c;
+  c.energy_rounding_j = 100 * std::numeric_limits<double>::epsilon() * r.energy_terms_j;
   for (const TransientSample& s : r.samples) {
     // std::max would drop a NaN; a failed run must not pass for a quiet one.
     const auto worst = [](double& m, double x) { m = (std::isnan(x) || x > m) ? x : m; };
@@ -21,11 +23,12 @@ TransientChecks check_transient(const TransientResult& r) {
 }
 
 std::optional<TransientFailure> transient_failure(const TransientChecks& c, double L) {
-  // Written as !(x ≤ limit) so that NaN fails.
-  if (!(c.energy_error_j <= TransientChecks::max_energy_error * c.vibration_energy_j)) {
+  // Written as !(x ≤ limit) so that NaN fails. A vibration far below the static energy (a feather
+  // touch) is checked down to the rounding of E itself.
+  if (!(c.energy_error_j <= TransientChecks::max_energy_error * c.vibration_energy_j + c.energy_rounding_j)) {
     return TransientFailure{true, fmt::format("the energy balance broke: E(t) − E(0) − W(t) reached {:.3g} J against a vibration energy of "
-                       "{:.3g} J (allowed {:g} of it)",
-                       c.energy_error_j, c.vibration_energy_j, TransientChecks::max_energy_error)};
+                       "{:.3g} J (allowed {:g} of it and E's rounding, {:.2g} J)",
+                       c.energy_error_j, c.vibration_energy_j, TransientChecks::max_energy_error, c.energy_rounding_j)};
   }
   if (!(c.peak_lateral_m <= TransientChecks::max_lateral_over_length * L)) {
     return TransientFailure{false, fmt::format("the lateral tip deflection reached {:.3g} m = {:.3g} L, beyond the small-deflection model "

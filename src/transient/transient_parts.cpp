@@ -85,6 +85,7 @@ RunStart run_start(const BladeModel& model, const Scene& scene, const TransientS
   result.static_tip_axial_m = model.tip_axial.dot(equilibrium.head(n));
   begin.initial_energy = system.energy(begin.x);
   result.initial_vibration_energy_j = begin.initial_energy - system.energy(equilibrium);
+  result.energy_terms_j = 2 * std::abs(system.energy(equilibrium));  // E_eq = −½ P_steadyᵀ f_eq
   return begin;
 }
 

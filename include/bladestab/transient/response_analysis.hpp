@@ -10,6 +10,7 @@ namespace bladestab {
 struct Spectrum {
   std::vector<double> frequency_hz;
   std::vector<double> amplitude;  // one-sided, in the signal's unit; a pure sine of amplitude a shows ≈ a
+  double rounding = 0;            // the amplitude the samples' own rounding can make: 64 ε of the largest |sample|
 };
 
 // Mean removed, Hann window, amplitude corrected for the window's coherent gain.

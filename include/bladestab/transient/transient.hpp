@@ -122,6 +122,7 @@ struct SelfCheck {
   std::string reference;  // "rkf78" or "rkf45"
   double reference_tolerance = 0;
   double difference = 0, allowed = 0;
+  double reference_part = 0;  // of `allowed`, the reference's: 10 rtol of the whole state (f_eq included)
   double seconds = 0;
 };
 
@@ -137,6 +138,9 @@ struct TransientResult {
   FixedStep fixed;          // the fixed step, or in adaptive mode the cap on the step (same rule, n chosen)
   double static_tip_axial_m = 0;  // the rotating equilibrium's tip stretch
   double initial_vibration_energy_j = 0;  // E(0) − E at the rotating equilibrium
+  // |P_steadyᵀ f_eq|, the size of the terms E sums at the rotating equilibrium (their rounding, a
+  // few ε of it, is in every E(t) whatever the vibration)
+  double energy_terms_j = 0;
   std::optional<ContactSummary> contact;  // clearance mode
   // ‖x((k+1)T) − x(kT)‖ for each whole revolution k, in the energy norm √(½Δfᵀ K(Ω) Δf + ½Δḟᵀ M Δḟ):
   // states at the ends of the integration, not interpolated, so independent of the output sampling.

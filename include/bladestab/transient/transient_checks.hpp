@@ -12,6 +12,7 @@ namespace bladestab {
 struct TransientChecks {
   double energy_error_j = 0;      // max |E(t) − E(0) − W(t)| over the samples
   double vibration_energy_j = 0;  // max (E(0) − E_eq + W(t)): the largest vibration energy the balance allows
+  double energy_rounding_j = 0;   // the balance's rounding: 100 ε of the size of E's terms (energy_terms_j)
   double peak_lateral_m = 0;      // max |v(L)|
   double peak_axial_change_m = 0; // max |u(L) − u_eq(L)|
   // Limits. Energy: 1 % of the vibration energy, ≈ 0.5 % of an amplitude, the run's own error far above
