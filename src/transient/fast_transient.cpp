@@ -60,7 +60,11 @@ TransientResult run_fast_transient(const BladeModel& model, const Scene& scene, 
   result.method = TransientMethod::fast;
   RunStart begin = run_start(model, scene, system, o, result);
   const Recorder record = begin.recorder(model, system, o, result);
-  Eigen::VectorXd x = begin.x, z = stepper.modal(x.head(2 * n)), z_whole = z, z_before = z;
+  Eigen::VectorXd x = begin.x, z = stepper.modal(x.head(2 * n)), z_whole = z;
+  // The latest revolution change still resolved (RevolutionChanges::resolved): a decaying change
+  // reaches the rounding of the periodic state it is taken from, then exactly 0.
+  Eigen::VectorXd resolved_change;
+  double largest_change = 0;
   double work = 0, t = 0;
   record(0, x);
   LandingLog log(model, system, record, o, result, x, check_state);
@@ -87,16 +91,22 @@ TransientResult run_fast_transient(const BladeModel& model, const Scene& scene, 
       result.stopped = TransientStop{t / begin.revolution, "the linear response passed 1e200 J, near the range of doubles"};
       break;
     }
-    if (log.revolution(l, x)) z_before = z_whole, z_whole = z;
+    if (log.revolution(l, x)) {
+      const Eigen::VectorXd change = z - z_whole;
+      z_whole = z;
+      largest_change = std::max(largest_change, change.norm());
+      if (change.norm() > resolved_change_floor * largest_change) resolved_change = change;
+    }
   }
   const int whole = static_cast<int>(result.revolution_change.size());
-  if ((result.stopped || o.continue_growth) && whole >= 1) {
+  if ((result.stopped || o.continue_growth) && whole >= 1 && resolved_change.size() > 0) {
     std::vector<Landing> last;
     const double a = (whole - 1) * begin.revolution, b = whole * begin.revolution;
     std::copy_if(all.begin(), all.end(), std::back_inserter(last), [&](const Landing& l) { return l.t > a && l.t <= b; });
-    Eigen::VectorXd change = z_whole - z_before;
-    change(change.size() - 1) = 0;  // the augmentation's constant, not a change (z is modal: 2·modes + 1)
-    result.continued_change = continued_changes(stepper, change, last, a, growth_continuation);
+    resolved_change(resolved_change.size() - 1) = 0;  // the augmentation's constant, not a change (z is modal: 2·modes + 1)
+    // Every revolution of the train has the last one's propagators: the resolved change is carried
+    // on by them whichever revolution it came from.
+    result.continued_change = continued_changes(stepper, resolved_change, last, a, growth_continuation);
   }
   result.final_state = x.head(2 * n);
   result.exact = stepper.statistics();

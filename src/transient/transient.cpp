@@ -143,11 +143,22 @@ std::string fast_method_refusal(const BladeModel& model, const Scene& scene, con
   return {};
 }
 
+// The revolution changes up to the last one resolved (resolved_change_floor of the largest before).
+std::vector<double> resolved_changes(const std::vector<double>& changes) {
+  std::size_t resolved = 0;
+  double largest = 0;
+  for (std::size_t k = 0; k < changes.size(); ++k) {
+    largest = std::max(largest, changes[k]);
+    if (changes[k] > resolved_change_floor * largest) resolved = k + 1;
+  }
+  return {changes.begin(), changes.begin() + static_cast<std::ptrdiff_t>(resolved)};
+}
+
 // The growth per revolution of the run's revolution changes.
 GrowthFit fit_run_growth(const TransientResult& r) {
   GrowthFit fit = !r.continued_change.empty() ? fit_growth(r.continued_change)
-                  : r.stopped                  ? latest_growth(r.revolution_change)
-                                               : fit_growth(r.revolution_change);
+                  : r.stopped                  ? latest_growth(resolved_changes(r.revolution_change))
+                                               : fit_growth(resolved_changes(r.revolution_change));
   // The fast method's contact propagators' own error, once per piece of a revolution.
   if (r.method == TransientMethod::fast) fit.error_estimate += fit.growth * r.exact.contact_pieces * r.exact.contact_error;
   return fit;

@@ -155,6 +155,9 @@ struct TransientResult {
 // other multipliers' share fades like (|ρ₂|/max|ρ|)^k, to 1e-10 of it in 60 revolutions where
 // max|ρ| ≥ 1.5 |ρ₂|.
 constexpr int growth_continuation = 60;
+// A revolution change below this fraction of the largest before it is taken as unresolved: the
+// difference of two states that agree to their rounding (a decaying change ends at exactly 0).
+constexpr double resolved_change_floor = 1e-12;
 
 // The steady rotating equilibrium: K(Ω) f = Ω² P_cf + F_s p_u (steady_load(): a static tip force F_s
 // included), ḟ = 0.
