@@ -29,6 +29,15 @@ TransientResult run(const Scene& scene, TransientMethod method, double tolerance
   return run_transient(assemble_model(scene), scene, o);
 }
 
+// The fast method as a user runs it, with its self-check, over `revolutions`.
+TransientResult checked_run(const Scene& scene, double revolutions) {
+  TransientOptions o;
+  o.revolutions = revolutions;
+  const TransientResult r = run_transient(assemble_model(scene), scene, o);
+  REQUIRE(r.self_check);
+  return r;
+}
+
 // max |a − b| over the samples of the tip deflections, relative to the peak of b.
 double history_difference(const TransientResult& a, const TransientResult& b) {
   REQUIRE(a.samples.size() == b.samples.size());
@@ -73,10 +82,7 @@ TEST_CASE("fast transient: the paper's damping, overdamping the stiffest modes, 
   const Scene scene = paper_scene({"model.terms=8", "damping.model=\"paper\"", "damping.ratio=0.01"});
   // Through the pulse and 0.02 revolution of free flight against the self-check's independent
   // integration at rtol 1e-10, and the damping's work in free flight against the energy balance E(t) − E(0) = W(t).
-  TransientOptions o;
-  o.revolutions = 0.04;
-  const TransientResult fast = run_transient(assemble_model(scene), scene, o);
-  REQUIRE(fast.self_check);
+  const TransientResult fast = checked_run(scene, 0.04);
   CHECK(fast.self_check->reference == "rkf78");
   CHECK(fast.self_check->difference <= 1e-9);
   double energy = 0, balance = 0;
@@ -113,14 +119,11 @@ TEST_CASE("fast transient: a fractional run's samples are RKF45's, the last at i
 TEST_CASE("fast transient: a run stopped within the self-check's stretch is checked to where it stopped",
           "[transient][fast]") {
   // A thick blade (slenderness 0.1) under F̄ = 5 leaves the elastic range within 0.005 revolution,
-  // before the self-check's end at 0.03: the check compares with RKF45 at the stop instead.
+  // before the self-check's end at 0.03: the check compares with its reference at the stop instead.
   const Scene scene = paper_scene({"model.terms=4", "blade.slenderness=0.1", "model.coriolis=false"});
-  TransientOptions o;
-  o.revolutions = 0.3;
-  const TransientResult r = run_transient(assemble_model(scene), scene, o);
+  const TransientResult r = checked_run(scene, 0.3);
   REQUIRE(r.stopped);
   CHECK(r.stopped->revolution < 0.03);
-  REQUIRE(r.self_check);
   CHECK(r.self_check->until_revolutions == Approx(r.stopped->revolution).epsilon(1e-12));
   CHECK(r.self_check->difference <= r.self_check->allowed);
 }
