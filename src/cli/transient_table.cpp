@@ -26,11 +26,11 @@ void print_method(const TransientOptions& o, const TransientResult& r) {
   } else if (!r.fallback.empty()) {
     fmt::print("method     rkf45, not fast: {}\n", r.fallback);
   }
-  if (r.self_check) {
+  if (const std::optional<SelfCheck>& c = r.self_check) {
     fmt::print("check      against {} (rtol {:g}) to revolution {:.4g}: states differ by {:.2g} of the vibration "
                "(allowed {:.2g}), {:.3g} s\n",
-               r.self_check->reference == "rkf78" ? "RKF78 (Boost.Odeint)" : "RKF45", r.self_check->reference_tolerance, r.self_check->until_revolutions, r.self_check->difference,
-               r.self_check->allowed, r.self_check->seconds);
+               c->reference == "rkf78" ? "RKF78 (Boost.Odeint)" : "RKF45", c->reference_tolerance,
+               c->until_revolutions, c->difference, c->allowed, c->seconds);
   }
   if (r.stopped) fmt::print("stopped    at revolution {:.4g}: {}\n", r.stopped->revolution, r.stopped->reason);
 }
