@@ -306,6 +306,23 @@ TEST_CASE("crosscheck: a heavily damped blade's transient decays at the Floquet 
   CHECK(p.transient_pulse_growth == Approx(p.floquet_pulse).epsilon(0.1));
 }
 
+TEST_CASE("crosscheck: with five pulses a revolution the growth per revolution is the multiplier per load period "
+          "to the fifth", "[transient][crosscheck]") {
+  // The Floquet multipliers are per load period (a fifth of a revolution here), the transient's
+  // growth per revolution: under the cosine load at F̄ = 5, 1.1414716 per period is 1.93787 per revolution,
+  // and 16 revolutions' transient gives 1.94134 ± 0.15 (its other multipliers still fading).
+  const Scene s = paper_scene({"model.terms=8", "load.pulses_per_rev=5"});
+  CrosscheckOptions o;
+  o.fmax_over_fcr = {5};
+  const CrosscheckPoint p = crosscheck(s, o).at(0);
+  CHECK(p.load_periods_per_revolution == Approx(5).epsilon(1e-12));
+  CHECK(p.floquet_cosine > 1.1);
+  CHECK(p.transient_cosine_growth == Approx(std::pow(p.floquet_cosine, 5)).epsilon(1e-2));
+  CHECK(std::abs(p.transient_cosine_growth - p.floquet_cosine) > p.transient_cosine_error);  // per revolution ≠ per period
+  CHECK(p.cosine_agrees());
+  CHECK(p.pulse_agrees());
+}
+
 TEST_CASE("the follower correction applies F cos(psi) along the span and -F sin(psi) laterally", "[transient]") {
   // Coriolis off and no friction; the tip bent 0.2 m in mode 1 (ψ ≈ 0.3 rad, far beyond the
   // blade's real slopes, so that 1 − cos ψ ≈ 4 % shows: the model is linear, only the load law is

@@ -63,6 +63,11 @@ void print_table(const Scene& scene, const std::vector<CrosscheckPoint>& result,
              "Floquet multipliers use (model.reduction), so both share its basis and reduction error and differ in\n"
              "their methods only. Floquet: auto method for the cosine load, monodromy for the pulse series, whose\n"
              "estimate holds its truncation: the distance to the true train's own multipliers.\n");
+  if (!result.empty() && result.front().load_periods_per_revolution != 1) {
+    fmt::print("The multipliers are per load period, {:g} of them a revolution: the growth per revolution agrees\n"
+               "with max|ρ| when its {:g}th root does.\n",
+               result.front().load_periods_per_revolution, result.front().load_periods_per_revolution);
+  }
 }
 
 // The points as JSON and CSV print them (printed_digits.hpp): each Floquet max|ρ| to its estimate,
@@ -89,7 +94,9 @@ std::vector<CrosscheckPoint> as_printed(std::vector<CrosscheckPoint> points, con
 // The answer as JSON: each point's Floquet and transient numbers for both loads, with their estimates.
 std::string crosscheck_json(const Scene& scene, const std::vector<CrosscheckPoint>& printed, double revolutions) {
   Json json = {{"scene", scene.source}, {"speed_rad_s", scene.operation.speed_rad_s},
-               {"revolutions", revolutions}, {"points", Json::array()}};
+               {"revolutions", revolutions},
+               {"load_periods_per_revolution", printed.empty() ? 1.0 : printed.front().load_periods_per_revolution},
+               {"points", Json::array()}};
   for (const CrosscheckPoint& p : printed) {
     json["points"].push_back(
         {{"fmax_over_fcr", p.fmax_over_fcr},

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <mutex>
 
+#include "bladestab/base/constants.hpp"
 #include "bladestab/ltp/floquet.hpp"
 #include "bladestab/stability/periodic_system.hpp"
 #include "bladestab/transient/response_analysis.hpp"
@@ -40,12 +41,26 @@ GrowthFit transient_growth(const BladeModel& model, const Scene& scene, double r
 
 }  // namespace
 
+namespace {
+
+// Whether a growth per revolution g ± e and a multiplier per load period ρ ± ε agree: g^(1/n) against
+// ρ, its interval the image of [g − e, g + e] under the root (n load periods per revolution).
+bool agree_per_load_period(double g, double e, double rho, double rho_error, double n) {
+  const double root = std::pow(g, 1 / n), high = std::pow(g + e, 1 / n) - root,
+               low = root - std::pow(std::max(g - e, 0.0), 1 / n);
+  return std::abs(root - rho) <= std::max(high, low) + rho_error;
+}
+
+}  // namespace
+
 bool CrosscheckPoint::cosine_agrees() const {
-  return std::abs(transient_cosine_growth - floquet_cosine) <= transient_cosine_error + floquet_cosine_error;
+  return agree_per_load_period(transient_cosine_growth, transient_cosine_error, floquet_cosine, floquet_cosine_error,
+                               load_periods_per_revolution);
 }
 
 bool CrosscheckPoint::pulse_agrees() const {
-  return std::abs(transient_pulse_growth - floquet_pulse) <= transient_pulse_error + floquet_pulse_error;
+  return agree_per_load_period(transient_pulse_growth, transient_pulse_error, floquet_pulse, floquet_pulse_error,
+                               load_periods_per_revolution);
 }
 
 namespace {
@@ -54,6 +69,7 @@ namespace {
 CrosscheckPoint crosscheck_point(const BladeModel& model, const Scene& base, double fbar, const CrosscheckOptions& o) {
   CrosscheckPoint p;
   p.fmax_over_fcr = fbar;
+  p.load_periods_per_revolution = two_pi / base.operation.speed_rad_s / pulse_train(base).period_s;
   Scene scene = base;
   scene.load.fmax_over_fcr = fbar;
   scene.load.pulse_count = 0;  // a periodic load

@@ -30,6 +30,9 @@ struct CrosscheckPoint {
   double floquet_pulse_load_error = 0;
   int pulse_harmonics = 0;
   double pulse_series_tail = 0;
+  // The Floquet multipliers are per load period, the transient growth per revolution: a revolution
+  // holds this many load periods (load.pulses_per_rev), and the growth is compared as its root.
+  double load_periods_per_revolution = 1;
   bool cosine_agrees() const;
   bool pulse_agrees() const;
 };
