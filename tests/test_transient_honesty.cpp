@@ -63,6 +63,16 @@ CliRun run_transient_cli(const std::string& options) {
   return run;
 }
 
+// A failure as the CLI states one: exit 1, one line on stderr, nothing on stdout, no history written.
+void check_one_line_failure(const CliRun& run) {
+  INFO("stderr: " << run.err);
+  REQUIRE(WIFEXITED(run.status));
+  CHECK(WEXITSTATUS(run.status) == 1);
+  CHECK(run.out.empty());
+  CHECK(std::count(run.err.begin(), run.err.end(), '\n') == 1);
+  CHECK(!run.wrote_csv);
+}
+
 }  // namespace
 
 TEST_CASE("tolerance 1e-2 on the issue's run: the capped steps stay stable and match a tight-tolerance run", "[transient][honesty][slow]") {
@@ -228,14 +238,9 @@ TEST_CASE("fit_growth: an exact exponential, a beat that is no exponential, too 
 TEST_CASE("the CLI: a run that broke its energy balance is a one-line error with exit 1, and writes nothing", "[transient][honesty][long_under_sanitizers]") {
   // The paper's literal step over 7 revolutions (the broken run above).
   const CliRun run = run_transient_cli("--set model.terms=8 --revolutions 7 --step fixed --steps-per-period 8");
-  INFO("stderr: " << run.err);
-  REQUIRE(WIFEXITED(run.status));
-  CHECK(WEXITSTATUS(run.status) == 1);
-  CHECK(run.out.empty());
-  CHECK(std::count(run.err.begin(), run.err.end(), '\n') == 1);
+  check_one_line_failure(run);
   CHECK(run.err.find("8 steps per stiffest period, 7 revolutions): the energy balance broke") != std::string::npos);
   CHECK(run.err.find("leave out --steps-per-period") != std::string::npos);
-  CHECK(!run.wrote_csv);
 }
 
 TEST_CASE("the CLI: a contact the damping makes too stiff for the Magnus ladder is one line with exit 1, and writes "
@@ -245,14 +250,9 @@ TEST_CASE("the CLI: a contact the damping makes too stiff for the Magnus ladder 
   // fast run stops with it).
   const CliRun run = run_transient_cli("--set damping.model=paper --set damping.ratio=0.05 "
                                        "--set operation.speed_rad_s=30 --revolutions 3");
-  INFO("stderr: " << run.err);
-  REQUIRE(WIFEXITED(run.status));
-  CHECK(WEXITSTATUS(run.status) == 1);
-  CHECK(run.out.empty());
-  CHECK(std::count(run.err.begin(), run.err.end(), '\n') == 1);
+  check_one_line_failure(run);
   CHECK(run.err.find("Magnus steps (h‖A‖₁ ≤ 2 with ‖A‖₁ = 3.31e+09/s") != std::string::npos);
   CHECK(run.err.find("use fewer terms or a lighter damping") != std::string::npos);
-  CHECK(!run.wrote_csv);
 }
 
 TEST_CASE("the CLI: a motion the load cannot excite is 0 with an error of 0 and no dominant frequency",

@@ -61,10 +61,10 @@ TransientResult run_fast_transient(const BladeModel& model, const Scene& scene, 
   RunStart begin = run_start(model, scene, system, o, result);
   const Recorder record = begin.recorder(model, system, o, result);
   Eigen::VectorXd x = begin.x, z = stepper.modal(x.head(2 * n)), z_whole = z;
-  // The latest revolution change still resolved (resolved_change_floor, transient.hpp): a decaying
-  // change reaches the rounding of the periodic state it is taken from, then exactly 0.
+  // The latest revolution change still resolved (ResolvedChanges, transient.hpp): a decaying change
+  // reaches the rounding of the periodic state it is taken from, then exactly 0.
   Eigen::VectorXd resolved_change;
-  double largest_change = 0;
+  ResolvedChanges resolved;
   double work = 0, t = 0;
   record(0, x);
   LandingLog log(model, system, record, o, result, x, check_state);
@@ -93,10 +93,8 @@ TransientResult run_fast_transient(const BladeModel& model, const Scene& scene, 
     }
     if (log.revolution(l, x)) {
       const Eigen::VectorXd change = z - z_whole;
-      const double size = change.norm();
       z_whole = z;
-      largest_change = std::max(largest_change, size);
-      if (size > resolved_change_floor * largest_change) resolved_change = change;
+      if (resolved.add(change.norm())) resolved_change = change;
     }
   }
   const int whole = static_cast<int>(result.revolution_change.size());

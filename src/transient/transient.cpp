@@ -143,15 +143,14 @@ std::string fast_method_refusal(const BladeModel& model, const Scene& scene, con
   return {};
 }
 
-// The revolution changes up to the last one resolved (resolved_change_floor of the largest before).
+// The revolution changes up to the last one resolved (ResolvedChanges).
 std::vector<double> resolved_changes(const std::vector<double>& changes) {
-  std::size_t resolved = 0;
-  double largest = 0;
+  ResolvedChanges resolved;
+  std::size_t last = 0;
   for (std::size_t k = 0; k < changes.size(); ++k) {
-    largest = std::max(largest, changes[k]);
-    if (changes[k] > resolved_change_floor * largest) resolved = k + 1;
+    if (resolved.add(changes[k])) last = k + 1;
   }
-  return {changes.begin(), changes.begin() + static_cast<std::ptrdiff_t>(resolved)};
+  return {changes.begin(), changes.begin() + static_cast<std::ptrdiff_t>(last)};
 }
 
 // The growth per revolution of the run's revolution changes.

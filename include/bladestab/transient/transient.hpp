@@ -13,6 +13,7 @@
 // order form x = [f; ḟ] by RKF45, adaptive or with the paper's fixed step (54), landing on every
 // pulse edge. With the follower correction (docs/theory.md §5) the load turns with the tip slope ψ = v'(L):
 // F cos ψ along the axis (and in the geometric stiffness), −F sin ψ on the lateral tip.
+#include <algorithm>
 #include <functional>
 #include <limits>
 #include <optional>
@@ -155,9 +156,20 @@ struct TransientResult {
 // other multipliers' share fades like (|ρ₂|/max|ρ|)^k, to 1e-10 of it in 60 revolutions where
 // max|ρ| ≥ 1.5 |ρ₂|.
 constexpr int growth_continuation = 60;
-// A revolution change below this fraction of the largest before it is taken as unresolved: the
-// difference of two states that agree to their rounding (a decaying change ends at exactly 0).
-constexpr double resolved_change_floor = 1e-12;
+// Which of a run's revolution changes, taken in order, are resolved: one below 1e-12 of the largest
+// before it is the difference of two states that agree to their rounding (a decaying change ends
+// at exactly 0).
+class ResolvedChanges {
+public:
+  // The next change's norm; true where it is resolved.
+  bool add(double change) {
+    largest_ = std::max(largest_, change);
+    return change > 1e-12 * largest_;
+  }
+
+private:
+  double largest_ = 0;
+};
 
 // The steady rotating equilibrium: K(Ω) f = Ω² P_cf + F_s p_u (steady_load(): a static tip force F_s
 // included), ḟ = 0.
