@@ -17,6 +17,7 @@
 
 #include <catch2/catch.hpp>
 
+#include "support/json.hpp"
 #include "support/run_cli.hpp"
 
 namespace {
@@ -583,6 +584,18 @@ TEST_CASE("bad input: issue 24, options read as the scene reads them (bad_input)
                     {"--out", "cannot write into it", "File name too long"});
     expect_rejected({"map", valid_scene, "--plane", "theta-fmax", "--out", (scratch() / long_name / "m").string()},
                     {"--out", "cannot write into it", "File name too long"});
+  }
+  SECTION("each --set takes one override: the scene path after two of them is the scene") {
+    const testing_support::Outcome o = testing_support::run_bladestab(
+        {"modes", "--set", "model.terms=5", "--set", "operation.speed_rad_s=0", valid_scene, "--count", "1", "--format", "json"});
+    INFO(o.command << ": " << describe(o) << "\n" << o.err);
+    REQUIRE(WIFEXITED(o.wait_status));
+    REQUIRE(WEXITSTATUS(o.wait_status) == 0);
+    const testing_support::Json j = testing_support::parse_json(o.out);
+    CHECK(j["model"]["terms"].number == 5);
+    CHECK(j["speed_rad_s"].number == 0);
+    expect_rejected({"modes", valid_scene, "--set", "model.terms=5", "operation.speed_rad_s=0"},
+                    {"operation.speed_rad_s=0", "give each override its own --set section.key=value"});
   }
   SECTION("a modal cut-off below the first mode keeps no mode: refused, with the first mode's frequency") {
     expect_rejected({"stability", valid_scene, "--cutoff-hz", "0.5"}, {"--cutoff-hz 0.5", "at or below the first mode, ", " Hz at operation.speed_rad_s = 300"});

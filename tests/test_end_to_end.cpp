@@ -47,8 +47,8 @@ fs::path output_dir(const std::string& name) {
 // `note`, one line that starts with it.
 std::string run(const std::string& command, const std::vector<std::string>& more, const std::string& note = "",
                 const std::string& scene = testing_support::paper_scene_path()) {
-  std::vector<std::string> args{command, scene, "--set"};
-  args.insert(args.end(), small.begin(), small.end());
+  std::vector<std::string> args{command, scene};
+  for (const std::string& key : small) args.insert(args.end(), {"--set", key});
   args.insert(args.end(), more.begin(), more.end());
   const testing_support::Outcome o = testing_support::run_bladestab(args, {120});
   INFO(o.command << ": " << testing_support::describe(o) << "\n" << o.err);

@@ -92,7 +92,7 @@ TEST_CASE("impulse in the transient: as t_c -> 0 the response is the free vibrat
 TEST_CASE("impulse: boundaries and map refuse its Fourier series with the one-line input error",
           "[impulse][bad_input]") {
   const std::vector<std::string> scene{testing_support::paper_scene_path(), "--set", "model.terms=4",
-                                       "load.profile=impulse", "load.approximation=fourier"};
+                                       "--set", "load.profile=impulse", "--set", "load.approximation=fourier"};
   for (std::vector<std::string> args : {std::vector<std::string>{"boundaries"},
                                         std::vector<std::string>{"map", "--plane", "theta-fmax", "--chart", "none"}}) {
     args.insert(args.begin() + 1, scene.begin(), scene.end());

@@ -8,6 +8,7 @@
 
 #include "bladestab/base/input_error.hpp"
 #include "commands.hpp"
+#include "options.hpp"
 #include "work_limits.hpp"
 
 namespace bladestab::cli {
@@ -69,7 +70,7 @@ EmbeddedAnswer run_embedded(const std::vector<std::string>& arguments, const Emb
   try {
     app.parse(reversed);
   } catch (const CLI::ParseError& e) {  // --help among them: there is no help to print here
-    throw InputError(e.what());
+    throw InputError(parse_error_text(e));
   }
   EmbeddedAnswer answer;
   const EmbeddedRun checked = with_deadline(run, work_limits().seconds);

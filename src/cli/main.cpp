@@ -20,6 +20,7 @@
 #include "bladestab/base/numerical_error.hpp"
 #include "commands.hpp"
 #include "notes.hpp"
+#include "options.hpp"
 #include "interruption.hpp"
 #include "work_limits.hpp"
 
@@ -59,7 +60,7 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForAllHelp& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    return report("error", fmt::format("{} (see bladestab --help)", e.what()), 2);
+    return report("error", fmt::format("{} (see bladestab --help)", parse_error_text(e)), 2);
   } catch (const bladestab::InputError& e) {  // a number option's value (number_options.hpp)
     return report("error", e.what(), 2);
   }

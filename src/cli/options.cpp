@@ -57,10 +57,19 @@ PrintedDigits SceneOptions::printed_digits() const {
   return PrintedDigits(digits == "full" ? DigitsRule::full : DigitsRule::estimate);
 }
 
+std::string parse_error_text(const CLI::ParseError& error) {
+  const std::string text = error.what();
+  if (dynamic_cast<const CLI::ExtrasError*>(&error) && text.find('=') != std::string::npos) {
+    return text + "; give each override its own --set section.key=value";
+  }
+  return text;
+}
+
 void add_scene_options(CLI::App& command, SceneOptions& options, const std::vector<std::string>& formats) {
   command.add_option("scene", options.path, "scene file (TOML)")->required();
   command.add_option("--set", options.overrides, "override a scene key: section.key=value (repeatable)")
-      ->type_name("KEY=VALUE");
+      ->type_name("KEY=VALUE")
+      ->allow_extra_args(false);  // one value per --set: a scene path after it stays the scene
   std::string others;
   for (std::size_t i = 1; i < formats.size(); ++i) {
     others += (i == 1 ? "" : i + 1 == formats.size() ? " or " : ", ") + formats[i];

@@ -52,6 +52,10 @@ std::vector<std::string> names_of(std::initializer_list<Enum> values) {
 void add_scene_options(CLI::App& command, SceneOptions& options,
                        const std::vector<std::string>& formats = {"table", "json", "csv"});
 
+// A command line CLI11 refused, as the one-line message says it; an unexpected argument that
+// looks like an override is pointed at --set, which takes one section.key=value each time.
+std::string parse_error_text(const CLI::ParseError& error);
+
 // --threads N for a command that runs parts side by side; `threads` starts at one per core.
 void add_threads_option(CLI::App& command, int& threads);
 
