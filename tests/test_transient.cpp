@@ -250,13 +250,19 @@ TEST_CASE("crosscheck: the cosine approximation's instability is real for its lo
   CHECK(std::abs(p.rkf45_max_abs_multiplier - 2.1992274) < 1e-6);  // the integrator's own monodromy
   CHECK(p.monodromy_difference < 1e-4);  // against the Magnus one, entry by entry (measured 1.3e-5)
 
-  // The true pulse's Fourier series. Its Parseval tail, from the half-sine's closed-form coefficients
-  // F_m = −(F_max/T) a(1 + e^{−i mθ t_c})/(a² − (mθ)²), a = π/t_c (−i t_c/2 in place of the fraction
-  // at mθ = a), and ⟨F²⟩ = F_max² t_c/(2T): what the crosscheck reports. The crosscheck asks for 1e-3
-  // within 400 harmonics and gets 1.6e-2 (a half-sine 1 % of the period long needs ~2600).
+}
+
+TEST_CASE("load series: the true pulse's 400-harmonic series, its Parseval tail and its multipliers against the train's",
+          "[transient][crosscheck][slow]") {
+  // Its Parseval tail, from the half-sine's closed-form coefficients F_m = −(F_max/T) a(1 + e^{−i mθ
+  // t_c})/(a² − (mθ)²), a = π/t_c (−i t_c/2 in place of the fraction at mθ = a), and ⟨F²⟩ =
+  // F_max² t_c/(2T). Asked for 1e-3 within 400 harmonics it gets 1.6e-2 (a half-sine 1 % of the
+  // period long needs ~2600).
+  const Scene s = paper_scene({"model.terms=8"});
   Scene pulse = s;
   pulse.load.fmax_over_fcr = 5;
   pulse.load.approximation = LoadApproximation::fourier;
+  const LoadSeries series_load = load_series(pulse, 1e-3, 400);
   const PulseTrain train = pulse_train(pulse);
   const double T = train.period_s, tc = train.contact_time_s, a = pi / tc, theta = two_pi / T;
   const auto coefficient = [&](int m) {
@@ -267,22 +273,43 @@ TEST_CASE("crosscheck: the cosine approximation's instability is real for its lo
     return -train.peak_n / T * integral;
   };
   double captured = std::norm(coefficient(0));
-  for (int m = 1; m <= p.pulse_harmonics; ++m) captured += 2 * std::norm(coefficient(m));
+  for (int m = 1; m <= series_load.harmonics(); ++m) captured += 2 * std::norm(coefficient(m));
   const double tail = std::sqrt(1 - captured / (train.peak_n * train.peak_n * tc / (2 * T)));
-  CHECK(p.pulse_series_tail == Approx(tail).epsilon(1e-9));
-  // Yet the Floquet answer is converged at that truncation: the series of the crosscheck's length
-  // against the true pulse (pulse_monodromy.hpp: the contact integrated, no series) on the same
-  // reduced system, max|ρ| within 1e-6 and the whole multiplier set within 1e-6 (measured 1e-8; the
-  // harmonics beyond 400, above 19 kHz, average out).
+  CHECK(series_load.harmonics() == 400);
+  CHECK(series_load.relative_tail == Approx(tail).epsilon(1e-9));
+  // Yet the Floquet answer is converged at that truncation: the series against the true pulse
+  // (pulse_monodromy.hpp: the contact integrated, no series) on the same reduced system, max|ρ|
+  // within 1e-6 of the undamped train's 1 and the whole multiplier set within 1e-6 (measured 1e-8;
+  // the harmonics beyond 400, above 19 kHz, average out).
   const BladeModel model = assemble_model(s);
-  const PeriodicSystem series_system = periodic_system(model, pulse, load_series(pulse, 0, p.pulse_harmonics));
+  const PeriodicSystem series_system = periodic_system(model, pulse, series_load);
   const FloquetResult series = floquet_multipliers(series_system, {FloquetMethod::monodromy, 0, 1e-8});
   const PulseMonodromy exact = exact_pulse_monodromy(series_system, periodic_pulse(train), 1e-10);
   const double set_distance = multiplier_set_distance(series.multipliers, exact.multipliers);
-  CHECK(std::abs(p.floquet_pulse - exact.multipliers.cwiseAbs().maxCoeff()) < 1e-6);
+  CHECK(std::abs(series.max_abs_multiplier - 1) < 1e-6);
   CHECK(set_distance < 1e-6);
-  WARN("true pulse: " << p.pulse_harmonics << " harmonics, Parseval tail " << p.pulse_series_tail << " (closed form "
-                      << tail << "); multipliers " << set_distance << " from the true pulse's");
+  WARN("true pulse: 400 harmonics, Parseval tail " << series_load.relative_tail << " (closed form " << tail
+                                                   << "); multipliers " << set_distance << " from the true pulse's");
+}
+
+TEST_CASE("crosscheck: five pulses a revolution, the true train on the whole model, as stability takes it",
+          "[transient][crosscheck]") {
+  // The paper blade at 16 terms, F̄ = 5, five half-sine pulses a revolution. Undamped and stable, so
+  // every multiplier lies on the unit circle: max|ρ| = 1 and no growth. The automatic reduction of 3
+  // vectors per load level opens a tongue there (max|ρ| 1.0169343 per period, its transient growing
+  // 1.0876 a revolution once it dominates), which the whole model does not have; the crosscheck's
+  // pulse rows run on the whole model, as `stability` does for the true train.
+  CrosscheckOptions o;
+  o.fmax_over_fcr = {5};
+  const CrosscheckPoint p = crosscheck(paper_scene({"load.pulses_per_rev=5"}), o).at(0);
+  INFO("pulse: Floquet " << p.floquet_pulse << " ± " << p.floquet_pulse_error << " on " << p.pulse_modes
+                         << " modes, transient " << p.transient_pulse_growth << " ± " << p.transient_pulse_error);
+  CHECK(p.load_periods_per_revolution == Approx(5).epsilon(1e-12));
+  CHECK(p.pulse_modes == 48);
+  CHECK(std::abs(p.floquet_pulse - 1) <= p.floquet_pulse_error + 1e-9);
+  CHECK(std::abs(p.transient_pulse_growth - 1) <= 1e-5);
+  CHECK(p.pulse_agrees());
+  CHECK(p.cosine_agrees());
 }
 
 TEST_CASE("crosscheck: a heavily damped blade's transient decays at the Floquet max|rho|, not at the rounding's 1",

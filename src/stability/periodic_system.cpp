@@ -8,6 +8,7 @@
 #include "bladestab/base/constants.hpp"
 #include "bladestab/blade/damping.hpp"
 #include "bladestab/base/numerical_error.hpp"
+#include "bladestab/ltp/monodromy.hpp"
 
 namespace bladestab {
 
@@ -55,6 +56,10 @@ PeriodicSystem periodic_system(const BladeModel& model, const Scene& scene, cons
                                const ReductionSpec& reduction) {
   const double speed = scene.operation.speed_rad_s;
   return periodic_system(model, speed, damping_matrix(model, scene.damping, speed), load, reduction);
+}
+
+bool true_train_on_whole_model(const PeriodicSystem& whole, const PulseTrain& train) {
+  return minimum_magnus_steps(whole) * train.contact_time_s / train.period_s <= 4096;
 }
 
 int tongue_vectors(const BladeModel& model, const Scene& scene, double theta_max, int max_order) {

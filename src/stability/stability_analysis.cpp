@@ -252,10 +252,9 @@ void charge_systems(double& built, double flops, double limit, int terms) {
   }
 }
 
-// The first round's fidelity: the scene's, with the reduction's vectors chosen. The true train
-// integrates only through the contacts: the whole Ritz model is cheap unless the contact is long
-// against its stiffest period, and it resolves the pulse's high harmonics, which the narrow tongues
-// of the true train depend on. That check's system is charged to `built`.
+// The first round's fidelity: the scene's, with the reduction's vectors chosen; the true train on
+// the whole Ritz model where true_train_on_whole_model says so. That check's system is charged to
+// `built`.
 Fidelity first_fidelity(const Scene& scene, bool vectors_free, double& built, double limit) {
   Fidelity f{scene.model, scene.model.reduction, load_series(scene)};
   if (!f.load.frequency_known) {
@@ -266,8 +265,7 @@ Fidelity first_fidelity(const Scene& scene, bool vectors_free, double& built, do
     charge_systems(built, periodic_system_flops(dof_layout(f.model, scene.blade.two_planes()).size()), limit,
                    f.model.terms);
     const PeriodicSystem whole = system_at(scene, {f.model, {ReductionKind::none, 0, 0}, f.load});
-    const PulseTrain train = pulse_train(scene);
-    if (minimum_magnus_steps(whole) * train.contact_time_s / train.period_s <= 4096) f.reduction.kind = ReductionKind::none;
+    if (true_train_on_whole_model(whole, pulse_train(scene))) f.reduction.kind = ReductionKind::none;
   }
   if (f.reduction.kind == ReductionKind::automatic && f.reduction.vectors == 0) {
     f.reduction.vectors = default_reduction_vectors;

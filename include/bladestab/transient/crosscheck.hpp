@@ -3,13 +3,15 @@
 // scene's speed:
 //  (a) max|ρ| from the Floquet multipliers against the growth per revolution of a long transient
 //      under the same periodic load — once with the paper's cosine approximation (42), once with
-//      the true pulse train (its Fourier series in the frequency domain);
+//      the true pulse train (its monodromy through each contact);
 //  (b) the monodromy matrix Φ(T) from the transient's RKF45 integrator against the Magnus one of
 //      the frequency domain (cosine approximation);
 //  (c) hence how wrong the cosine approximation is for the real, short pulse.
-// The transients are the fast method's (transient.hpp) on the whole Ritz model, each checked
-// against RKF45 through its first contact; each growth carries an error estimate (GrowthFit), and
-// a point agrees when |growth − max|ρ|| is within the sum of the two estimates.
+// Each transient is the fast method's (transient.hpp) on the model its Floquet multipliers use:
+// the scene's reduction for the cosine approximation, the model `stability` analyses the true
+// train on for the pulse (the whole Ritz model where it affords it); each is checked against an
+// independent integration through its first contact, each growth carries an error estimate
+// (GrowthFit), and a point agrees when |growth − max|ρ|| is within the sum of the two estimates.
 #include <functional>
 #include <vector>
 
@@ -23,16 +25,14 @@ struct CrosscheckPoint {
   double floquet_cosine = 0, floquet_cosine_error = 0, transient_cosine_growth = 0, transient_cosine_error = 0;
   double rkf45_max_abs_multiplier = 0;   // from the RKF45 monodromy at rtol 1e-8
   double monodromy_difference = 0;       // ‖Φ_RKF45 − Φ_Magnus‖ / ‖Φ_Magnus‖ (Frobenius)
-  // True pulse train.
-  // floquet_pulse_error: the series' monodromy's own error plus floquet_pulse_load_error, the
-  // series' truncation: |max|ρ| − the true train's max|ρ|| plus that one's error.
+  // True pulse train: its multipliers by the monodromy through each contact.
   double floquet_pulse = 0, floquet_pulse_error = 0, transient_pulse_growth = 0, transient_pulse_error = 0;
-  double floquet_pulse_load_error = 0;
-  int pulse_harmonics = 0;
-  double pulse_series_tail = 0;
   // The Floquet multipliers are per load period, the transient growth per revolution: a revolution
   // holds this many load periods (load.pulses_per_rev), and the growth is compared as its root.
   double load_periods_per_revolution = 1;
+  // The modes each row's model keeps (PeriodicSystem::kept_modes): the cosine rows on the scene's
+  // reduction, the pulse rows on the model `stability` takes for the true train (crosscheck.cpp).
+  int cosine_modes = 0, pulse_modes = 0;
   bool cosine_agrees() const;
   bool pulse_agrees() const;
 };
