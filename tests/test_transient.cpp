@@ -292,6 +292,25 @@ TEST_CASE("load series: the true pulse's 400-harmonic series, its Parseval tail 
                                                    << "); multipliers " << set_distance << " from the true pulse's");
 }
 
+TEST_CASE("crosscheck: with friction, an unstable point's growing response keeps the friction's direction",
+          "[transient][crosscheck]") {
+  // F̄ = 10 under the cosine load grows 954 a revolution: within a revolution the tip's lateral
+  // velocity passes the rim speed and would reverse the sliding. The crosscheck compares the linear
+  // equations the multipliers belong to, whose friction is a fixed multiple of F (theory.md §5.8),
+  // and which the friction's forcing leaves alone: the growth must still be the multiplier's.
+  const Scene s = paper_scene({"model.terms=8", "load.friction=0.5"});
+  CrosscheckOptions o;
+  o.fmax_over_fcr = {10};
+  o.revolutions = 8;
+  const CrosscheckPoint p = crosscheck(s, o).at(0);
+  INFO("cosine: Floquet " << p.floquet_cosine << " ± " << p.floquet_cosine_error << ", transient "
+                          << p.transient_cosine_growth << " ± " << p.transient_cosine_error);
+  CHECK(p.rkf45_max_abs_multiplier == Approx(p.floquet_cosine).epsilon(1e-7));  // independent of the friction
+  CHECK(p.transient_cosine_growth == Approx(p.rkf45_max_abs_multiplier).epsilon(1e-5));
+  CHECK(p.cosine_agrees());
+  CHECK(p.pulse_agrees());
+}
+
 TEST_CASE("crosscheck: five pulses a revolution, the true train on the whole model, as stability takes it",
           "[transient][crosscheck]") {
   // The paper blade at 16 terms, F̄ = 5, five half-sine pulses a revolution. Undamped and stable, so

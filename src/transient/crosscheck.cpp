@@ -17,7 +17,8 @@ namespace {
 
 // Growth per revolution (TransientResult::growth: the change of the state over each revolution)
 // of a transient started 1 µm off the rotating equilibrium in the lowest mode (so a parametric
-// instability has a seed), of the linear equations: not stopped at the small-deflection range. The
+// instability has a seed), of the linear equations: not stopped at the small-deflection range, the
+// friction's direction held however the growing response slides (as in the Floquet system). The
 // fast method on the model the Floquet multipliers use (`reduction`), so that the two share its
 // basis and reduction and differ in their methods only; the growth from the last revolution change
 // carried on for growth_continuation revolutions (transient.hpp).
@@ -36,6 +37,7 @@ GrowthFit transient_growth(const BladeModel& model, const Scene& scene, const Re
   o.tolerance = 1e-8;
   o.initial_state = x;
   o.max_lateral_over_length = HUGE_VAL;
+  o.hold_friction_direction = true;
   o.reduction = reduction;
   o.continue_growth = true;
   return run_transient(model, scene, o).growth;

@@ -83,7 +83,7 @@ TransientResult run_fast_transient(const BladeModel& model, const Scene& scene, 
     // accuracy is its step doubling's, and the self-check's); in free flight only damping works.
     if (contact) work += system.energy(x) - energy_before;
     x(2 * n) = work;
-    if (contact && friction) check_sliding(stepper, z, t, o);
+    if (contact && friction && !o.hold_friction_direction) check_sliding(stepper, z, t, o);
     if (log.sample(l, t, x)) break;
     // Without the small-deflection stop an unstable response would overflow: stop where its
     // vibration energy ½|y|² passes 1e200 J (the growth is carried on from there).

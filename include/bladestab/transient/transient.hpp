@@ -68,6 +68,10 @@ struct TransientOptions {
   // TransientChecks::max_axial_strain of it). Infinite: never stop (the linear equations' own
   // response, for growth rates).
   double max_lateral_over_length = 0.1;
+  // fast, force mode: hold the friction's direction (tanh = 1) whatever the sliding speed: the linear
+  // equations the Floquet multipliers belong to, for growth rates with max_lateral_over_length
+  // infinite (crosscheck); else a contact state sliding slower than 20 ε is refused.
+  bool hold_friction_direction = false;
   bool follower = false;  // the tip load follows the tip slope ψ = v'(L): F cos ψ axially, −F sin ψ laterally
   std::optional<Eigen::VectorXd> initial_state; // x = [f; ḟ]; default: the steady rotating equilibrium
   std::function<void(int, int)> progress;       // (revolutions done, total)
