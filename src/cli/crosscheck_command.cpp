@@ -60,6 +60,11 @@ void print_table(const Scene& scene, const std::vector<CrosscheckPoint>& result,
     fmt::print("{:>7} | {:>8} | {:>13.7f} {:>8.1e} | {:>16.7f} {:>8.1e} | {:>6} |\n", "", "pulse", p.floquet_pulse,
                p.floquet_pulse_error, p.transient_pulse_growth, p.transient_pulse_error, p.pulse_agrees() ? "yes" : "NO");
   }
+  for (const CrosscheckPoint& p : result) {
+    for (const auto& [load, omitted] : {std::pair{"cosine", p.transient_cosine_omitted}, {"pulse", p.transient_pulse_omitted}}) {
+      if (!omitted.empty()) fmt::print("F̄_max = {:g}, {}: the transient's growth is not resolved ({})\n", p.fmax_over_fcr, load, omitted);
+    }
+  }
   const int cosine_modes = result.empty() ? 0 : result.front().cosine_modes;
   const int pulse_modes = result.empty() ? 0 : result.front().pulse_modes;
   fmt::print("\nTransient growth: of the state's change over each whole revolution, fitted over the second half of\n"
@@ -96,6 +101,9 @@ std::vector<CrosscheckPoint> as_printed(std::vector<CrosscheckPoint> points, con
   return points;
 }
 
+// Why a growth fit is not meaningful, or null.
+Json omission(const std::string& omitted) { return omitted.empty() ? Json(nullptr) : Json(omitted); }
+
 // The answer as JSON: each point's Floquet and transient numbers for both loads, with their estimates.
 std::string crosscheck_json(const Scene& scene, const std::vector<CrosscheckPoint>& printed, double revolutions) {
   Json json = {{"scene", scene.source}, {"speed_rad_s", scene.operation.speed_rad_s},
@@ -110,6 +118,7 @@ std::string crosscheck_json(const Scene& scene, const std::vector<CrosscheckPoin
            {"floquet_error_estimate", p.floquet_cosine_error},
            {"transient_growth_per_revolution", p.transient_cosine_growth},
            {"transient_growth_error_estimate", p.transient_cosine_error},
+           {"transient_growth_omitted", omission(p.transient_cosine_omitted)},
            {"agree", p.cosine_agrees()},
            {"modes", p.cosine_modes},
            {"rkf45_monodromy_max_abs_multiplier", p.rkf45_max_abs_multiplier},
@@ -119,6 +128,7 @@ std::string crosscheck_json(const Scene& scene, const std::vector<CrosscheckPoin
            {"floquet_error_estimate", p.floquet_pulse_error},
            {"transient_growth_per_revolution", p.transient_pulse_growth},
            {"transient_growth_error_estimate", p.transient_pulse_error},
+           {"transient_growth_omitted", omission(p.transient_pulse_omitted)},
            {"agree", p.pulse_agrees()},
            {"modes", p.pulse_modes}}}});
   }
@@ -177,7 +187,7 @@ Command register_crosscheck(CLI::App& app) {
       case OutputFormat::table: print_table(scene, result, *revolutions);
     }
     if (disagreeing > 0) {
-      throw std::runtime_error(fmt::format("crosscheck: {} of {} points disagree beyond their error estimates",
+      throw std::runtime_error(fmt::format("crosscheck: {} of {} points disagree beyond their error estimates or have a transient growth the fit does not resolve",
                                            disagreeing, result.size()));
     }
   };

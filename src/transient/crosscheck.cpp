@@ -58,12 +58,14 @@ bool agree_per_load_period(double g, double e, double rho, double rho_error, dou
 }  // namespace
 
 bool CrosscheckPoint::cosine_agrees() const {
-  return agree_per_load_period(transient_cosine_growth, transient_cosine_error, floquet_cosine, floquet_cosine_error,
+  return transient_cosine_omitted.empty() &&
+         agree_per_load_period(transient_cosine_growth, transient_cosine_error, floquet_cosine, floquet_cosine_error,
                                load_periods_per_revolution);
 }
 
 bool CrosscheckPoint::pulse_agrees() const {
-  return agree_per_load_period(transient_pulse_growth, transient_pulse_error, floquet_pulse, floquet_pulse_error,
+  return transient_pulse_omitted.empty() &&
+         agree_per_load_period(transient_pulse_growth, transient_pulse_error, floquet_pulse, floquet_pulse_error,
                                load_periods_per_revolution);
 }
 
@@ -84,6 +86,7 @@ void cosine_rows(const BladeModel& model, const Scene& scene, const CrosscheckOp
   const GrowthFit growth = transient_growth(model, cosine, scene.model.reduction, o.revolutions);
   p.transient_cosine_growth = growth.growth;
   p.transient_cosine_error = growth.error_estimate;
+  p.transient_cosine_omitted = growth.omitted;
   // Entry by entry Φ(T) converges more slowly than max|ρ| (the stiff modes' phases): RKF45 at
   // 1e-8 and 2048 Magnus steps agree to ~1e-5, where max|ρ| agrees to ~1e-10.
   const Eigen::MatrixXd phi_rkf = rkf45_monodromy(cosine_system, 1e-8);
@@ -121,6 +124,7 @@ void pulse_rows(const BladeModel& model, const Scene& scene, const CrosscheckOpt
   const GrowthFit growth = transient_growth(model, pulse, reduction, o.revolutions);
   p.transient_pulse_growth = growth.growth;
   p.transient_pulse_error = growth.error_estimate;
+  p.transient_pulse_omitted = growth.omitted;
 }
 
 // One point of the cross-check at F̄_max = fbar.

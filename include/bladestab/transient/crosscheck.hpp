@@ -13,6 +13,7 @@
 // independent integration through its first contact, each growth carries an error estimate
 // (GrowthFit), and a point agrees when |growth − max|ρ|| is within the sum of the two estimates.
 #include <functional>
+#include <string>
 #include <vector>
 
 #include "bladestab/scene/scene.hpp"
@@ -27,6 +28,9 @@ struct CrosscheckPoint {
   double monodromy_difference = 0;       // ‖Φ_RKF45 − Φ_Magnus‖ / ‖Φ_Magnus‖ (Frobenius)
   // True pulse train: its multipliers by the monodromy through each contact.
   double floquet_pulse = 0, floquet_pulse_error = 0, transient_pulse_growth = 0, transient_pulse_error = 0;
+  // GrowthFit::omitted of each transient: why its growth fit is not meaningful (empty: it is). A
+  // row whose growth is not resolved does not agree.
+  std::string transient_cosine_omitted, transient_pulse_omitted;
   // The Floquet multipliers are per load period, the transient growth per revolution: a revolution
   // holds this many load periods (load.pulses_per_rev), and the growth is compared as its root.
   double load_periods_per_revolution = 1;
