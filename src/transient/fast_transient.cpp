@@ -1,6 +1,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iterator>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -21,32 +22,6 @@ void check_sliding(const ExactStepper& stepper, const Eigen::VectorXd& z, double
                                      "where the friction's direction is not fixed; use the rkf45 method",
                                      t, v_rel));
   }
-}
-
-// After a stop: the change of the state over the last whole revolution, z(T_K) − z(T_{K−1}),
-// carried on through `count` more revolutions by that revolution's own propagators (`revolution`:
-// its landings), and its energy norm after each (½|y|² is the energy in these coordinates). Only
-// the homogeneous part acts on a change (its last entry is 0), so this continues the revolution
-// changes of the linear equations as the run would have without the small-deflection limit.
-std::vector<double> continued_changes(ExactStepper& stepper, Eigen::VectorXd change, const std::vector<Landing>& revolution,
-                                      double start, int count) {
-  std::vector<double> norms;
-  double ignored_work = 0, scale = change.norm() / std::sqrt(2.0);
-  change /= scale;
-  // Each revolution from a unit change, its norm times the norm before: no overflow until the
-  // product passes 1e300, where the continuation ends.
-  for (int k = 0; k < count && scale < 1e300; ++k) {
-    double t = start;
-    for (const Landing& l : revolution) {
-      stepper.step(t, l.t, change, ignored_work);
-      t = l.t;
-    }
-    const double norm = change.norm();
-    change /= norm;
-    scale *= norm;
-    norms.push_back(scale);
-  }
-  return norms;
 }
 
 }  // namespace
@@ -105,7 +80,9 @@ TransientResult run_fast_transient(const BladeModel& model, const Scene& scene, 
     resolved_change(resolved_change.size() - 1) = 0;  // the augmentation's constant, not a change (z is modal: 2·modes + 1)
     // Every revolution of the train has the last one's propagators: the resolved change is carried
     // on by them whichever revolution it came from.
-    result.continued_change = continued_changes(stepper, resolved_change, last, a, growth_continuation);
+    Continuation continued = continue_change(stepper, resolved_change, last, a);
+    result.continued_change = std::move(continued.norms);
+    result.continuation_drift = continued.drift;
   }
   result.final_state = x.head(2 * n);
   result.exact = stepper.statistics();

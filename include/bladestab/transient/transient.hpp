@@ -153,6 +153,9 @@ struct TransientResult {
   // fast, stopped (or continue_growth): revolution_change continued past the end (continued_changes
   // in fast_transient.cpp) for growth_continuation revolutions, to fit the growth on.
   std::vector<double> continued_change;
+  // How far the fitted growth moved at the continuation's last doubling (continue_change in
+  // growth_continuation.cpp): part of the growth's estimate.
+  double continuation_drift = 0;
   GrowthFit growth;  // of revolution_change (or continued_change): the growth per revolution, when meaningful
 };
 
@@ -160,6 +163,9 @@ struct TransientResult {
 // other multipliers' share fades like (|ρ₂|/max|ρ|)^k, to 1e-10 of it in 60 revolutions where
 // max|ρ| ≥ 1.5 |ρ₂|.
 constexpr int growth_continuation = 60;
+// The most revolutions the continuation doubles to (a power iteration with matrix–vector products:
+// 7680 of them take ~20 ms at 16 terms).
+constexpr int max_growth_continuation = 60 << 7;
 // Which of a run's revolution changes, taken in order, are resolved: one below 1e-12 of the largest
 // before it is the difference of two states that agree to their rounding (a decaying change ends
 // at exactly 0).
