@@ -100,3 +100,11 @@ TEST_CASE("impulse: boundaries and map refuse its Fourier series with the one-li
                                             "no convergent Fourier series"});
   }
 }
+
+TEST_CASE("impulse: crosscheck refuses it, a rectangle in the time domain and a jump in the frequency domain",
+          "[impulse][bad_input][crosscheck]") {
+  // Compared, the two would differ as loads (the paper blade at 16 terms, F̄ = 5: the jump's max|ρ|
+  // 1.0735 against the 0.2 ms rectangle's growth 1.0103), not as methods.
+  testing_support::expect_rejected({"crosscheck", testing_support::paper_scene_path(), "--set", "load.profile=impulse"},
+                                   {"load.profile = \"impulse\"", "jump limit", "load.profile = \"rectangular\""});
+}

@@ -196,7 +196,7 @@ void summary_fields(Json& json, const TransientResult& r, const TransientSummary
     json["growth_per_revolution"] = r.growth.growth;
     json["growth_per_revolution_ln_standard_error"] = r.growth.standard_error;
     json["growth_per_revolution_error_estimate"] = r.growth.error_estimate;
-    if (!r.continued_change.empty()) json["growth_continued_revolutions"] = r.continued_change.size();
+    if (!r.continued_log_change.empty()) json["growth_continued_revolutions"] = r.continued_log_change.size();
   } else {
     json["growth_per_revolution"] = nullptr;
     json["growth_per_revolution_omitted"] = r.growth.omitted;

@@ -4,6 +4,7 @@
 #include <mutex>
 
 #include "bladestab/base/constants.hpp"
+#include "bladestab/base/input_error.hpp"
 #include "bladestab/ltp/floquet.hpp"
 #include "bladestab/ltp/monodromy.hpp"
 #include "bladestab/stability/periodic_system.hpp"
@@ -143,6 +144,13 @@ CrosscheckPoint crosscheck_point(const BladeModel& model, const Scene& base, dou
 }  // namespace
 
 std::vector<CrosscheckPoint> crosscheck(const Scene& base, const CrosscheckOptions& o) {
+  // The time domain integrates an impulse as a rectangle t_c long, the frequency domain takes its
+  // jump limit (docs/theory.md §3.2): two loads, where the check compares two methods on one.
+  if (base.load.profile == PulseProfile::impulse) {
+    throw InputError("load.profile = \"impulse\": the transients integrate it as a rectangle t_c long and the Floquet "
+                     "analysis takes its jump limit, two different loads; crosscheck compares its methods on one: "
+                     "give load.profile = \"rectangular\" for the rectangle");
+  }
   const BladeModel model = assemble_model(base);
   std::mutex progress_lock;
   int done = 0;

@@ -81,7 +81,7 @@ TransientResult run_fast_transient(const BladeModel& model, const Scene& scene, 
     // Every revolution of the train has the last one's propagators: the resolved change is carried
     // on by them whichever revolution it came from.
     Continuation continued = continue_change(stepper, resolved_change, last, a);
-    result.continued_change = std::move(continued.norms);
+    result.continued_log_change = std::move(continued.log_norms);
     result.continuation_drift = continued.drift;
   }
   result.final_state = x.head(2 * n);

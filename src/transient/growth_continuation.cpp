@@ -1,5 +1,4 @@
 #include <cmath>
-#include <optional>
 
 #include "bladestab/transient/response_analysis.hpp"
 #include "transient_parts.hpp"
@@ -42,28 +41,21 @@ Continuation continue_change(ExactStepper& stepper, const Eigen::VectorXd& chang
   const Eigen::MatrixXd map = revolution_map(stepper, revolution, start);
   Continuation c;
   Eigen::VectorXd d = change.head(map.rows()), next(map.rows());
-  // Each revolution from a unit change, its norm times the norm before (½|y|² is the energy in these
-  // coordinates): the product ends the continuation where it leaves [1e-300, 1e300].
-  double scale = d.norm() / std::sqrt(2.0);
+  // Each revolution from a unit change; the logarithms of the norms add up (½|y|² is the energy in
+  // these coordinates).
+  double log_scale = std::log(d.norm() / std::sqrt(2.0));
   d.normalize();
-  std::optional<double> before;
-  for (int length = growth_continuation; length <= max_growth_continuation; length *= 2) {
-    while (static_cast<int>(c.norms.size()) < length && scale < 1e300 && scale > 1e-300) {
-      next.noalias() = map * d;
-      const double norm = next.norm();
-      if (!(norm > 0)) break;
-      d = next / norm;
-      scale *= norm;
-      c.norms.push_back(scale);
-    }
-    const GrowthFit fit = fit_growth(c.norms);
-    if (!fit.omitted.empty() || static_cast<int>(c.norms.size()) < length) break;
-    if (before) {
-      c.drift = std::abs(fit.growth - *before);
-      if (c.drift <= fit.error_estimate) break;
-    }
-    before = fit.growth;
+  for (int k = 0; k < max_growth_continuation; ++k) {
+    next.noalias() = map * d;
+    const double norm = next.norm();
+    if (!(norm > 0 && std::isfinite(norm))) break;
+    d = next / norm;
+    log_scale += std::log(norm);
+    c.log_norms.push_back(log_scale);
   }
+  const std::vector<double> half(c.log_norms.begin(), c.log_norms.begin() + static_cast<std::ptrdiff_t>(c.log_norms.size() / 2));
+  const GrowthFit whole = fit_log_growth(c.log_norms), first_half = fit_log_growth(half);
+  if (whole.omitted.empty() && first_half.omitted.empty()) c.drift = std::abs(whole.growth - first_half.growth);
   return c;
 }
 

@@ -58,37 +58,57 @@ std::optional<double> dominant_frequency(const Spectrum& s, double min_hz) {
 }
 
 GrowthFit fit_growth(const std::vector<double>& a, int min_revolutions, double max_standard_error) {
+  std::vector<double> logs;
+  for (std::size_t k = a.size() / 2; k < a.size(); ++k) {
+    if (!(a[k] > 0 && std::isfinite(a[k]))) {
+      GrowthFit fit;
+      fit.omitted = a.size() < static_cast<std::size_t>(min_revolutions)
+                        ? fmt::format("{} whole revolutions; the fit needs {}", a.size(), min_revolutions)
+                        : fmt::format("revolution {} changed the state by {}: nothing to fit", k + 1, a[k]);
+      return fit;
+    }
+  }
+  for (const double x : a) logs.push_back(x > 0 ? std::log(x) : 0.0);  // the first half: only counted
+  return fit_log_growth(logs, min_revolutions, max_standard_error);
+}
+
+GrowthFit fit_log_growth(const std::vector<double>& y, int min_revolutions, double max_standard_error) {
   GrowthFit fit;
-  const int count = static_cast<int>(a.size());
+  const int count = static_cast<int>(y.size());
   if (count < min_revolutions) {
     fit.omitted = fmt::format("{} whole revolutions; the fit needs {}", count, min_revolutions);
     return fit;
   }
   const int first = count / 2, m = count - first;
   double sx = 0, sy = 0, sxx = 0, sxy = 0;
-  for (int k = first; k < count; ++k) {
-    if (!(a[k] > 0 && std::isfinite(a[k]))) {
-      fit.omitted = fmt::format("revolution {} changed the state by {}: nothing to fit", k + 1, a[k]);
-      return fit;
-    }
-    const double y = std::log(a[k]);
-    sx += k, sy += y, sxx += double(k) * k, sxy += k * y;
-  }
+  for (int k = first; k < count; ++k) sx += k, sy += y[k], sxx += double(k) * k, sxy += k * y[k];
   // Least squares y = α + βk; the standard error of β from the residual with m − 2 degrees of freedom.
   const double Sxx = sxx - sx * sx / m, slope = (sxy - sx * sy / m) / Sxx, intercept = (sy - slope * sx) / m;
   double residual = 0;
-  for (int k = first; k < count; ++k) residual += std::pow(std::log(a[k]) - intercept - slope * k, 2);
+  for (int k = first; k < count; ++k) {
+    const double r = y[k] - intercept - slope * k;
+    residual += r * r;
+    fit.largest_residual = std::max(fit.largest_residual, std::abs(r));
+  }
   fit.growth = std::exp(slope);
   fit.standard_error = std::sqrt(residual / (m - 2) / Sxx);
   // Also the spread of the single revolutions' ratios about the fit: a short run's decaying
   // multipliers bias the slope without scattering the points.
   fit.error_estimate = fit.growth * std::expm1(2 * fit.standard_error);
-  for (int k = first + 1; k < count; ++k) fit.error_estimate = std::max(fit.error_estimate, std::abs(a[k] / a[k - 1] - fit.growth));
+  for (int k = first + 1; k < count; ++k) fit.error_estimate = std::max(fit.error_estimate, std::abs(std::exp(y[k] - y[k - 1]) - fit.growth));
   if (!(fit.standard_error <= max_standard_error)) {
     fit.omitted = fmt::format("not a steady exponential: the fit over revolutions {} to {} leaves ln growth uncertain by {:.2g} "
                               "(allowed {:g}); run more revolutions",
                               first + 1, count, fit.standard_error, max_standard_error);
   }
+  return fit;
+}
+
+GrowthFit fit_continued_growth(const std::vector<double>& y, double drift) {
+  GrowthFit fit = fit_log_growth(y);
+  const double fitted = static_cast<double>(y.size() - y.size() / 2);
+  const double slope_error = std::max(2 * fit.standard_error, 3 * fit.largest_residual / fitted);
+  if (fit.omitted.empty()) fit.error_estimate = fit.growth * std::expm1(slope_error) + drift;
   return fit;
 }
 

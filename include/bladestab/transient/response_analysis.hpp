@@ -30,6 +30,7 @@ std::optional<double> dominant_frequency(const Spectrum& spectrum, double min_hz
 struct GrowthFit {
   double growth = 1;          // per revolution
   double standard_error = 0;  // of ln growth
+  double largest_residual = 0;  // of ln a_k about the fitted line, over the fitted half
   double error_estimate = 0;  // of growth, absolute: what the fit leaves open (see fit_growth)
   std::string omitted;        // empty: meaningful
 };
@@ -37,6 +38,20 @@ struct GrowthFit {
 // distance of a single revolution's ratio a_k/a_{k−1} in the fitted half from the growth.
 GrowthFit fit_growth(const std::vector<double>& per_revolution, int min_revolutions = 6,
                      double max_standard_error = 1e-2);
+
+// The same fit of ln a_k given as the logarithms y_k = ln a_k (a continuation of thousands of
+// revolutions spans more than the range of doubles).
+GrowthFit fit_log_growth(const std::vector<double>& log_per_revolution, int min_revolutions = 6,
+                         double max_standard_error = 1e-2);
+
+// The growth of a long continuation (growth_continuation.cpp: thousands of revolutions of a
+// revolution's map) from the logarithms of its changes: fit_log_growth's slope. A beat of multipliers
+// of one modulus keeps ln a_k within a band about a line, its residuals correlated, so the slope's
+// standard error understates it: its estimate is the larger of twice that and 3R/m (the most a
+// least-squares slope over m points can move for residuals bounded by R), plus `drift` (how far the
+// fit moved from the continuation's first half to the whole); not the single revolutions' spread,
+// which the beat keeps at its own size however long the continuation while the slope averages it out.
+GrowthFit fit_continued_growth(const std::vector<double>& log_per_revolution, double drift);
 
 // The growth of a run cut short (the response left the model): the last ratio a_K/a_{K−1}, which
 // converges to max|ρ| as the other multipliers' share fades like (|ρ₂|/max|ρ|)^K; error_estimate

@@ -52,7 +52,7 @@ struct TransientOptions {
   std::optional<ReductionSpec> reduction;
   int threads = 1;  // fast: the contact pieces integrated side by side
   // fast: fit the growth on the last revolution change carried on past the run's end as after a
-  // stop (continued_change), where the run is too short for the other multipliers to fade.
+  // stop (continued_log_change), where the run is too short for the other multipliers to fade.
   bool continue_growth = false;
   double revolutions = 10;
   bool adaptive = true;
@@ -150,21 +150,21 @@ struct TransientResult {
   // ‖x((k+1)T) − x(kT)‖ for each whole revolution k, in the energy norm √(½Δfᵀ K(Ω) Δf + ½Δḟᵀ M Δḟ):
   // states at the ends of the integration, not interpolated, so independent of the output sampling.
   std::vector<double> revolution_change;
-  // fast, stopped (or continue_growth): revolution_change continued past the end (continued_changes
-  // in fast_transient.cpp) for growth_continuation revolutions, to fit the growth on.
-  std::vector<double> continued_change;
-  // How far the fitted growth moved at the continuation's last doubling (continue_change in
-  // growth_continuation.cpp): part of the growth's estimate.
+  // fast, stopped (or continue_growth): the natural logarithms of revolution_change continued past
+  // the end (continue_change in growth_continuation.cpp) for max_growth_continuation revolutions,
+  // to fit the growth on.
+  std::vector<double> continued_log_change;
+  // How far the fitted growth moved over the continuation's last half: part of the growth's estimate.
   double continuation_drift = 0;
-  GrowthFit growth;  // of revolution_change (or continued_change): the growth per revolution, when meaningful
+  GrowthFit growth;  // of revolution_change (or continued_log_change): the growth per revolution, when meaningful
 };
 
 // Revolutions a stopped fast run's last revolution change is carried on for its growth fit: the
 // other multipliers' share fades like (|ρ₂|/max|ρ|)^k, to 1e-10 of it in 60 revolutions where
 // max|ρ| ≥ 1.5 |ρ₂|.
 constexpr int growth_continuation = 60;
-// The most revolutions the continuation doubles to (a power iteration with matrix–vector products:
-// 7680 of them take ~20 ms at 16 terms).
+// The revolutions the continuation runs (a power iteration with matrix–vector products: ~20 ms at
+// 16 terms): enough for a multiplier 0.5 % above the others to dominate them by e^38.
 constexpr int max_growth_continuation = 60 << 7;
 // Which of a run's revolution changes, taken in order, are resolved: one below 1e-12 of the largest
 // before it is the difference of two states that agree to their rounding (a decaying change ends
