@@ -65,16 +65,17 @@ void print_table(const Scene& scene, const std::vector<CrosscheckPoint>& result,
       if (!omitted.empty()) fmt::print("F̄_max = {:g}, {}: the transient's growth is not resolved ({})\n", p.fmax_over_fcr, load, omitted);
     }
   }
-  const int cosine_modes = result.empty() ? 0 : result.front().cosine_modes;
-  const int pulse_modes = result.empty() ? 0 : result.front().pulse_modes;
-  fmt::print("\nTransient growth: of the state's change over each whole revolution, fitted over the second half of\n"
-             "the run (the forced periodic response cancels in the change), its estimate twice the fit's standard\n"
-             "error plus the contact propagators' own. Each transient runs the fast method on the model its Floquet\n"
+  const CrosscheckPoint first = result.empty() ? CrosscheckPoint{} : result.front();
+  fmt::print("\nTransient growth: of the state's change over each whole revolution (the forced periodic response\n"
+             "cancels in it), carried on past the run by the revolution's own propagators for {} revolutions and\n"
+             "fitted over their second half; its estimate bounds the fitted slope (twice its standard error, or 3R/m\n"
+             "where a beat keeps the residuals within R), adds how far it moved from the first half, and the contact\n"
+             "propagators' own error. Each transient runs the fast method on the model its Floquet\n"
              "multipliers use, so the two share its basis and reduction error and differ in their methods only:\n"
              "the cosine rows on {} modes (model.reduction), the pulse rows on {} modes of {} (the model\n"
              "`stability` analyses the true train on). Floquet: auto method for the cosine load, the monodromy\n"
              "through each contact for the pulse train (as `stability` with load.approximation = \"exact\").\n",
-             cosine_modes, pulse_modes, scene.model.terms > 0 ? assemble_model(scene).layout.size() : 0);
+             growth_continuation, first.cosine_modes, first.pulse_modes, first.model_modes);
   if (!result.empty() && result.front().load_periods_per_revolution != 1) {
     fmt::print("The multipliers are per load period, {:g} of them a revolution: the growth per revolution agrees\n"
                "with max|ρ| when its {:g}th root does.\n",

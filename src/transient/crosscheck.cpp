@@ -120,6 +120,7 @@ void pulse_rows(const BladeModel& model, const Scene& scene, const CrosscheckOpt
   const PeriodicSystem system = periodic_system(model, pulse, exact_pulse_mean(train), reduction);
   const FloquetResult ft = pulse_train_multipliers(system, periodic_pulse(train), {FloquetMethod::monodromy, 0, o.tolerance});
   p.pulse_modes = system.kept_modes;
+  p.model_modes = system.all_modes;
   p.floquet_pulse = ft.max_abs_multiplier;
   p.floquet_pulse_error = ft.error_estimate;
   const GrowthFit growth = transient_growth(model, pulse, reduction, o.revolutions);

@@ -45,7 +45,7 @@ Continuation continue_change(ExactStepper& stepper, const Eigen::VectorXd& chang
   // these coordinates).
   double log_scale = std::log(d.norm() / std::sqrt(2.0));
   d.normalize();
-  for (int k = 0; k < max_growth_continuation; ++k) {
+  for (int k = 0; k < growth_continuation; ++k) {
     next.noalias() = map * d;
     const double norm = next.norm();
     if (!(norm > 0 && std::isfinite(norm))) break;

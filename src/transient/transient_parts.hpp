@@ -102,7 +102,7 @@ struct Continuation {
 };
 // The change z(T_K) − z(T_{K−1}) of the last whole revolution (`revolution`: its landings, from
 // `start`) carried on by that revolution's own propagators, as the linear equations would carry it
-// without the small-deflection stop, for max_growth_continuation revolutions: a multiplier only a
+// without the small-deflection stop, for growth_continuation revolutions: a multiplier only a
 // little above the others (or above a neutral 1) emerges slowly.
 Continuation continue_change(ExactStepper& stepper, const Eigen::VectorXd& change, const std::vector<Landing>& revolution,
                              double start);

@@ -36,7 +36,7 @@ struct CrosscheckPoint {
   double load_periods_per_revolution = 1;
   // The modes each row's model keeps (PeriodicSystem::kept_modes): the cosine rows on the scene's
   // reduction, the pulse rows on the model `stability` takes for the true train (crosscheck.cpp).
-  int cosine_modes = 0, pulse_modes = 0;
+  int cosine_modes = 0, pulse_modes = 0, model_modes = 0;  // model_modes: the whole Ritz model's dofs
   bool cosine_agrees() const;
   bool pulse_agrees() const;
 };

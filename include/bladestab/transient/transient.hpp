@@ -151,21 +151,19 @@ struct TransientResult {
   // states at the ends of the integration, not interpolated, so independent of the output sampling.
   std::vector<double> revolution_change;
   // fast, stopped (or continue_growth): the natural logarithms of revolution_change continued past
-  // the end (continue_change in growth_continuation.cpp) for max_growth_continuation revolutions,
-  // to fit the growth on.
+  // the end (continue_change in growth_continuation.cpp) for growth_continuation revolutions, to
+  // fit the growth on.
   std::vector<double> continued_log_change;
-  // How far the fitted growth moved over the continuation's last half: part of the growth's estimate.
+  // How far the fitted growth moved from the continuation's first half to the whole: part of the
+  // growth's estimate.
   double continuation_drift = 0;
   GrowthFit growth;  // of revolution_change (or continued_log_change): the growth per revolution, when meaningful
 };
 
-// Revolutions a stopped fast run's last revolution change is carried on for its growth fit: the
-// other multipliers' share fades like (|ρ₂|/max|ρ|)^k, to 1e-10 of it in 60 revolutions where
-// max|ρ| ≥ 1.5 |ρ₂|.
-constexpr int growth_continuation = 60;
-// The revolutions the continuation runs (a power iteration with matrix–vector products: ~20 ms at
-// 16 terms): enough for a multiplier 0.5 % above the others to dominate them by e^38.
-constexpr int max_growth_continuation = 60 << 7;
+// Revolutions a stopped fast run's last revolution change is carried on for its growth fit (a
+// power iteration with matrix–vector products: ~20 ms at 16 terms): the other multipliers' share
+// fades like (|ρ₂|/max|ρ|)^k, by e^38 where max|ρ| is 0.5 % above |ρ₂|.
+constexpr int growth_continuation = 7680;
 // Which of a run's revolution changes, taken in order, are resolved: one below 1e-12 of the largest
 // before it is the difference of two states that agree to their rounding (a decaying change ends
 // at exactly 0).
