@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <mutex>
+#include <utility>
 
 #include "bladestab/base/constants.hpp"
 #include "bladestab/base/input_error.hpp"
@@ -96,28 +97,29 @@ void cosine_rows(const BladeModel& model, const Scene& scene, const CrosscheckOp
   p.monodromy_difference = (phi_rkf - phi_magnus).norm() / phi_magnus.norm();
 }
 
-// The reduction the true pulse is analysed on: the scene's where it names one (a kind, or the
-// automatic reduction's vectors), else the whole Ritz model where `stability` takes it
-// (true_train_on_whole_model), so that the two commands answer for the same model.
-ReductionSpec pulse_reduction(const BladeModel& model, const Scene& pulse) {
+// The true pulse train's system and the reduction it is built on: the scene's where it names one
+// (a kind, or the automatic reduction's vectors), else the whole Ritz model where `stability` takes
+// it (true_train_on_whole_model), so that the two commands answer for the same model.
+std::pair<PeriodicSystem, ReductionSpec> pulse_system(const BladeModel& model, const Scene& pulse, const PulseTrain& train) {
+  const LoadSeries mean = exact_pulse_mean(train);
   const ReductionSpec& r = pulse.model.reduction;
-  if (r.kind != ReductionKind::automatic || r.vectors > 0) return r;
+  if (r.kind != ReductionKind::automatic || r.vectors > 0) return {periodic_system(model, pulse, mean, r), r};
   const ReductionSpec whole{ReductionKind::none, 0, 0};
-  const PeriodicSystem sys = periodic_system(model, pulse, exact_pulse_mean(pulse_train(pulse)), whole);
-  return true_train_on_whole_model(sys, pulse_train(pulse)) ? whole : r;
+  PeriodicSystem system = periodic_system(model, pulse, mean, whole);
+  if (true_train_on_whole_model(system, train)) return {std::move(system), whole};
+  return {periodic_system(model, pulse, mean, r), r};
 }
 
 // The true pulse train: its multipliers by the monodromy through each contact (pulse_monodromy.hpp,
 // as `stability` with load.approximation = "exact" takes them) and its transient, both on
-// pulse_reduction's model. Its Fourier series is left out: on the whole model a series needs the
+// pulse_system's model. Its Fourier series is left out: on the whole model a series needs the
 // Magnus steps of the stiffest mode over the whole period (16,384 a revolution for the paper blade
 // at 16 terms, 3 s a point), and on a reduction it can open a tongue the model does not have.
 void pulse_rows(const BladeModel& model, const Scene& scene, const CrosscheckOptions& o, CrosscheckPoint& p) {
   Scene pulse = scene;
   pulse.load.approximation = LoadApproximation::exact;
-  const ReductionSpec reduction = pulse_reduction(model, pulse);
   const PulseTrain train = pulse_train(pulse);
-  const PeriodicSystem system = periodic_system(model, pulse, exact_pulse_mean(train), reduction);
+  const auto [system, reduction] = pulse_system(model, pulse, train);
   const FloquetResult ft = pulse_train_multipliers(system, periodic_pulse(train), {FloquetMethod::monodromy, 0, o.tolerance});
   p.pulse_modes = system.kept_modes;
   p.model_modes = system.all_modes;

@@ -1,7 +1,6 @@
 #include <algorithm>
 #include <cmath>
 #include <iterator>
-#include <utility>
 
 #include <fmt/format.h>
 
@@ -80,9 +79,7 @@ TransientResult run_fast_transient(const BladeModel& model, const Scene& scene, 
     resolved_change(resolved_change.size() - 1) = 0;  // the augmentation's constant, not a change (z is modal: 2·modes + 1)
     // Every revolution of the train has the last one's propagators: the resolved change is carried
     // on by them whichever revolution it came from.
-    Continuation continued = continue_change(stepper, resolved_change, last, a);
-    result.continued_log_change = std::move(continued.log_norms);
-    result.continuation_drift = continued.drift;
+    result.continued_log_change = continue_change(stepper, resolved_change, last, a);
   }
   result.final_state = x.head(2 * n);
   result.exact = stepper.statistics();

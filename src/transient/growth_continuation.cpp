@@ -1,6 +1,5 @@
 #include <cmath>
 
-#include "bladestab/transient/response_analysis.hpp"
 #include "transient_parts.hpp"
 
 namespace bladestab::detail {
@@ -36,10 +35,10 @@ Eigen::MatrixXd revolution_map(ExactStepper& stepper, const std::vector<Landing>
 
 }  // namespace
 
-Continuation continue_change(ExactStepper& stepper, const Eigen::VectorXd& change, const std::vector<Landing>& revolution,
+std::vector<double> continue_change(ExactStepper& stepper, const Eigen::VectorXd& change, const std::vector<Landing>& revolution,
                              double start) {
   const Eigen::MatrixXd map = revolution_map(stepper, revolution, start);
-  Continuation c;
+  std::vector<double> log_norms;
   Eigen::VectorXd d = change.head(map.rows()), next(map.rows());
   // Each revolution from a unit change; the logarithms of the norms add up (½|y|² is the energy in
   // these coordinates).
@@ -51,12 +50,9 @@ Continuation continue_change(ExactStepper& stepper, const Eigen::VectorXd& chang
     if (!(norm > 0 && std::isfinite(norm))) break;
     d = next / norm;
     log_scale += std::log(norm);
-    c.log_norms.push_back(log_scale);
+    log_norms.push_back(log_scale);
   }
-  const std::vector<double> half(c.log_norms.begin(), c.log_norms.begin() + static_cast<std::ptrdiff_t>(c.log_norms.size() / 2));
-  const GrowthFit whole = fit_log_growth(c.log_norms), first_half = fit_log_growth(half);
-  if (whole.omitted.empty() && first_half.omitted.empty()) c.drift = std::abs(whole.growth - first_half.growth);
-  return c;
+  return log_norms;
 }
 
 }  // namespace bladestab::detail

@@ -104,11 +104,14 @@ GrowthFit fit_log_growth(const std::vector<double>& y, int min_revolutions, doub
   return fit;
 }
 
-GrowthFit fit_continued_growth(const std::vector<double>& y, double drift) {
+GrowthFit fit_continued_growth(const std::vector<double>& y) {
   GrowthFit fit = fit_log_growth(y);
+  if (!fit.omitted.empty()) return fit;
+  const GrowthFit first_half = fit_log_growth({y.begin(), y.begin() + static_cast<std::ptrdiff_t>(y.size() / 2)});
+  const double drift = first_half.omitted.empty() ? std::abs(fit.growth - first_half.growth) : 0.0;
   const double fitted = static_cast<double>(y.size() - y.size() / 2);
   const double slope_error = std::max(2 * fit.standard_error, 3 * fit.largest_residual / fitted);
-  if (fit.omitted.empty()) fit.error_estimate = fit.growth * std::expm1(slope_error) + drift;
+  fit.error_estimate = fit.growth * std::expm1(slope_error) + drift;
   return fit;
 }
 

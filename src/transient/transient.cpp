@@ -155,7 +155,7 @@ std::vector<double> resolved_changes(const std::vector<double>& changes) {
 
 // The growth per revolution of the run's revolution changes.
 GrowthFit fit_run_growth(const TransientResult& r) {
-  GrowthFit fit = !r.continued_log_change.empty() ? fit_continued_growth(r.continued_log_change, r.continuation_drift)
+  GrowthFit fit = !r.continued_log_change.empty() ? fit_continued_growth(r.continued_log_change)
                   : r.stopped                     ? latest_growth(resolved_changes(r.revolution_change))
                                                   : fit_growth(resolved_changes(r.revolution_change));
   // The fast method's contact propagators' own error, once per piece of a revolution.

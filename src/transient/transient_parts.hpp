@@ -93,18 +93,12 @@ private:
   int total_revolutions_;
 };
 
-// A revolution change carried on past the run (growth_continuation.cpp): the logarithm of its
-// energy norm after each further revolution, and how far the fitted growth moved between the
-// continuation's first half and the whole.
-struct Continuation {
-  std::vector<double> log_norms;
-  double drift = 0;
-};
 // The change z(T_K) − z(T_{K−1}) of the last whole revolution (`revolution`: its landings, from
 // `start`) carried on by that revolution's own propagators, as the linear equations would carry it
-// without the small-deflection stop, for growth_continuation revolutions: a multiplier only a
-// little above the others (or above a neutral 1) emerges slowly.
-Continuation continue_change(ExactStepper& stepper, const Eigen::VectorXd& change, const std::vector<Landing>& revolution,
+// without the small-deflection stop, for growth_continuation revolutions (a multiplier only a
+// little above the others, or above a neutral 1, emerges slowly): the logarithm of its energy norm
+// after each (growth_continuation.cpp).
+std::vector<double> continue_change(ExactStepper& stepper, const Eigen::VectorXd& change, const std::vector<Landing>& revolution,
                              double start);
 
 // run_transient by RKF45.

@@ -48,10 +48,10 @@ GrowthFit fit_log_growth(const std::vector<double>& log_per_revolution, int min_
 // revolution's map) from the logarithms of its changes: fit_log_growth's slope. A beat of multipliers
 // of one modulus keeps ln a_k within a band about a line, its residuals correlated, so the slope's
 // standard error understates it: its estimate is the larger of twice that and 3R/m (the most a
-// least-squares slope over m points can move for residuals bounded by R), plus `drift` (how far the
-// fit moved from the continuation's first half to the whole); not the single revolutions' spread,
+// least-squares slope over m points can move for residuals bounded by R), plus how far the fitted
+// growth moved from the continuation's first half to the whole; not the single revolutions' spread,
 // which the beat keeps at its own size however long the continuation while the slope averages it out.
-GrowthFit fit_continued_growth(const std::vector<double>& log_per_revolution, double drift);
+GrowthFit fit_continued_growth(const std::vector<double>& log_per_revolution);
 
 // The growth of a run cut short (the response left the model): the last ratio a_K/a_{K−1}, which
 // converges to max|ρ| as the other multipliers' share fades like (|ρ₂|/max|ρ|)^K; error_estimate

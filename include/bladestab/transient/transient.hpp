@@ -154,9 +154,6 @@ struct TransientResult {
   // the end (continue_change in growth_continuation.cpp) for growth_continuation revolutions, to
   // fit the growth on.
   std::vector<double> continued_log_change;
-  // How far the fitted growth moved from the continuation's first half to the whole: part of the
-  // growth's estimate.
-  double continuation_drift = 0;
   GrowthFit growth;  // of revolution_change (or continued_log_change): the growth per revolution, when meaningful
 };
 
