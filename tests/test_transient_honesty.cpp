@@ -317,7 +317,7 @@ TEST_CASE("the CLI: an unstable run is a result: it stops at the small-deflectio
   REQUIRE(WIFEXITED(run.status));
   CHECK(WEXITSTATUS(run.status) == 0);
   CHECK(run.out.find("\"stopped\": {") != std::string::npos);
-  CHECK(run.out.find("beyond the small-deflection range of 0.1 L") != std::string::npos);
+  CHECK(run.out.find("passed the small-deflection range of 0.1 L") != std::string::npos);
   // The growth as printed, to its whole error, which covers the distance to the Floquet value.
   const testing_support::Json j = testing_support::parse_json(run.out);
   const double growth = j["growth_per_revolution"].number, error = j["error_estimate"]["growth_per_revolution"].number;

@@ -78,6 +78,7 @@ void add_statistics(StepStatistics& total, const StepStatistics& s, bool first) 
 struct StopRun {
   TransientStop stop;
   Eigen::VectorXd state;
+  double time_s;
 };
 
 }  // namespace
@@ -99,7 +100,7 @@ TransientResult run_rkf45_transient(const BladeModel& model, const Scene& scene,
   const StepControl control = step_control(o, result.fixed);
   const Recorder record = begin.recorder(model, system, o, result);
   const OdeObserver observe = [&record](double t, const Eigen::VectorXd& s) {
-    if (std::optional<TransientStop> stop = record(t, s)) throw StopRun{*stop, s};
+    if (std::optional<TransientStop> stop = record(t, s)) throw StopRun{*stop, s, t};
   };
   const int total_revs = static_cast<int>(std::ceil(o.revolutions));
   Eigen::VectorXd last_whole = x;
@@ -115,7 +116,7 @@ TransientResult run_rkf45_transient(const BladeModel& model, const Scene& scene,
     } catch (const StopRun& stop) {
       result.stopped = stop.stop;
       x = stop.state;
-      t_last = result.samples.back().time_s;
+      t_last = stop.time_s;
       break;
     }
     if (b == (r + 1) * begin.revolution) {

@@ -32,19 +32,23 @@ std::optional<TransientStop> Recorder::operator()(double t, const Eigen::VectorX
       applied.lateral});
   const double L = model_.blade.L;
   if (std::isinf(max_lateral_m_)) return std::nullopt;
+  std::optional<std::string> beyond;
   // Written as !(x ≤ limit) so that NaN stops the run too.
   if (!(std::abs(sample.tip_lateral_m) <= max_lateral_m_)) {
-    return TransientStop{revolutions, fmt::format("the lateral tip deflection reached {:.4g} m = {:.4g} L, beyond the "
-                                                  "small-deflection range of {:g} L",
-                                                  sample.tip_lateral_m, sample.tip_lateral_m / L, max_lateral_m_ / L)};
+    beyond = fmt::format("the lateral tip deflection passed the small-deflection range of {:g} L", max_lateral_m_ / L);
+  } else if (const double change = sample.tip_axial_m - static_axial_m_;
+             !(std::abs(change) <= TransientChecks::max_axial_strain * L)) {
+    beyond = fmt::format("the axial tip deflection changed by more than the elastic range's mean strain of {:g}",
+                         TransientChecks::max_axial_strain);
   }
-  const double axial_change = sample.tip_axial_m - static_axial_m_;
-  if (!(std::abs(axial_change) <= TransientChecks::max_axial_strain * L)) {
-    return TransientStop{revolutions, fmt::format("the axial tip deflection changed by {:.4g} m, a mean strain of "
-                                                  "{:.4g}, beyond the elastic range of {:g}",
-                                                  axial_change, axial_change / L, TransientChecks::max_axial_strain)};
-  }
-  return std::nullopt;
+  if (!beyond) return std::nullopt;
+  // A sample beyond the range is the linear model's, not the blade's (within one sample interval a
+  // diverging blade reaches any size): the history ends at the last sample within the range.
+  if (samples_.size() == 1) return TransientStop{revolutions, *beyond + " at the start"};
+  samples_.pop_back();
+  return TransientStop{revolutions, fmt::format("{} after revolution {:.4g}, its last sample within the range, where "
+                                                "the history ends",
+                                                *beyond, samples_.back().revolutions)};
 }
 
 double Recorder::revolutions_at(double t) const {

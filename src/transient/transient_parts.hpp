@@ -22,8 +22,8 @@ public:
   Recorder(const BladeModel& model, const TransientSystem& system, double revolution, int samples_per_revolution,
            double revolutions, double initial_energy, double max_lateral_m, double static_tip_axial_m,
            std::vector<TransientSample>& samples);
-  // Records the sample at t of the state s = [f; ḟ; W]; the stop when it lies beyond the
-  // small-deflection range (the sample is kept: the history ends there).
+  // Records the sample at t of the state s = [f; ḟ; W]; where it lies beyond the small-deflection or
+  // elastic range, the stop instead (the history ends at the sample before, the last within it).
   std::optional<TransientStop> operator()(double t, const Eigen::VectorXd& s) const;
 
 private:
