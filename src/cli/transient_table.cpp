@@ -120,11 +120,12 @@ void print_table(const Scene& scene, const BladeModel& model, const TransientOpt
                rounding ? fmt::format(" (E's own rounding: {:.2g} J)", s.checks.energy_rounding_j) : std::string());
     if (r.growth.omitted.empty()) {
       fmt::print("growth     {:.7g} ± {:.2g} per revolution ({})\n", r.growth.growth, r.growth.error_estimate,
-                 !r.stopped ? "the state's change over each revolution, second half of the run"
-                 : r.continued_log_change.empty()
-                     ? "the last two ratios of the state's change over a revolution before the stop"
-                     : fmt::format("the state's change over the last whole revolution before the stop, carried on "
-                                   "by that revolution's propagators for {} revolutions", r.continued_log_change.size()));
+                 !r.continued_log_change.empty()
+                     ? fmt::format("the state's change over the last whole revolution{}, carried on by that "
+                                   "revolution's propagators for {} revolutions",
+                                   r.stopped ? " before the stop" : "", r.continued_log_change.size())
+                 : r.stopped ? "the last two ratios of the state's change over a revolution before the stop"
+                             : "the state's change over each revolution, second half of the run");
     } else {
       fmt::print("growth     not reported: {}\n", r.growth.omitted);
     }

@@ -84,7 +84,7 @@ void cosine_rows(const BladeModel& model, const Scene& scene, const CrosscheckOp
   const FloquetResult fc = floquet_multipliers(cosine_system, {FloquetMethod::automatic, 0, o.tolerance});
   p.cosine_modes = cosine_system.kept_modes;
   p.floquet_cosine = fc.max_abs_multiplier;
-  p.floquet_cosine_error = fc.error_estimate;
+  p.floquet_cosine_error = std::max(fc.error_estimate, growth_rounding * fc.max_abs_multiplier);
   const GrowthFit growth = transient_growth(model, cosine, scene.model.reduction, o.revolutions);
   p.transient_cosine_growth = growth.growth;
   p.transient_cosine_error = growth.error_estimate;
@@ -124,7 +124,7 @@ void pulse_rows(const BladeModel& model, const Scene& scene, const CrosscheckOpt
   p.pulse_modes = system.kept_modes;
   p.model_modes = system.all_modes;
   p.floquet_pulse = ft.max_abs_multiplier;
-  p.floquet_pulse_error = ft.error_estimate;
+  p.floquet_pulse_error = std::max(ft.error_estimate, growth_rounding * ft.max_abs_multiplier);
   const GrowthFit growth = transient_growth(model, pulse, reduction, o.revolutions);
   p.transient_pulse_growth = growth.growth;
   p.transient_pulse_error = growth.error_estimate;

@@ -160,6 +160,9 @@ GrowthFit fit_run_growth(const TransientResult& r) {
                                                   : fit_growth(resolved_changes(r.revolution_change));
   // The fast method's contact propagators' own error, once per piece of a revolution.
   if (r.method == TransientMethod::fast) fit.error_estimate += fit.growth * r.exact.contact_pieces * r.exact.contact_error;
+  // Not below the rounding of a growth taken through a revolution's products in doubles
+  // (growth_rounding, response_analysis.hpp).
+  fit.error_estimate = std::max(fit.error_estimate, growth_rounding * fit.growth);
   return fit;
 }
 

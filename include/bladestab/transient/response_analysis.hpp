@@ -53,6 +53,13 @@ GrowthFit fit_log_growth(const std::vector<double>& log_per_revolution, int min_
 // which the beat keeps at its own size however long the continuation while the slope averages it out.
 GrowthFit fit_continued_growth(const std::vector<double>& log_per_revolution);
 
+// The relative rounding of a growth per revolution (or a multiplier) taken in doubles through a
+// revolution's propagators, as a floor of its stated error: the free flight's exponential over
+// most of a revolution scales and squares its stiff modes (‖A‖₁T ~ 1e4), and the continuation and
+// the monodromy's eigenvalue, each converged in its own steps, differ by up to 3.4e-11 (9 terms,
+// rectangular train: tests/test_fast_transient.cpp).
+inline constexpr double growth_rounding = 1e-10;
+
 // The growth of a run cut short (the response left the model): the last ratio a_K/a_{K−1}, which
 // converges to max|ρ| as the other multipliers' share fades like (|ρ₂|/max|ρ|)^K; error_estimate
 // the change from the ratio before, |a_K/a_{K−1} − a_{K−1}/a_{K−2}| (a geometric convergence

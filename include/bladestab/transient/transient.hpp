@@ -53,7 +53,7 @@ struct TransientOptions {
   int threads = 1;  // fast: the contact pieces integrated side by side
   // fast: fit the growth on the last revolution change carried on past the run's end as after a
   // stop (continued_log_change), where the run is too short for the other multipliers to fade.
-  bool continue_growth = false;
+  bool continue_growth = true;
   double revolutions = 10;
   bool adaptive = true;
   int steps_per_period = 0;  // fixed mode: steps per period of the stiffest mode (≥ 8, (54)); 0 = choose
