@@ -1,5 +1,6 @@
 // bladestab crosscheck SCENE: frequency domain against time domain, point by point.
 #include <algorithm>
+#include <cmath>
 
 #include <fmt/format.h>
 
@@ -45,6 +46,13 @@ void check_crosscheck_work(const Scene& scene, std::size_t points, double revolu
              transient_history_bytes(revolutions, 200));
 }
 
+// A value in fixed point to the decade of its error (as printed_digits.hpp rounds it), to at most
+// 7 decimals (finest_resolution of a multiplier near 1).
+std::string to_its_error(double value, double error) {
+  const int decimals = error > 0 ? std::clamp(static_cast<int>(-std::floor(std::log10(error))), 0, 7) : 7;
+  return fmt::format("{:.{}f}", value, decimals);
+}
+
 // The table: per point and load, Floquet max|ρ| and the transient growth, each with its estimate,
 // and whether they agree within the two.
 void print_table(const Scene& scene, const std::vector<CrosscheckPoint>& result, double revolutions) {
@@ -54,11 +62,16 @@ void print_table(const Scene& scene, const std::vector<CrosscheckPoint>& result,
   fmt::print("{:>7} | {:>8} | {:>13} {:>8} | {:>16} {:>8} | {:>6} | {:>15} {:>11}\n", "F̄_max", "load", "Floquet max|ρ|",
              "± est.", "transient growth", "± est.", "agree", "RKF45 Φ: max|ρ|", "‖ΔΦ‖/‖Φ‖");
   for (const CrosscheckPoint& p : result) {
-    fmt::print("{:>7g} | {:>8} | {:>13.7f} {:>8.1e} | {:>16.7f} {:>8.1e} | {:>6} | {:>15.7f} {:>11.1e}\n", p.fmax_over_fcr,
-               "cosine", p.floquet_cosine, p.floquet_cosine_error, p.transient_cosine_growth, p.transient_cosine_error,
-               p.cosine_agrees() ? "yes" : "NO", p.rkf45_max_abs_multiplier, p.monodromy_difference);
-    fmt::print("{:>7} | {:>8} | {:>13.7f} {:>8.1e} | {:>16.7f} {:>8.1e} | {:>6} |\n", "", "pulse", p.floquet_pulse,
-               p.floquet_pulse_error, p.transient_pulse_growth, p.transient_pulse_error, p.pulse_agrees() ? "yes" : "NO");
+    fmt::print("{:>7g} | {:>8} | {:>13} {:>8.1e} | {:>16} {:>8.1e} | {:>6} | {:>15} {:>11.1e}\n", p.fmax_over_fcr,
+               "cosine", to_its_error(p.floquet_cosine, p.floquet_cosine_error), p.floquet_cosine_error,
+               to_its_error(p.transient_cosine_growth, p.transient_cosine_error), p.transient_cosine_error,
+               p.cosine_agrees() ? "yes" : "NO",
+               to_its_error(p.rkf45_max_abs_multiplier, p.monodromy_difference * p.rkf45_max_abs_multiplier),
+               p.monodromy_difference);
+    fmt::print("{:>7} | {:>8} | {:>13} {:>8.1e} | {:>16} {:>8.1e} | {:>6} |\n", "", "pulse",
+               to_its_error(p.floquet_pulse, p.floquet_pulse_error), p.floquet_pulse_error,
+               to_its_error(p.transient_pulse_growth, p.transient_pulse_error), p.transient_pulse_error,
+               p.pulse_agrees() ? "yes" : "NO");
   }
   for (const CrosscheckPoint& p : result) {
     for (const auto& [load, omitted] : {std::pair{"cosine", p.transient_cosine_omitted}, {"pulse", p.transient_pulse_omitted}}) {
@@ -71,7 +84,8 @@ void print_table(const Scene& scene, const std::vector<CrosscheckPoint>& result,
              "fitted over their second half; its estimate bounds the fitted slope (twice its standard error, or 3R/m\n"
              "where a beat keeps the residuals within R), adds how far it moved from the first half, and the contact\n"
              "propagators' own error. Each transient runs the fast method on the model its Floquet\n"
-             "multipliers use, so the two share its basis and reduction error and differ in their methods only:\n"
+             "multipliers use, so the two share its basis and reduction error and differ in their methods only\n"
+             "(each ± is a method's error on that model, not against the continuum, which `stability` states):\n"
              "the cosine rows on {} modes (model.reduction), the pulse rows on {} modes of {} (the model\n"
              "`stability` analyses the true train on). Floquet: auto method for the cosine load, the monodromy\n"
              "through each contact for the pulse train (as `stability` with load.approximation = \"exact\").\n",
