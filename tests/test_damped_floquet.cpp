@@ -199,6 +199,45 @@ TEST_CASE("unloaded blade with modal damping: decay e^(-zeta omega T) per period
   }
 }
 
+TEST_CASE("the CLI's log decrements: 2 pi zeta/sqrt(1-zeta^2) to their printed digits, null where the multiplier "
+          "is not resolved", "[stability][damping]") {
+  const std::vector<std::string> base{"model.terms=6", "model.coriolis=false", "load.fmax_over_fcr=0",
+                                      "damping.model=modal", "damping.ratio=0.999"};
+  const auto decrements = [&](const std::string& pulse_frequency) {
+    std::vector<std::string> args{"stability", testing_support::paper_scene_path(), "--format", "json"};
+    for (const std::string& key : base) args.insert(args.end(), {"--set", key});
+    args.insert(args.end(), {"--set", "load.pulse_frequency_hz=" + pulse_frequency});
+    const testing_support::Outcome o = testing_support::run_bladestab(args);
+    INFO(testing_support::describe(o) << "\n" << o.err);
+    REQUIRE(o.err.empty());
+    return testing_support::parse_json(o.out);
+  };
+  // θ/2 above the kept modes (as above): every pair's decrement is the closed form, 140.4.
+  const testing_support::Json fast = decrements("1200");
+  const double closed_form = 2 * pi * 0.999 / std::sqrt(1 - 0.999 * 0.999);
+  int complex_pairs = 0;
+  for (std::size_t k = 0; k < fast["log_decrements"].size(); ++k) {
+    if (fast["log_decrements"][k].type == testing_support::Json::Type::null) continue;
+    ++complex_pairs;
+    CHECK(std::abs(fast["log_decrements"][k].number - closed_form) < 0.01 * closed_form);
+  }
+  CHECK(complex_pairs >= 6);
+  // A period 12× longer: the stiffer modes' multipliers, e^(−ζωT) < 1e-8, lie within the estimate of
+  // 0. Their decrements are unknown above a bound, null, never a rounded 0 (a damped mode's δ > 0).
+  const testing_support::Json slow = decrements("100");
+  int unresolved = 0;
+  for (std::size_t k = 0; k < slow["log_decrements"].size(); ++k) {
+    // Unloaded, each mode a damped oscillator (ζ < 1): no multiplier is real.
+    if (slow["log_decrements"][k].type == testing_support::Json::Type::null) {
+      ++unresolved;
+      continue;
+    }
+    CAPTURE(k);
+    CHECK(std::abs(slow["log_decrements"][k].number - closed_form) < 0.01 * closed_form);
+  }
+  CHECK(unresolved > 0);
+}
+
 TEST_CASE("modes: the damping ratio of every damping model is -Re(lambda)/|lambda| of its definition's C_D",
           "[modes][damping]") {
   // Six terms at 300 rad/s with Coriolis coupling: the gyroscopic C_G mixes into every model.

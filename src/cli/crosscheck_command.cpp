@@ -46,13 +46,6 @@ void check_crosscheck_work(const Scene& scene, std::size_t points, double revolu
              transient_history_bytes(revolutions, 200));
 }
 
-// A value in fixed point to the decade of its error (as printed_digits.hpp rounds it), to at most
-// 7 decimals (finest_resolution of a multiplier near 1).
-std::string to_its_error(double value, double error) {
-  const int decimals = error > 0 ? std::clamp(static_cast<int>(-std::floor(std::log10(error))), 0, 7) : 7;
-  return fmt::format("{:.{}f}", value, decimals);
-}
-
 // The table: per point and load, Floquet max|ρ| and the transient growth, each with its estimate,
 // and whether they agree within the two.
 void print_table(const Scene& scene, const std::vector<CrosscheckPoint>& result, double revolutions) {
@@ -63,14 +56,14 @@ void print_table(const Scene& scene, const std::vector<CrosscheckPoint>& result,
              "± est.", "transient growth", "± est.", "agree", "RKF45 Φ: max|ρ|", "‖ΔΦ‖/‖Φ‖");
   for (const CrosscheckPoint& p : result) {
     fmt::print("{:>7g} | {:>8} | {:>13} {:>8.1e} | {:>16} {:>8.1e} | {:>6} | {:>15} {:>11.1e}\n", p.fmax_over_fcr,
-               "cosine", to_its_error(p.floquet_cosine, p.floquet_cosine_error), p.floquet_cosine_error,
-               to_its_error(p.transient_cosine_growth, p.transient_cosine_error), p.transient_cosine_error,
+               "cosine", fixed_to_error(p.floquet_cosine, p.floquet_cosine_error, 7), p.floquet_cosine_error,
+               fixed_to_error(p.transient_cosine_growth, p.transient_cosine_error, 7), p.transient_cosine_error,
                p.cosine_agrees() ? "yes" : "NO",
-               to_its_error(p.rkf45_max_abs_multiplier, p.monodromy_difference * p.rkf45_max_abs_multiplier),
+               fixed_to_error(p.rkf45_max_abs_multiplier, p.monodromy_difference * p.rkf45_max_abs_multiplier, 7),
                p.monodromy_difference);
     fmt::print("{:>7} | {:>8} | {:>13} {:>8.1e} | {:>16} {:>8.1e} | {:>6} |\n", "", "pulse",
-               to_its_error(p.floquet_pulse, p.floquet_pulse_error), p.floquet_pulse_error,
-               to_its_error(p.transient_pulse_growth, p.transient_pulse_error), p.transient_pulse_error,
+               fixed_to_error(p.floquet_pulse, p.floquet_pulse_error, 7), p.floquet_pulse_error,
+               fixed_to_error(p.transient_pulse_growth, p.transient_pulse_error, 7), p.transient_pulse_error,
                p.pulse_agrees() ? "yes" : "NO");
   }
   for (const CrosscheckPoint& p : result) {

@@ -117,10 +117,6 @@ std::vector<double> parse_range(const std::string& option, const std::string& te
   return grid;
 }
 
-int significant_digits(double error) {
-  return std::clamp(static_cast<int>(std::floor(-std::log10(std::max(error, 1e-15)))) + 1, 3, 12);
-}
-
 std::string describe_reduction(const ReductionSpec& reduction, int reduced_dofs, int full_dofs) {
   switch (reduction.kind) {
     case ReductionKind::automatic:

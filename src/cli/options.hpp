@@ -70,9 +70,6 @@ std::vector<double> parse_range(const std::string& option, const std::string& te
 // frequency at the scene's speed, so the first would be kept alone whatever the cut-off said.
 void check_modal_cutoff(const Scene& scene, double cutoff_hz, const std::string& named);
 
-// Significant digits worth printing for a value with relative error `error` (3 to 12).
-int significant_digits(double error);
-
 // One line describing the model, e.g. "timoshenko, legendre basis, 16 terms/field (48 dofs), axial on, coriolis on",
 // with ", static tip compression 0.5 F_cr" when the scene has one.
 std::string describe_model(const BladeModel& model);

@@ -95,4 +95,16 @@ std::vector<double> PrintedDigits::unestimated(const std::vector<double>& values
   return each(values, [&](double v, std::size_t) { return unestimated(v); });
 }
 
+int significant_digits(double error) {
+  return std::clamp(static_cast<int>(std::floor(-std::log10(std::max(error, 1e-15)))) + 1, 3, 12);
+}
+
+std::string fixed_to_error(double value, double error, int max_decimals) {
+  if (std::abs(value) >= 1e6) return fmt::format("{:.{}e}", value, significant_digits(error / std::abs(value)) - 1);
+  const int decimals =
+      std::clamp(static_cast<int>(-std::floor(std::log10(std::max(error, 1e-300)))), 0, max_decimals);
+  const double unit = std::pow(10.0, -decimals);
+  return fmt::format("{:.{}f}", std::abs(value) < 0.5 * unit ? 0.0 : value, decimals);
+}
+
 }  // namespace bladestab::cli

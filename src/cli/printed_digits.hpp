@@ -13,6 +13,7 @@
 // Inputs and what is computed from them by arithmetic alone (grids, speeds in rpm, θ = kΩ) are
 // printed in full. --digits full prints every number in full: the shortest text that reads back
 // as the same double.
+#include <string>
 #include <vector>
 
 namespace bladestab::cli {
@@ -45,5 +46,12 @@ public:
 private:
   bool full_;
 };
+
+// Significant digits worth printing for a value with relative error `error` (3 to 12).
+int significant_digits(double error);
+
+// A table's number: in fixed point to the decade of its error, at most max_decimals of them, without
+// a negative zero; from 1e6 on in exponent form with the significant digits the error supports.
+std::string fixed_to_error(double value, double error, int max_decimals = 12);
 
 }  // namespace bladestab::cli

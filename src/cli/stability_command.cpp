@@ -50,9 +50,21 @@ std::string truncation(const FloquetResult& r, bool exact_pulse) {
 // "2.1e-13", or "not informative" for NaN.
 std::string check_value(double v) { return std::isnan(v) ? "n/a" : fmt::format("{:.1e}", v); }
 
+// The error of the log decrement δ = −2π ln|ρ| / |arg ρ| (theory.md (46)) of a multiplier ρ known to
+// E (absolute): ln|ρ| and arg ρ each move by up to E/|ρ|, so δ by (2π + |δ|)/|arg ρ| · E/|ρ|.
+// nullopt where ρ is not resolved (|ρ| ≤ E): δ is then only bounded below (decrement_floor).
+std::optional<double> decrement_error(std::complex<double> rho, double decrement, double E) {
+  if (std::abs(rho) <= E) return std::nullopt;
+  return (two_pi + std::abs(decrement)) / std::abs(std::arg(rho)) * E / std::abs(rho);
+}
+
+// δ ≥ −2 ln(|ρ| + E) of an unresolved multiplier (|arg ρ| ≤ π).
+double decrement_floor(std::complex<double> rho, double E) { return -2 * std::log(std::abs(rho) + E); }
+
 // The answer's numbers as JSON and CSV print them (printed_digits.hpp): every multiplier, max|ρ| and
 // the monodromy's max|ρ| to the total estimate E as printed (absolute on ρ), max Re λ = ln max|ρ| / T
-// to E / (max|ρ| T), the log decrement −ln|ρ| of a multiplier to E / |ρ|; the checks to 2 digits.
+// to E / (max|ρ| T), the log decrement of a multiplier to decrement_error (null where that is
+// unbounded); the checks to 2 digits.
 class PrintedAnswer {
 public:
   PrintedAnswer(const StabilityAnswer& a, const PrintedDigits& digits)
@@ -64,7 +76,8 @@ public:
   }
   Json log_decrement(Eigen::Index k) const {
     const std::optional<double>& d = a_.floquet.log_decrements[k];
-    return d ? Json(digits_.absolute(*d, error_ / std::abs(a_.floquet.multipliers(k)))) : Json(nullptr);
+    const std::optional<double> e = d ? decrement_error(a_.floquet.multipliers(k), *d, error_) : std::nullopt;
+    return e ? Json(digits_.absolute(*d, *e)) : Json(nullptr);
   }
   Json check(double value) const { return number_or_null(digits_.measure(value)); }
 
@@ -173,8 +186,12 @@ void print_table(const Scene& scene, const StabilityAnswer& a) {
              check_value(r.checks.determinant_error), check_value(r.checks.reciprocal_error),
              check_value(r.checks.multiplier_error), check_value(r.checks.residual));
   const double relative = error / std::max(1.0, r.max_abs_multiplier);
-  fmt::print("max|ρ| = {:.{}g}   max Re λ = {:.4g} 1/s   → {}\n\n", r.max_abs_multiplier,
-             significant_digits(relative), r.max_real_exponent, a.stable ? "stable" : "UNSTABLE");
+  const double exponent_error = error / (r.max_abs_multiplier * two_pi / a.theta_rad_s);
+  // Below 1 the estimate is absolute: its decade, not significant digits.
+  const std::string rho = r.max_abs_multiplier < 1 ? fixed_to_error(r.max_abs_multiplier, error)
+                                                   : fmt::format("{:.{}g}", r.max_abs_multiplier, significant_digits(relative));
+  fmt::print("max|ρ| = {}   max Re λ = {} 1/s   → {}\n\n", rho, fixed_to_error(r.max_real_exponent, exponent_error),
+             a.stable ? "stable" : "UNSTABLE");
   // Decimals the error estimate supports; from 1e6 on, the significant digits it supports.
   const int decimals = std::clamp(static_cast<int>(-std::log10(std::max(error, 1e-12))), 1, 10);
   const auto shown = [&](double x) {
@@ -184,9 +201,10 @@ void print_table(const Scene& scene, const StabilityAnswer& a) {
   fmt::print("{:>4} {:>16} {:>16} {:>16} {:>10}\n", "#", "Re ρ", "Im ρ", "|ρ|", "log decr.");
   for (Eigen::Index k = 0; k < r.multipliers.size(); ++k) {
     const auto& d = r.log_decrements[k];
+    const std::optional<double> e = d ? decrement_error(r.multipliers(k), *d, error) : std::nullopt;
     fmt::print("{:>4} {:>16} {:>16} {:>16} {:>10}\n", k + 1, shown(r.multipliers(k).real()),
                shown(r.multipliers(k).imag()), shown(std::abs(r.multipliers(k))),
-               d ? fmt::format("{:.4f}", *d + 0.0) : "—");
+               !d ? "—" : e ? fixed_to_error(*d, std::max(*e, 1e-4)) : fmt::format("> {:.3g}", decrement_floor(r.multipliers(k), error)));
   }
 }
 
