@@ -351,7 +351,7 @@ std::optional<std::string> tolerance_unmet(const Scene& scene, const BoundaryReq
                            ? "raise model.terms"
                            : spec.basis == BasisKind::sine ? "more terms cannot reach it; use model.basis = \"legendre\""
                                                            : "more terms cannot reach it (a section table converges "
-                                                             "algebraically); a looser tolerance");
+                                                             "algebraically); use a looser tolerance");
   } else if (total.reduction >= std::max(total.load, total.method)) {
     part = fmt::format("its reduction part {:.1e}: {}", total.reduction,
                        analysis.reduction.kind == ReductionKind::modal ? "raise --cutoff-hz (or model.cutoff_hz)"
@@ -437,6 +437,7 @@ Command register_boundaries(CLI::App& app) {
     const std::optional<std::pair<double, double>> window =
         command->count("--range") > 0 ? std::optional(parse_window(*range)) : std::nullopt;
     const Scene scene = options->load();
+    refuse_impulse_jump(scene);  // the regions' middles are Floquet answers for the continuum
     if (in_load) check_pulse_fits(scene, *at_theta);
     if (request->cutoff_hz > 0) {
       check_modal_cutoff(scene, request->cutoff_hz, fmt::format("--cutoff-hz {:g}", request->cutoff_hz));

@@ -11,6 +11,7 @@
 #include "bladestab/base/input_error.hpp"
 #include "bladestab/modal/basis_error.hpp"
 #include "bladestab/stability/requirements_check.hpp"
+#include "bladestab/stability/periodic_load.hpp"
 #include "commands.hpp"
 #include "embedding.hpp"
 #include "json_output.hpp"
@@ -292,6 +293,7 @@ Command register_check(CLI::App& app) {
   return [=] {
     check_tolerance(*tolerance);
     const Scene scene = options->load();
+    refuse_impulse_jump(scene);  // before the sweeps: the check ends with a Floquet answer
     if (!scene.requirements) {
       throw InputError(fmt::format("{}: [requirements]: missing section; `check` needs one with "
                                    "speed_range_rad_s and frequency_margin and/or max_fmax_over_fcr",

@@ -174,9 +174,9 @@ void check_tolerance(double tolerance) {
 
 ParameterError tolerance_not_met(double tolerance, const ModelSpec& spec, double estimate) {
   return ParameterError("tolerance", fmt::format("{}: not met with {} terms per field (estimated error {:.2g}); "
-                                "{}a looser tolerance",
+                                "use {}a looser tolerance",
                                 tolerance, spec.terms, estimate,
-                                spec.basis == BasisKind::sine ? "use model.basis = \"legendre\" (for model.basis = \"sine\") or " : ""));
+                                spec.basis == BasisKind::sine ? "model.basis = \"legendre\" (for model.basis = \"sine\") or " : ""));
 }
 
 ParameterError tolerance_below_rounding(double tolerance, double rounding) {

@@ -276,6 +276,7 @@ Fidelity first_fidelity(const Scene& scene, bool vectors_free, double& built, do
 }  // namespace
 
 StabilityAnswer analyse_stability(const Scene& scene, const StabilityRequest& request) {
+  refuse_impulse_jump(scene);
   const bool vectors_free = scene.model.reduction.kind == ReductionKind::automatic && scene.model.reduction.vectors == 0;
   const double tol = request.tolerance, ladder_flops = request.work_flops / 4, build_flops = request.work_flops / 4;
   double built = 0;  // the systems' flops so far (periodic_system_flops)

@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "bladestab/base/input_error.hpp"
+#include "bladestab/stability/periodic_load.hpp"
 #include "stability/map_parts.hpp"
 
 namespace bladestab {
@@ -45,6 +46,7 @@ std::optional<MapPoint> scene_point(const Scene& scene, const BladeModel& model,
 }  // namespace
 
 StabilityMap stability_map(const Scene& scene, const MapOptions& o, const std::function<void(int, int)>& progress) {
+  refuse_impulse_jump(scene);
   const BladeModel model = assemble_model(scene);
   const bool theta_plane = o.plane == MapPlane::theta_fmax;
   if (!theta_plane && o.grid_x.front() <= 0) {

@@ -81,4 +81,9 @@ LoadSeries exact_pulse_mean(const PulseTrain& train);
 // What the scene's load.approximation asks for.
 LoadSeries load_series(const Scene& scene, double relative_tail = 1e-2, int max_harmonics = 200);
 
+// The analyses that answer for the continuum blade (stability, map, boundaries, check) refuse
+// load.profile = "impulse" with load.approximation = "exact" (InputError): the velocity jump kicks
+// every Ritz mode alike, so its multipliers have no limit as the terms grow (docs/theory.md §3.5).
+void refuse_impulse_jump(const Scene& scene);
+
 }  // namespace bladestab
