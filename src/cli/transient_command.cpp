@@ -131,6 +131,15 @@ void with_whole_error(TransientResult& r, TransientSummary& s, const TransientRe
     r.growth.growth = digits.absolute(raw_result.growth.growth, q->budget.total());
     r.growth.error_estimate = digits.measure(q->budget.total());
   }
+  if (!r.contact) return;
+  using Field = double ContactSummary::*;
+  for (const auto& [name, field] : {std::pair<const char*, Field>{"contact_time_s", &ContactSummary::contact_time_s},
+                                    {"contact_peak_force_n", &ContactSummary::peak_force_n},
+                                    {"contact_max_overlap_m", &ContactSummary::max_overlap_m}}) {
+    if (const TransientQuantity* q = estimated(e, name)) {
+      (*r.contact).*field = digits.absolute((*raw_result.contact).*field, q->budget.total());
+    }
+  }
 }
 
 // The spectra and peaks like the series they come from; the dominant frequencies, interpolated

@@ -106,11 +106,18 @@ void print_table(const Scene& scene, const BladeModel& model, const TransientOpt
                1e3 * r.static_tip_axial_m,
                millimetres(s.peak_axial_m, estimated(error, "peak_tip_axial_change_m"), shown.digits), hz(s.axial_hz));
     if (r.contact) {
-      fmt::print("casing     {} contacts, {:.6g} ms in all; peak force {:.6g} kN (F̄ = {:.4g}) at the deepest overlap "
-                 "{:.4g} µm of the penalty wall (k = {:.4g} N/m)\n",
-                 r.contact->closures, 1e3 * r.contact->contact_time_s, 1e-3 * r.contact->peak_force_n,
-                 r.contact->peak_force_n / BladeProperties(scene.blade).critical_load(), 1e6 * r.contact->max_overlap_m,
-                 r.contact->stiffness_n_m);
+      // Each with its whole error where the run has one (unit: the factor to the printed unit).
+      const auto with_error = [&](double printed, const char* name, double unit) {
+        const TransientQuantity* q = estimated(error, name);
+        return q ? fmt::format("{:.6g} ± {:.2g}", unit * printed, unit * shown.digits.measure(q->budget.total()))
+                 : fmt::format("{:.6g}", unit * printed);
+      };
+      fmt::print("casing     {} contacts, {} ms in all; peak force {} kN (F̄ = {:.3g}) at the deepest overlap "
+                 "{} µm of the penalty wall (k = {:.4g} N/m)\n",
+                 with_error(r.contact->closures, "contact_closures", 1), with_error(r.contact->contact_time_s, "contact_time_s", 1e3),
+                 with_error(r.contact->peak_force_n, "contact_peak_force_n", 1e-3),
+                 r.contact->peak_force_n / BladeProperties(scene.blade).critical_load(),
+                 with_error(r.contact->max_overlap_m, "contact_max_overlap_m", 1e6), r.contact->stiffness_n_m);
     }
     const bool rounding = s.checks.energy_rounding_j > TransientChecks::max_energy_error * s.checks.vibration_energy_j;
     fmt::print("energy     balance E(t) − E(0) − W(t) within {:.3g} J{}{}\n", s.checks.energy_error_j,

@@ -41,6 +41,12 @@ std::vector<TransientQuantity> transient_quantities(const TransientResult& r) {
                                    {"peak_vibration_energy_j", energy, {}},
                                    {"mean_tip_axial_m", mean, {}}};
   if (r.growth.omitted.empty()) q.push_back({"growth_per_revolution", r.growth.growth, {}});
+  if (r.contact) {  // clearance mode: the casing's contacts, which the high modes shape
+    q.push_back({"contact_closures", static_cast<double>(r.contact->closures), {}});
+    q.push_back({"contact_time_s", r.contact->contact_time_s, {}});
+    q.push_back({"contact_peak_force_n", r.contact->peak_force_n, {}});
+    q.push_back({"contact_max_overlap_m", r.contact->max_overlap_m, {}});
+  }
   return q;
 }
 
