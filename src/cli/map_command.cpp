@@ -220,14 +220,17 @@ std::pair<int, int> parse_resolution(const std::string& text) {
 // maps are raised to). A shading point reduces the whole model at its load (~20 n³ flops for n
 // dofs) and runs a Floquet monodromy on the reduced one (4 ms); the refinement adds points along
 // the boundaries, about 10 per effective cell of the resolution's width and height (12 500 on the
-// paper's 400 × 200 map, where the estimate takes 6000).
-void check_map_work(const BladeModel& model, const MapOptions& o) {
-  const double reduced_modes = 20, dofs = model.layout.size();
+// paper's 400 × 200 map, where the estimate takes 6000). The true pulse train (exact_pulse) is
+// shaded on the whole model, its monodromy ~170 (2n)³ flops a point for 2n states (35 ms at 16
+// terms), and its narrow tongues take about twice the refinement (4395 points at 100 × 50).
+void check_map_work(const BladeModel& model, const MapOptions& o, bool exact_pulse) {
+  const double reduced_modes = 20, dofs = model.layout.size(), states = 2 * dofs;
   const double unknowns = (2 * o.approximation + 1) * reduced_modes;
   const double line_seconds = 2 * 26 * unknowns * unknowns * unknowns / dense_flops_per_second;
-  const double point_seconds = 4e-3 + 20 * dofs * dofs * dofs / dense_flops_per_second;
+  const double point_seconds = exact_pulse ? 170 * states * states * states / dense_flops_per_second
+                                           : 4e-3 + 20 * dofs * dofs * dofs / dense_flops_per_second;
   const double grid = static_cast<double>(o.grid_x.size()) * o.grid_fbar.size();
-  const double points = grid + 10.0 * (o.resolution_x + o.resolution_y);
+  const double points = grid + (exact_pulse ? 20.0 : 10.0) * (o.resolution_x + o.resolution_y);
   const double seconds = (o.trace.size() * line_seconds + points * point_seconds) / o.threads;
   // The grid of max|ρ|, the samples and cells of the refinement, and each traced line's boundaries.
   const double bytes = points * 64 + o.trace.size() * 4096.0;
@@ -391,7 +394,7 @@ Command register_map(CLI::App& app) {
     o.engine_order = *order > 0 ? *order : scene.load.pulses_per_rev;
     const BladeModel model = assemble_model(scene);
     set_plane_grids(*command, scene, model, {*theta, *speeds, *trace}, o);
-    check_map_work(model, o);
+    check_map_work(model, o, scene.load.approximation == LoadApproximation::exact);
     const bool for_people = options->output_format() == OutputFormat::table;
     const StabilityMap m = stability_map(scene, o, progress_reporter("map: points", for_people));
 
