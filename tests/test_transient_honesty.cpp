@@ -388,3 +388,16 @@ TEST_CASE("a fixed-step run states no error of its own: its estimate bounds none
     CHECK(q.budget.unbounded.front().find("the fixed step (--step fixed) states no error") != std::string::npos);
   }
 }
+
+TEST_CASE("the CLI: a fast run in contact throughout says its energy balance checks nothing", "[transient][honesty]") {
+  // Two pulses a revolution, each half a revolution long: no free flight, where alone the fast method
+  // balances the energy (in contact the work is the energy's change), so no balance is reported.
+  const CliRun run = run_transient_cli("--set model.terms=4 --set load.pulses_per_rev=2 --set load.contact_time_rev=0.5 "
+                                       "--revolutions 1 --no-error-estimate --format json");
+  INFO("stderr: " << run.err);
+  REQUIRE(WIFEXITED(run.status));
+  CHECK(WEXITSTATUS(run.status) == 0);
+  const testing_support::Json j = testing_support::parse_json(run.out);
+  CHECK(j["energy_balance"]["max_error_j"].type == testing_support::Json::Type::null);
+  CHECK(j["energy_balance"]["unchecked"].text.find("in contact throughout") != std::string::npos);
+}

@@ -210,10 +210,12 @@ void summary_fields(Json& json, const TransientResult& r, const TransientSummary
     json["growth_per_revolution"] = nullptr;
     json["growth_per_revolution_omitted"] = r.growth.omitted;
   }
-  json["energy_balance"] = {{"max_error_j", s.checks.energy_error_j},
+  const std::string unchecked = energy_balance_unchecked(r);
+  json["energy_balance"] = {{"max_error_j", unchecked.empty() ? Json(s.checks.energy_error_j) : Json(nullptr)},
                             {"vibration_energy_j", s.checks.vibration_energy_j},
                             {"allowed_fraction", TransientChecks::max_energy_error},
-                            {"allowed_rounding_j", s.checks.energy_rounding_j}};
+                            {"allowed_rounding_j", s.checks.energy_rounding_j},
+                            {"unchecked", unchecked.empty() ? Json(nullptr) : Json(unchecked)}};
   if (r.method == TransientMethod::rkf45) json["steps"] = {{"mode", adaptive ? "adaptive" : "fixed"},
                    {"accepted", r.steps.accepted},
                    {"rejected", r.steps.rejected},

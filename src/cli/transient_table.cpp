@@ -120,11 +120,15 @@ void print_table(const Scene& scene, const BladeModel& model, const TransientOpt
                  with_error(r.contact->max_overlap_m, "contact_max_overlap_m", 1e6), r.contact->stiffness_n_m);
     }
     const bool rounding = s.checks.energy_rounding_j > TransientChecks::max_energy_error * s.checks.vibration_energy_j;
-    fmt::print("energy     balance E(t) − E(0) − W(t) within {:.3g} J{}{}\n", s.checks.energy_error_j,
-               s.checks.vibration_energy_j > 0 ? fmt::format(", {:.3g} of the vibration energy {:.4g} J",
-                                                             energy_fraction, s.checks.vibration_energy_j)
-                                               : std::string(" (no vibration)"),
-               rounding ? fmt::format(" (E's own rounding: {:.2g} J)", s.checks.energy_rounding_j) : std::string());
+    if (const std::string unchecked = energy_balance_unchecked(r); !unchecked.empty()) {
+      fmt::print("energy     balance not checked: {}\n", unchecked);
+    } else {
+      fmt::print("energy     balance E(t) − E(0) − W(t) within {:.3g} J{}{}\n", s.checks.energy_error_j,
+                 s.checks.vibration_energy_j > 0 ? fmt::format(", {:.3g} of the vibration energy {:.4g} J",
+                                                               energy_fraction, s.checks.vibration_energy_j)
+                                                 : std::string(" (no vibration)"),
+                 rounding ? fmt::format(" (E's own rounding: {:.2g} J)", s.checks.energy_rounding_j) : std::string());
+    }
     if (r.growth.omitted.empty()) {
       fmt::print("growth     {:.7g} ± {:.2g} per revolution ({})\n", r.growth.growth, r.growth.error_estimate,
                  !r.continued_log_change.empty()

@@ -218,4 +218,10 @@ TransientResult run_transient(const BladeModel& model, const Scene& scene, const
   return r;
 }
 
+std::string energy_balance_unchecked(const TransientResult& r) {
+  if (r.method != TransientMethod::fast || r.contact || r.exact.free_exponentials > 0) return {};
+  return "the run is in contact throughout, with no free flight to balance (the contact propagators are checked "
+         "by their step doubling and the self-check)";
+}
+
 }  // namespace bladestab
