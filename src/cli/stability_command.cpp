@@ -190,8 +190,13 @@ void print_table(const Scene& scene, const StabilityAnswer& a) {
   // Below 1 the estimate is absolute: its decade, not significant digits.
   const std::string rho = r.max_abs_multiplier < 1 ? fixed_to_error(r.max_abs_multiplier, error)
                                                    : fmt::format("{:.{}g}", r.max_abs_multiplier, significant_digits(relative));
+  // "stable" is max|ρ| ≤ 1 + E: where E is above the tolerance, a growth that small is not excluded.
+  const std::string verdict = !a.stable         ? "UNSTABLE"
+                              : a.tolerance_met ? "stable"
+                                                : fmt::format("stable within its estimate (a growth up to ×{:.3g} a "
+                                                              "period is not excluded)", 1 + error);
   fmt::print("max|ρ| = {}   max Re λ = {} 1/s   → {}\n\n", rho, fixed_to_error(r.max_real_exponent, exponent_error),
-             a.stable ? "stable" : "UNSTABLE");
+             verdict);
   // Decimals the error estimate supports; from 1e6 on, the significant digits it supports.
   const int decimals = std::clamp(static_cast<int>(-std::log10(std::max(error, 1e-12))), 1, 10);
   const auto shown = [&](double x) {
