@@ -326,7 +326,8 @@ void print_map_table(const Scene& scene, const BladeModel& model, const std::str
   if (m.scene_point) {
     const MapPoint& p = *m.scene_point;
     fmt::print("scene     ({:g}, F̄ = {:g}): max|ρ| {}{}\n", p.x, p.fbar,
-               p.undecided.empty() ? fmt::format("= {:.6g}", p.max_abs_multiplier)
+               p.undecided.empty() ? fmt::format("= {:.{}g}", p.max_abs_multiplier,
+                                                 significant_digits(std::max(o.tolerance, m.max_error_estimate)))
                                    : "undecided: " + with_max_seconds(p.undecided),
                p.nearest_boundary ? fmt::format("; nearest boundary along F̄ at {:.6g} ({:+d}, mode {}, order {}), "
                                                 "ΔF̄ = {:+.3g}",
