@@ -41,7 +41,6 @@ GrowthFit transient_growth(const BladeModel& model, const Scene& scene, const Re
   o.max_lateral_over_length = HUGE_VAL;
   o.hold_friction_direction = true;
   o.reduction = reduction;
-  o.continue_growth = true;
   return run_transient(model, scene, o).growth;
 }
 

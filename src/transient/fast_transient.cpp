@@ -72,7 +72,7 @@ TransientResult run_fast_transient(const BladeModel& model, const Scene& scene, 
     }
   }
   const int whole = static_cast<int>(result.revolution_change.size());
-  if ((result.stopped || o.continue_growth) && whole >= 1 && resolved_change.size() > 0) {
+  if (whole >= 1 && resolved_change.size() > 0) {
     std::vector<Landing> last;
     const double a = (whole - 1) * begin.revolution, b = whole * begin.revolution;
     std::copy_if(all.begin(), all.end(), std::back_inserter(last), [&](const Landing& l) { return l.t > a && l.t <= b; });

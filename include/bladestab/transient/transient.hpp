@@ -51,9 +51,6 @@ struct TransientOptions {
   // self-check (RKF45 runs the whole model).
   std::optional<ReductionSpec> reduction;
   int threads = 1;  // fast: the contact pieces integrated side by side
-  // fast: fit the growth on the last revolution change carried on past the run's end as after a
-  // stop (continued_log_change), where the run is too short for the other multipliers to fade.
-  bool continue_growth = true;
   double revolutions = 10;
   bool adaptive = true;
   int steps_per_period = 0;  // fixed mode: steps per period of the stiffest mode (≥ 8, (54)); 0 = choose
@@ -150,9 +147,9 @@ struct TransientResult {
   // ‖x((k+1)T) − x(kT)‖ for each whole revolution k, in the energy norm √(½Δfᵀ K(Ω) Δf + ½Δḟᵀ M Δḟ):
   // states at the ends of the integration, not interpolated, so independent of the output sampling.
   std::vector<double> revolution_change;
-  // fast, stopped (or continue_growth): the natural logarithms of revolution_change continued past
-  // the end (continue_change in growth_continuation.cpp) for growth_continuation revolutions, to
-  // fit the growth on.
+  // fast, force mode: the natural logarithms of the last resolved revolution_change carried on past
+  // the run's end or stop (continue_change in growth_continuation.cpp) for growth_continuation
+  // revolutions, to fit the growth on (a run may be too short for the other multipliers to fade).
   std::vector<double> continued_log_change;
   GrowthFit growth;  // of revolution_change (or continued_log_change): the growth per revolution, when meaningful
 };
