@@ -52,6 +52,21 @@ double history_difference(const TransientResult& a, const TransientResult& b) {
   return difference / peak;
 }
 
+// A run's error estimate, and the same quantities of the scene on `rich_terms` (the truth it is
+// held against), over `revolutions`.
+struct EstimateAndTruth {
+  TransientErrorEstimate estimate;
+  std::vector<TransientQuantity> truth;
+};
+EstimateAndTruth estimate_against(const Scene& scene, int rich_terms, double revolutions) {
+  Scene rich = scene;
+  rich.model.terms = rich_terms;
+  TransientOptions o;
+  o.revolutions = revolutions;
+  const TransientResult r = run_transient(assemble_model(scene), scene, o);
+  return {estimate_transient_error(scene, o, r), transient_quantities(run_transient(assemble_model(rich), rich, o))};
+}
+
 }  // namespace
 
 TEST_CASE("fast transient: the history of RKF45 at rtol 1e-12 within 1e-10 of the peak", "[transient][fast][slow]") {
@@ -220,14 +235,7 @@ TEST_CASE("transient error estimate: the 12-term run's stated basis error covers
           "[transient][fast][slow]") {
   // The scene's half-sine train, one revolution: peaks and energy of N = 12 against N = 24 (Legendre
   // converges exponentially, so 24 terms stand in for the continuum to well below the 12-term error).
-  const Scene scene = paper_scene({"model.terms=12"});
-  Scene rich = scene;
-  rich.model.terms = 24;
-  TransientOptions o;
-  o.revolutions = 1;
-  const TransientResult r = run_transient(assemble_model(scene), scene, o);
-  const TransientErrorEstimate e = estimate_transient_error(scene, o, r);
-  const std::vector<TransientQuantity> truth = transient_quantities(run_transient(assemble_model(rich), rich, o));
+  const auto [e, truth] = estimate_against(paper_scene({"model.terms=12"}), 24, 1);
   REQUIRE(e.reference_terms == std::vector<int>{18});
   // The peaks, the energy, the axial mean and the growth (the revolution's change carried on).
   REQUIRE(e.quantities.size() == 5);
@@ -369,14 +377,8 @@ TEST_CASE("transient error estimate: the casing contact's stated errors cover a 
   // Appendix C's rub at 8 terms, 2 revolutions: the contacts' count, time, peak force and deepest
   // overlap hang on the high modes (on the scene's 16 terms with a 4 mm bump the peak force moves
   // 2× between 12, 16 and 24 terms), so each is stated with its error against the richer models.
-  const Scene scene = paper_scene({"model.terms=8", "load.mode=\"clearance\"", "load.intrusion=3.03e-3"});
-  Scene rich = scene;
-  rich.model.terms = 24;
-  TransientOptions o;
-  o.revolutions = 2;
-  const TransientResult r = run_transient(assemble_model(scene), scene, o);
-  const TransientErrorEstimate e = estimate_transient_error(scene, o, r);
-  const std::vector<TransientQuantity> truth = transient_quantities(run_transient(assemble_model(rich), rich, o));
+  const auto [e, truth] =
+      estimate_against(paper_scene({"model.terms=8", "load.mode=\"clearance\"", "load.intrusion=3.03e-3"}), 24, 2);
   int contact_quantities = 0;
   for (const TransientQuantity& q : e.quantities) {
     if (q.name.rfind("contact_", 0) != 0) continue;
