@@ -112,7 +112,7 @@ Attempt refine_steps(const LinearPeriodicSystem& sys, double tol, double max_flo
     Eigen::MatrixXd phi = magnus_monodromy(sys, steps);
     counter.level_done();
     if (!phi.allFinite()) {
-      if (ladder.overflowed(steps)) throw monodromy_overflow();
+      if (ladder.overflowed(steps)) throw monodromy_overflow(sys.period());
       previous.resize(0);
       continue;
     }

@@ -20,9 +20,11 @@ Eigen::MatrixXd magnus_monodromy(const LinearPeriodicSystem& sys, int steps) {
   return magnus_propagator(sys.A0, sys.B, [&sys](double t) { return sys.variation(t); }, 0, sys.period(), steps);
 }
 
-NumericalError monodromy_overflow() {
-  return NumericalError("the monodromy matrix overflows the double range (max|ρ| > 1e308): the system grows past it "
-                        "within one period");
+NumericalError monodromy_overflow(double period) {
+  return NumericalError(fmt::format("unstable: the monodromy matrix overflows the double range (max|ρ| > 1e308, max "
+                                    "Re λ > {:.3g} 1/s): the system grows past it within one period, so no multiplier "
+                                    "can be printed",
+                                    std::log(1e308) / period));
 }
 
 Eigen::VectorXcd sorted_eigenvalues(const Eigen::MatrixXd& phi) {

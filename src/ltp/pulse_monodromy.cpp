@@ -83,7 +83,7 @@ PulseMonodromy exact_pulse_monodromy(const LinearPeriodicSystem& sys, const Peri
     result.steps = steps;
     if (progress) progress(++done, ladder.levels());
     if (!result.monodromy.allFinite()) {
-      if (ladder.overflowed(steps)) throw monodromy_overflow();
+      if (ladder.overflowed(steps)) throw monodromy_overflow(pulse.period);
       previous.resize(0);
       continue;
     }

@@ -19,9 +19,10 @@ Eigen::MatrixXd rkf45_monodromy(const LinearPeriodicSystem& system, double rtol)
 inline constexpr int max_magnus_steps = 1 << 17;
 // Magnus steps per period below which the step's h‖A‖ exceeds 2 (the series would diverge).
 int minimum_magnus_steps(const LinearPeriodicSystem& system);
-// The error of a monodromy that overflows at step counts that are short enough (StepDoubling::
-// overflowed): max|ρ| > 1e308, the system grows past the double range within one period.
-NumericalError monodromy_overflow();
+// The error of a monodromy over `period` that overflows at step counts that are short enough
+// (StepDoubling::overflowed): unstable, max|ρ| > 1e308, so max Re λ > ln(1e308)/period: the system
+// grows past the double range within one period.
+NumericalError monodromy_overflow(double period);
 // Eigenvalues of Φ sorted by |ρ|, largest first; NumericalError if they do not converge.
 Eigen::VectorXcd sorted_eigenvalues(const Eigen::MatrixXd& phi);
 // Largest distance |ρ_a − ρ_b| between two multiplier sets of equal size, each ρ matched to its
