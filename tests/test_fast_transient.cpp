@@ -391,3 +391,28 @@ TEST_CASE("transient error estimate: the casing contact's stated errors cover a 
   }
   CHECK(contact_quantities == 4);
 }
+
+TEST_CASE("fast transient: a run that ends inside a revolution carries on its last whole one, k³ of the pulse "
+          "period's multiplier", "[transient][fast]") {
+  // Three triangular pulses a revolution on 6 terms: the train grows by max|ρ|³ a revolution (its
+  // monodromy over a pulse period). A run of 2.5 revolutions once took the last revolution's landings
+  // by a time window that missed its end (an output time summed to 2T with rounding) and gave 1.
+  const Scene scene = paper_scene({"model.terms=6", "load.profile=triangular", "load.fmax_over_fcr=6",
+                                   "load.contact_time_rev=0.02", "load.pulses_per_rev=3"});
+  const BladeModel model = assemble_model(scene);
+  Scene exact = scene;
+  exact.load.approximation = LoadApproximation::exact;
+  const PeriodicSystem whole = periodic_system(model, exact, load_series(exact), {ReductionKind::none, 0, 0});
+  const FloquetResult floquet =
+      pulse_train_multipliers(whole, periodic_pulse(pulse_train(exact)), {FloquetMethod::monodromy, 0, 1e-10});
+  const double per_revolution = std::pow(floquet.max_abs_multiplier, 3);
+  REQUIRE(per_revolution > 1.1);
+  for (const double revolutions : {2.0, 2.5}) {
+    TransientOptions o;
+    o.revolutions = revolutions;
+    const TransientResult r = run_transient(model, scene, o);
+    REQUIRE(r.growth.omitted.empty());
+    CAPTURE(revolutions, r.growth.growth - per_revolution, r.growth.error_estimate);
+    CHECK(std::abs(r.growth.growth - per_revolution) <= r.growth.error_estimate + 3 * floquet.error_estimate * per_revolution);
+  }
+}

@@ -1,6 +1,5 @@
 #include <algorithm>
 #include <cmath>
-#include <iterator>
 
 #include <fmt/format.h>
 
@@ -73,9 +72,17 @@ TransientResult run_fast_transient(const BladeModel& model, const Scene& scene, 
   }
   const int whole = static_cast<int>(result.revolution_change.size());
   if (whole >= 1 && resolved_change.size() > 0) {
+    // The last whole revolution's landings, after the (whole − 1)-th whole revolution's and up to the
+    // whole-th, found by their flags: a time window would drop the revolution's end where an output
+    // time sums to it with rounding (in a run that goes on past it).
     std::vector<Landing> last;
-    const double a = (whole - 1) * begin.revolution, b = whole * begin.revolution;
-    std::copy_if(all.begin(), all.end(), std::back_inserter(last), [&](const Landing& l) { return l.t > a && l.t <= b; });
+    double a = 0;
+    int seen = 0;
+    for (const Landing& l : all) {
+      if (seen == whole - 1 && l.t > a) last.push_back(l);
+      if (l.whole_revolution && ++seen == whole - 1) a = l.t;
+      if (seen == whole) break;
+    }
     resolved_change(resolved_change.size() - 1) = 0;  // the augmentation's constant, not a change (z is modal: 2·modes + 1)
     // Every revolution of the train has the last one's propagators: the resolved change is carried
     // on by them whichever revolution it came from.
