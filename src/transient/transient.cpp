@@ -155,6 +155,12 @@ std::vector<double> resolved_changes(const std::vector<double>& changes) {
 
 // The growth per revolution of the run's revolution changes.
 GrowthFit fit_run_growth(const TransientResult& r) {
+  if (r.method == TransientMethod::fast && !r.contact && r.revolution_change.empty()) {
+    // The fast method in force mode carries one whole revolution's change on: it needs one.
+    GrowthFit none;
+    none.omitted = fmt::format("0 whole revolutions{}; the growth needs 1", r.stopped ? " before the stop" : "");
+    return none;
+  }
   GrowthFit fit = !r.continued_log_change.empty() ? fit_continued_growth(r.continued_log_change)
                   : r.stopped                     ? latest_growth(resolved_changes(r.revolution_change))
                                                   : fit_growth(resolved_changes(r.revolution_change));
