@@ -67,6 +67,15 @@ EstimateAndTruth estimate_against(const Scene& scene, int rich_terms, double rev
   return {estimate_transient_error(scene, o, r), transient_quantities(run_transient(assemble_model(rich), rich, o))};
 }
 
+// The true pulse train's Floquet multipliers on the whole Ritz model of the scene: its monodromy
+// through each contact (pulse_monodromy.hpp), independent of the transient's stepping.
+FloquetResult true_train_floquet(const Scene& scene, const BladeModel& model, double tolerance) {
+  Scene exact = scene;
+  exact.load.approximation = LoadApproximation::exact;
+  const PeriodicSystem whole = periodic_system(model, exact, load_series(exact), {ReductionKind::none, 0, 0});
+  return pulse_train_multipliers(whole, periodic_pulse(pulse_train(exact)), {FloquetMethod::monodromy, 0, tolerance});
+}
+
 }  // namespace
 
 TEST_CASE("fast transient: the history of RKF45 at rtol 1e-12 within 1e-10 of the peak", "[transient][fast][slow]") {
@@ -354,15 +363,11 @@ TEST_CASE("fast transient in clearance mode: the history of RKF45 at rtol 1e-10 
 TEST_CASE("fast transient: a short run's growth is the blade's, where its response has not yet shown it",
           "[transient][fast]") {
   // Rectangular pulses on 9 terms: the true train's max|ρ| is 1.0375 (its monodromy through the
-  // contact), but over 10 revolutions the run's response barely grows (fitted on the run alone it
-  // gave 1 ± 1.2e-5). The last change carried on by the revolution's propagators reaches it.
+  // contact), but over 10 revolutions the run's response barely grows (a fit over the run alone
+  // gives 1 ± 1.2e-5). The last change carried on by the revolution's propagators reaches it.
   const Scene scene = paper_scene({"model.terms=9", "load.profile=rectangular"});
   const BladeModel model = assemble_model(scene);
-  Scene exact = scene;
-  exact.load.approximation = LoadApproximation::exact;
-  const PeriodicSystem whole = periodic_system(model, exact, load_series(exact), {ReductionKind::none, 0, 0});
-  const FloquetResult floquet =
-      pulse_train_multipliers(whole, periodic_pulse(pulse_train(exact)), {FloquetMethod::monodromy, 0, 1e-9});
+  const FloquetResult floquet = true_train_floquet(scene, model, 1e-9);
   REQUIRE(floquet.max_abs_multiplier > 1.03);
   TransientOptions o;
   o.revolutions = 10;
@@ -395,16 +400,12 @@ TEST_CASE("transient error estimate: the casing contact's stated errors cover a 
 TEST_CASE("fast transient: a run that ends inside a revolution carries on its last whole one, k³ of the pulse "
           "period's multiplier", "[transient][fast]") {
   // Three triangular pulses a revolution on 6 terms: the train grows by max|ρ|³ a revolution (its
-  // monodromy over a pulse period). A run of 2.5 revolutions once took the last revolution's landings
-  // by a time window that missed its end (an output time summed to 2T with rounding) and gave 1.
+  // monodromy over a pulse period). A run of 2.5 revolutions carries on its last whole revolution,
+  // up to that revolution's end, where an output time sums to 2T only up to rounding.
   const Scene scene = paper_scene({"model.terms=6", "load.profile=triangular", "load.fmax_over_fcr=6",
                                    "load.contact_time_rev=0.02", "load.pulses_per_rev=3"});
   const BladeModel model = assemble_model(scene);
-  Scene exact = scene;
-  exact.load.approximation = LoadApproximation::exact;
-  const PeriodicSystem whole = periodic_system(model, exact, load_series(exact), {ReductionKind::none, 0, 0});
-  const FloquetResult floquet =
-      pulse_train_multipliers(whole, periodic_pulse(pulse_train(exact)), {FloquetMethod::monodromy, 0, 1e-10});
+  const FloquetResult floquet = true_train_floquet(scene, model, 1e-10);
   const double per_revolution = std::pow(floquet.max_abs_multiplier, 3);
   REQUIRE(per_revolution > 1.1);
   for (const double revolutions : {2.0, 2.5}) {
