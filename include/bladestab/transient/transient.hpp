@@ -154,7 +154,7 @@ struct TransientResult {
   GrowthFit growth;  // of revolution_change (or continued_log_change): the growth per revolution, when meaningful
 };
 
-// Revolutions a stopped fast run's last revolution change is carried on for its growth fit (a
+// Revolutions a fast force-mode run's last revolution change is carried on for its growth fit (a
 // power iteration with matrix–vector products: ~20 ms at 16 terms): the other multipliers' share
 // fades like (|ρ₂|/max|ρ|)^k, by e^38 where max|ρ| is 0.5 % above |ρ₂|.
 constexpr int growth_continuation = 7680;
