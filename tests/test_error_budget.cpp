@@ -281,6 +281,27 @@ TEST_CASE("the systems of the fidelity rounds count against the work: a round pa
   CHECK_THROWS_AS(analyse_stability(scene, request), WorkLimitError);
 }
 
+TEST_CASE("a raised round the work limit cannot finish leaves the last finished round's answer standing",
+          "[budget][parallel][long_under_sanitizers]") {
+  // Rectangular pulses, true train, 12 terms: the budget against 18 terms (0.015) raises to 18, then
+  // to 27, whose monodromy ladder the work of 1e10 flops cannot take two levels of. Before, the
+  // whole analysis failed there and printed nothing (the fan blade at F̄ = 6: after 100 s).
+  const Scene scene =
+      paper_scene({"model.terms=12", "load.profile=\"rectangular\"", "load.approximation=\"exact\""});
+  StabilityRequest request;
+  request.work_flops = 1e10;
+  const StabilityAnswer a = analyse_stability(scene, request);
+  CHECK(a.model.terms == 18);
+  CHECK(a.work_limited);
+  CHECK_FALSE(a.tolerance_met);
+  CHECK_THAT(a.tolerance_unmet, Catch::Contains("raising it to 27 terms per field did not finish") &&
+                                    Catch::Contains("work limit"));
+  // Its estimate covers the converged true train: 1.014855 at 27 terms and 1e-6, 1.014854 ± 3.1e-7
+  // at 36 (`stability` at its default work).
+  CHECK(a.budget.total() < 1e-4);
+  CHECK(std::abs(a.floquet.max_abs_multiplier - 1.014855) <= a.budget.total() + 1e-6);
+}
+
 TEST_CASE("the first release's wrong answers are right now (issue table)", "[budget][parallel][long_under_sanitizers]") {
   // Each against the value the issue measured with independent integrations.
   CHECK(analyse_stability(paper_scene({"model.terms=40"}), {}).floquet.max_abs_multiplier ==

@@ -191,11 +191,10 @@ std::string reduction_fixed_by(const ReductionSpec& r, bool vectors_free, int al
 }
 
 // The part of a budget above the tolerance that the analysis may not lower, in words.
-std::string fixed_part(const ErrorBudget& b, double scale, const Fidelity& f, bool vectors_free,
-                       const PeriodicSystem& sys) {
+std::string fixed_part(const ErrorBudget& b, double scale, const Fidelity& f, bool vectors_free, int all_modes) {
   if (b.reduction >= std::max(b.load, b.method)) {
     return fmt::format("its reduction part {:.2g} is fixed by {}", b.reduction / scale,
-                       reduction_fixed_by(f.reduction, vectors_free, sys.all_modes));
+                       reduction_fixed_by(f.reduction, vectors_free, all_modes));
   }
   if (b.load >= b.method) {
     return fmt::format("its load part {:.2g} is fixed by the scene's load series (load.approximation)", b.load / scale);
@@ -219,8 +218,7 @@ struct NextRound {
   std::string unmet;
 };
 
-NextRound next_round(const Scene& scene, const Fidelity& f, const StabilityAnswer& a, double tol, bool vectors_free,
-                     const PeriodicSystem& sys) {
+NextRound next_round(const Scene& scene, const Fidelity& f, const StabilityAnswer& a, double tol, bool vectors_free) {
   const ErrorBudget& b = a.budget;
   const double scale = std::max(1.0, a.floquet.max_abs_multiplier), allowed = tol * scale;
   const bool basis_reachable =
@@ -231,14 +229,14 @@ NextRound next_round(const Scene& scene, const Fidelity& f, const StabilityAnswe
     return {next, {}};
   }
   if ((basis_reachable || b.basis <= allowed) && b.reduction >= b.load && vectors_free &&
-      12 * f.reduction.vectors < sys.all_modes) {
+      12 * f.reduction.vectors < a.full_size) {
     // Only while the budget's richer variant (twice as many again) stays a reduced model.
     next.reduction.vectors *= 2;
     return {next, {}};
   }
-  return {std::nullopt, b.basis > allowed ? tolerance_not_met(tol, f.model, b.basis / scale).what()
-                                          : fmt::format("tolerance {}: not met (estimated error {:.2g}): {}", tol,
-                                                        b.total() / scale, fixed_part(b, scale, f, vectors_free, sys))};
+  if (b.basis > allowed) return {std::nullopt, tolerance_not_met(tol, f.model, b.basis / scale).what()};
+  return {std::nullopt, fmt::format("tolerance {}: not met (estimated error {:.2g}): {}", tol, b.total() / scale,
+                                    fixed_part(b, scale, f, vectors_free, a.full_size))};
 }
 
 // Adds `flops` of systems to `built`, the analysis's so far; past `limit`, its share of the work
@@ -273,8 +271,51 @@ Fidelity first_fidelity(const Scene& scene, bool vectors_free, double& built, do
   return f;
 }
 
+// "N terms per field", and "and V reduction vectors" where the reduction is automatic.
+std::string fidelity_text(const Fidelity& f) {
+  if (f.reduction.kind != ReductionKind::automatic) return fmt::format("{} terms per field", f.model.terms);
+  return fmt::format("{} terms per field and {} reduction vectors", f.model.terms, f.reduction.vectors);
+}
+
+// One fidelity round: the answer at `f` and its budget. The variants of `plan` start beside the
+// answer once its first refinement level is done (or it is), so that an answer whose ladder the work
+// limit refuses outright ends the round at once, not after a richer variant's first level. `done`
+// counts the progress steps over every round (StabilityRequest::progress).
+StabilityAnswer run_round(const Scene& scene, const Fidelity& f, const VariantPlan& plan,
+                          const StabilityRequest& request, double ladder_flops, int& done) {
+  std::optional<RunningVariants> variants;
+  const auto start = [&] {
+    if (!variants) variants.emplace(start_variants(plan, scene, request.tolerance, ladder_flops, request.threads));
+  };
+  const int variant_count = static_cast<int>(plan.fidelities.size());
+  FloquetOptions options{request.method, request.harmonics, request.tolerance / 4, true, {}, ladder_flops};
+  int levels = 0;
+  options.progress = [&](int d, int total) {
+    start();
+    levels = d;
+    if (request.progress) request.progress(done + d, done + total + variant_count);
+  };
+  const PeriodicSystem sys = system_at(scene, f);
+  StabilityAnswer a;
+  a.floquet = floquet_of(scene, f, sys, options);
+  start();
+  done += levels;
+  int variants_left = variant_count;
+  a.budget = budget_of(a.floquet, plan, *variants, [&] {
+    ++done, --variants_left;
+    if (request.progress) request.progress(done, done + variants_left);
+  });
+  a.reduced_size = sys.kept_modes;
+  a.full_size = sys.all_modes;
+  a.theta_rad_s = sys.angular_frequency;
+  return a;
+}
+
 }  // namespace
 
+// Rounds from the scene's fidelity, raised while the budget exceeds the tolerance (next_round). A
+// raised round that cannot finish (its ladders past the work limit, a check of its own failed)
+// leaves the last finished round's answer standing, with the reason the tolerance is not met.
 StabilityAnswer analyse_stability(const Scene& scene, const StabilityRequest& request) {
   refuse_impulse_jump(scene);
   const bool vectors_free = scene.model.reduction.kind == ReductionKind::automatic && scene.model.reduction.vectors == 0;
@@ -283,50 +324,38 @@ StabilityAnswer analyse_stability(const Scene& scene, const StabilityRequest& re
   Fidelity f = first_fidelity(scene, vectors_free, built, build_flops);
   VariantPlan plan = plan_variants(scene, f);
   charge_systems(built, round_build_flops(scene, f, plan), build_flops, f.model.terms);
-  StabilityAnswer a;
   int done = 0;  // progress over the rounds: the answer's levels, then its variants
+  StabilityAnswer a = run_round(scene, f, plan, request, ladder_flops, done);
   while (true) {
-    RunningVariants variants = start_variants(plan, scene, tol, ladder_flops, request.threads);
-    const int variant_count = static_cast<int>(plan.fidelities.size());
-    FloquetOptions options{request.method, request.harmonics, tol / 4, true, {}, ladder_flops};
-    int levels = 0;
-    if (request.progress) {
-      options.progress = [&](int d, int total) { levels = d, request.progress(done + d, done + total + variant_count); };
-    }
-    const PeriodicSystem sys = system_at(scene, f);
-    a.floquet = floquet_of(scene, f, sys, options);
-    done += levels;
-    int variants_left = variant_count;
-    a.budget = budget_of(a.floquet, plan, variants, [&] {
-      ++done, --variants_left;
-      if (request.progress) request.progress(done, done + variants_left);
-    });
-    a.reduced_size = sys.kept_modes;
-    a.full_size = sys.all_modes;
-    a.theta_rad_s = sys.angular_frequency;
     const double relative = a.budget.total() / std::max(1.0, a.floquet.max_abs_multiplier);
     if (relative <= tol) break;
-    a.tolerance_met = false;  // until a raised round meets it
+    a.tolerance_met = false;
     if (request.verdict_only && verdict_decided(a)) {
       a.tolerance_unmet =
           fmt::format("tolerance {}: not sought past the verdict, decided at estimated error {:.2g}", tol, relative);
       break;
     }
-    const NextRound next = next_round(scene, f, a, tol, vectors_free, sys);
+    const NextRound next = next_round(scene, f, a, tol, vectors_free);
     if (!next.fidelity) {
       a.tolerance_unmet = next.unmet;
       break;
     }
+    const std::string raising = fmt::format("tolerance {}: not met (estimated error {:.2g}): raising it to {}", tol,
+                                            relative, fidelity_text(*next.fidelity));
     VariantPlan next_plan = plan_variants(scene, *next.fidelity);
     const double next_built = built + round_build_flops(scene, *next.fidelity, next_plan);
     if (next_built > build_flops) {
       a.work_limited = true;
-      a.tolerance_unmet = fmt::format("tolerance {}: not met (estimated error {:.2g}): raising it to {} terms per "
-                                      "field and {} reduction vectors would pass the work limit",
-                                      tol, relative, next.fidelity->model.terms, next.fidelity->reduction.vectors);
+      a.tolerance_unmet = raising + " would pass the work limit";
       break;
     }
-    a.tolerance_met = true;
+    try {
+      a = run_round(scene, *next.fidelity, next_plan, request, ladder_flops, done);
+    } catch (const NumericalError& e) {
+      a.work_limited = dynamic_cast<const WorkLimitError*>(&e) != nullptr;
+      a.tolerance_unmet = fmt::format("{} did not finish: {}", raising, e.what());
+      break;
+    }
     built = next_built;
     f = *next.fidelity;
     plan = std::move(next_plan);
