@@ -10,6 +10,7 @@
 
 #include "bladestab/stability/boundaries.hpp"
 #include "bladestab/blade/damping.hpp"
+#include "bladestab/modal/modes.hpp"
 #include "bladestab/stability/instability_regions.hpp"
 #include "bladestab/modal/basis_error.hpp"
 #include "bladestab/stability/stability_analysis.hpp"
@@ -320,6 +321,27 @@ TEST_CASE("boundaries: the multiplier check tells a boundary from a point inside
   Boundary inside = edges[0];
   inside.theta_rad_s = 0.5 * (edges[0].theta_rad_s + edges[1].theta_rad_s);
   CHECK(multiplier_gap(sys, peak, inside, 1e-10).gap.value() > 0.1);
+}
+
+TEST_CASE("boundaries at F̄ = 0 are the tongues' tips 2ω₁/n, in pairs, and no region", "[boundaries][regions]") {
+  // Without load the scaled check system was 0/0 (a non-finite exponential, exit 1, nothing printed).
+  const Scene s = paper_scene({"load.fmax_over_fcr=0"});  // θ = Ω = 300 rad/s, window [150, 600]
+  const BoundaryRequest r;
+  const BoundaryAnalysis a = boundaries_with_error_estimate(s, r);
+  // The closed form: the lowest mode of the whole Ritz model at Ω with its Coriolis coupling (which
+  // moves it by 6.6e-4 from the non-gyroscopic one; `modes` prints 68.0354375847 Hz).
+  const BladeModel model = assemble_model(s);
+  const Eigen::MatrixXd no_damping = Eigen::MatrixXd::Zero(model.M.rows(), model.M.cols());
+  const double omega1 = dense_eigenpairs(system_at(model, 300, no_damping)).values.imag().minCoeff();
+  std::map<int, int> per_order;
+  for (const EstimatedBoundary& e : a.boundaries) {
+    CHECK(e.boundary.mode == 1);
+    CHECK(e.boundary.multiplier == (e.boundary.order % 2 == 0 ? 1 : -1));
+    CHECK(std::abs(e.boundary.theta_rad_s / (2 * omega1 / e.boundary.order) - 1) <= e.budget.total() + 1e-9);
+    ++per_order[e.boundary.order];
+  }
+  CHECK(per_order == std::map<int, int>{{2, 2}, {3, 2}, {4, 2}});  // 2ω₁ = 855 rad/s is outside the window
+  CHECK(instability_regions(s, r, a).empty());
 }
 
 TEST_CASE("boundaries: regions at the scene's load hold the paper point, and the Floquet verdict flips at their ends",

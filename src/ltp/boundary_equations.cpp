@@ -190,8 +190,9 @@ std::vector<int> multiplier_signs(int sign) {
 
 MultiplierGap multiplier_gap(const LinearPeriodicSystem& system, double system_peak_force_n, const Boundary& b,
                              double tolerance, double max_flops) {
-  // The coefficient scaled to b's amplitude (A₀ moves by Δf₀ B) at b's frequency.
-  LinearPeriodicSystem at = system.scaled(b.peak_force_n / system_peak_force_n);
+  // The coefficient scaled to b's amplitude (A₀ moves by Δf₀ B) at b's frequency; a system without
+  // load (F̄ = 0, its boundaries the tongues' tips θ = 2ω/n) is taken as it is.
+  LinearPeriodicSystem at = system.scaled(system_peak_force_n > 0 ? b.peak_force_n / system_peak_force_n : 1);
   at.angular_frequency = b.theta_rad_s;
   // Φ(T) by Magnus steps doubled from a quarter of the count where h‖A‖ ≤ 2 until StepDoubling
   // accepts Φ entry-wise within `tolerance` relative to its largest entry. (The multipliers
