@@ -8,6 +8,7 @@
 #include "bladestab/stability/boundaries.hpp"
 #include "bladestab/blade/damping.hpp"
 #include "bladestab/stability/stability_map.hpp"
+#include "bladestab/stability/periodic_system.hpp"
 #include "support/scenes.hpp"
 
 using namespace bladestab;
@@ -420,4 +421,16 @@ TEST_CASE("map: a shading point whose ladder outgrows its work is undecided, and
     }
   }
   CHECK(limited.curves.size() == whole.curves.size());
+}
+
+TEST_CASE("speed-plane map: a contact of 0.3 revolution is no contact past the period at the window's edges",
+          "[map]") {
+  // The curves' reduction asks at the lowest speed (150 rad/s) for the modes up to the highest θ
+  // (600 rad/s): 0.3 of a revolution there (12.6 ms) outlasted that θ's period (10.5 ms) and the
+  // map was refused, though at every speed 0.3 of a revolution fits in one. The frequencies need no
+  // load: the count is that of a short contact.
+  const Scene slow = paper_scene({"operation.speed_rad_s=150", "load.contact_time_rev=0.3"});
+  const Scene short_contact = paper_scene({"operation.speed_rad_s=150", "load.contact_time_rev=0.01"});
+  const BladeModel model = assemble_model(slow);
+  CHECK(tongue_vectors(model, slow, 600, 4) == tongue_vectors(model, short_contact, 600, 4));
 }

@@ -66,6 +66,10 @@ int tongue_vectors(const BladeModel& model, const Scene& scene, double theta_max
   Scene unloaded = scene;
   unloaded.load.fmax_over_fcr = 0;
   unloaded.load.pulse_frequency_hz = theta_max / two_pi;
+  // The frequencies need no load, only a contact within the period at θ_max (a speed-plane map
+  // asks at its lowest speed for its highest θ, where 0.3 of a revolution at 150 rad/s outlasts it).
+  const double speed = scene.operation.speed_rad_s;
+  if (speed > 0) unloaded.load.contact_time_rev = std::min(scene.load.contact_time_rev, speed / theta_max);
   const Eigen::VectorXd omega =
       periodic_system(model, unloaded, load_series(unloaded), {ReductionKind::none, 0, 0}).modal->frequencies();
   return std::max(2, static_cast<int>((omega.array() < max_order * theta_max).count()));
