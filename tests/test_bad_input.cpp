@@ -184,6 +184,9 @@ TEST_CASE("bad input: missing scene file and malformed --set (bad_input)", "[bad
   SECTION("--set with an empty value") {
     expect_rejected(modes({"--set", "blade.length="}), {"--set blade.length=", "empty"});
   }
+  SECTION("--set with a value that goes on past a line break (its keys were taken silently)") {
+    expect_rejected(modes({"--set", "model.terms=4\nx=1"}), {"--set model.terms=4", "spans lines", "one line"});
+  }
 }
 
 TEST_CASE("bad input: campbell options (bad_input)", "[bad_input][parallel]") {
@@ -568,6 +571,10 @@ TEST_CASE("bad input: issue 24, options read as the scene reads them (bad_input)
                                            "[requirements]\nspeed_range_rad_s = [100.0, 200.0]\n"
                                            "engine_orders = [1, 1]\nfrequency_margin = 0.1\n");
     expect_rejected({"check", scene}, {"requirements.engine_orders = [1, 1]", rule});
+  }
+  SECTION("an unknown requirements key is named, not a known one reported missing") {
+    const std::string scene = edited_scene("requirements_foo.toml", "", "", "[requirements]\nfoo = 3\n");
+    expect_rejected({"check", scene}, {"requirements.foo = 3", "unknown key", "speed_range_rad_s"});
   }
   SECTION("crosscheck --points 1,1") {
     expect_rejected({"crosscheck", valid_scene, "--points", "1,1"},

@@ -221,13 +221,15 @@ public:
         fail_key(name, Reason::unused,
                  fmt::format("{}.{} = {}: not used with {}", section_, name, show(node), unused_because));
       }
-      if (used_.count(name) == 0) {
-        std::string allowed;
-        for (const auto& k : known_) allowed += (allowed.empty() ? "" : ", ") + k;
-        fail_key(name, Reason::unknown,
-                 fmt::format("{}.{} = {}: unknown key (known in [{}]: {})", section_, echoed(name), show(node),
-                             section_, allowed));
-      }
+      if (used_.count(name) == 0) fail_unknown(name, node);
+    }
+  }
+
+  // Keys the section does not know at all, before any of its known keys is read (so that a
+  // misspelt key is named, not the known one it was meant as, reported missing).
+  void reject_unknown_names() const {
+    for (const auto& [key, node] : *table_) {
+      if (known_.count(std::string(key.str())) == 0) fail_unknown(std::string(key.str()), node);
     }
   }
 
@@ -265,6 +267,12 @@ private:
   [[noreturn]] void fail_plain(const std::string& message) const {
     throw InputError(fmt::format("{}: {}", source_, message));
   }
+  [[noreturn]] void fail_unknown(const std::string& name, const toml::node& node) const {
+    std::string allowed;
+    for (const auto& k : known_) allowed += (allowed.empty() ? "" : ", ") + k;
+    fail_key(name, Reason::unknown, fmt::format("{}.{} = {}: unknown key (known in [{}]: {})", section_, echoed(name),
+                                                show(node), section_, allowed));
+  }
   [[noreturn]] void fail_key(const std::string& key, Reason reason, const std::string& message) const {
     throw SceneKeyError(fmt::format("{}: {}", source_, message), section_ + "." + key, reason);
   }
@@ -289,6 +297,10 @@ void apply_override(toml::table& root, const std::string& assignment) {
   if (text.empty()) {
     throw ParameterError("set", fmt::format("{}: the value is empty", shown));
   }
+  // One value on one line: a line break would let the text go on with keys of its own.
+  if (text.find_first_of("\r\n") != std::string::npos) {
+    throw ParameterError("set", fmt::format("{}: the value spans lines; give one value on one line", shown));
+  }
   toml::table parsed;
   try {
     parsed = toml::parse("value = " + text);
@@ -309,6 +321,7 @@ void apply_override(toml::table& root, const std::string& assignment) {
 RequirementsSpec read_requirements(const toml::table& root, const std::string& source) {
   SectionReader section(root, "requirements", source);
   section.known({"speed_range_rad_s", "engine_orders", "frequency_margin", "max_fmax_over_fcr"});
+  section.reject_unknown_names();
   RequirementsSpec r;
   if (!section.has("speed_range_rad_s")) {
     section.fail_missing("speed_range_rad_s", "the operating range [lo, hi] in rad/s is required");
