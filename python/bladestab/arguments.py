@@ -77,13 +77,23 @@ def command_line(command, scene_name, options):
     return arguments
 
 
+def _plain(value):
+    """A scene dict with NumPy scalars and arrays as the Python numbers and lists TOML writes."""
+    if isinstance(value, dict):
+        return {key: _plain(item) for key, item in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_plain(item) for item in value]
+    return value.tolist() if hasattr(value, "tolist") else value
+
+
 def scene_source(scene):
     """(name, text) of a scene given as a file path, TOML text or a dict of its tables: a path is
     read by the program (text empty); text and dicts are handed over, named "<text>" and "<dict>"."""
     if isinstance(scene, dict):
         import toml  # Debian's python3-toml writes TOML
 
-        return "<dict>", toml.dumps(scene)
+        # A newline at least: empty text would name a file; the program then says what is missing.
+        return "<dict>", toml.dumps(_plain(scene)) or "\n"
     if isinstance(scene, os.PathLike):
         return os.fspath(scene), ""
     if not isinstance(scene, str):

@@ -4,13 +4,15 @@ answers gathered into an xarray.Dataset and, with a store, into Zarr as they arr
 study resumes where it stopped."""
 
 import concurrent.futures
+import hashlib
 import os
+import signal
 
 from bladestab.analyses import ANALYSES
 from bladestab.arguments import command_options, scene_source
 from bladestab.errors import InputError, NumericalError
 from bladestab.study_plan import Plan
-from bladestab.study_store import COMPUTED, FAILED, StudyStore
+from bladestab.study_store import COMPUTED, FAILED, StudyStore, held_study
 from bladestab.study_worker import run_task
 
 
@@ -33,11 +35,18 @@ def _scene_text(scene):
     return name, text
 
 
+def _ignore_interrupts():
+    """A local worker's start: Ctrl-C reaches the whole process group, and the study (the caller)
+    answers it by ending its workers; a worker stopped by it half-way through sending a result
+    would leave the pool waiting for that result forever."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+
 def _executor(executor):
     """(executor, owned): a Dask Client becomes its concurrent.futures executor; none, a pool of
     local processes (one per core) that the study shuts down."""
     if executor is None:
-        return concurrent.futures.ProcessPoolExecutor(os.cpu_count()), True
+        return concurrent.futures.ProcessPoolExecutor(os.cpu_count(), initializer=_ignore_interrupts), True
     if hasattr(executor, "get_executor"):  # dask.distributed.Client
         return executor.get_executor(), False
     return executor, False
@@ -57,15 +66,19 @@ def study(scene, grid, analysis, executor=None, store=None, options=None, chunk=
     takes them), on `executor`; the xarray.Dataset of the answers' scalar fields, one dimension
     per grid key. With `store` (a Zarr path) the answers are written there chunk by chunk and a
     study run again against it computes only what it does not hold. `chunk`: points per task;
-    `progress(done, total)` after each task. A point refused or failing its checks is `failed`
-    with its variables missing; a study where every point fails raises the first one's error."""
+    `progress(done, total)` after each task. A point refused or failing its checks is `failed`,
+    its one-line reason in `failure`, its numeric variables NaN and its boolean ones False; a study
+    where every point fails raises the first one's error."""
     command = _command(analysis)
     options = dict(options or {})
     if "--threads" in command_options()[command]:
         options.setdefault("threads", 1)  # a worker per core: each point on its own one (answers do not depend on it)
     name, text = _scene_text(scene)
-    plan = Plan(grid, chunk, _workers(executor))
-    description = {"analysis": command, "scene": name, "options": {k: repr(v) for k, v in options.items()},
+    held = held_study(store)
+    # A study resumed takes the store's chunks unless given others (the default depends on the workers).
+    plan = Plan(grid, chunk if chunk is not None or held is None else held.get("chunk"), _workers(executor))
+    description = {"analysis": command, "scene": name, "scene_sha256": hashlib.sha256(text.encode()).hexdigest(),
+                   "options": {k: repr(v) for k, v in options.items()},
                    "grid": {k: repr(plan.coords[k]) for k in plan.keys}, "chunk": plan.chunk}
     results = StudyStore(store, plan, description)
     tasks = results.pending()
@@ -81,6 +94,11 @@ def study(scene, grid, analysis, executor=None, store=None, options=None, chunk=
             done += 1
             if progress is not None:
                 progress(done, len(plan.chunks()))
+    except KeyboardInterrupt:
+        if owned:  # its workers ignore Ctrl-C (_ignore_interrupts): ended here, their tasks with them
+            for process in list((getattr(pool, "_processes", None) or {}).values()):
+                process.terminate()
+        raise
     finally:
         if owned:
             pool.shutdown(wait=True, cancel_futures=True)

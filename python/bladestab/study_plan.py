@@ -5,6 +5,7 @@ along one dimension "point". Tasks are blocks of up to `chunk` points along the 
 
 import itertools
 import math
+import numbers
 
 import numpy as np
 
@@ -12,10 +13,21 @@ from bladestab.errors import InputError
 
 
 def _values(key, values):
-    values = list(values.tolist() if hasattr(values, "tolist") else values)
+    values = values.tolist() if hasattr(values, "tolist") else values
+    if isinstance(values, (str, bytes, dict)) or not hasattr(values, "__iter__"):
+        raise InputError(f"grid {key}: {values!r}: a list of values (one value is a list of one)")
+    values = list(values)
     if not values:
         raise InputError(f"grid {key}: no values")
     return values
+
+
+def _chunk(chunk):
+    if chunk is None:
+        return None
+    if isinstance(chunk, bool) or not isinstance(chunk, numbers.Integral) or chunk < 1:
+        raise InputError(f"chunk {chunk!r}: the points per task, a whole number of at least 1")
+    return int(chunk)
 
 
 class Plan:
@@ -41,7 +53,7 @@ class Plan:
         self.size = math.prod(self.shape)
         last = self.shape[-1]
         # By default about four tasks per worker, cut evenly along the last dimension.
-        per_task = chunk or max(1, math.ceil(self.size / (4 * max(1, workers))))
+        per_task = _chunk(chunk) or max(1, math.ceil(self.size / (4 * max(1, workers))))
         self.blocks = math.ceil(last / min(last, per_task))
         self.chunk = math.ceil(last / self.blocks)
         self.blocks = math.ceil(last / self.chunk)

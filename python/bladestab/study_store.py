@@ -3,9 +3,12 @@ array per variable over the study's dimensions, chunked as the tasks (study_plan
 xarray's dimension names, so xarray.open_zarr reads it as the Dataset. Only the caller writes it,
 a task's chunks at a time as its results arrive; `computed` counts how often each point was
 written (1 when the study is complete, 0 where a stopped study has not reached), and a study
-resumed against the store runs only the tasks with points at 0."""
+resumed against the store runs only the tasks with points at 0. A point that failed has `failed`
+set and its one-line reason in `failure`; an answer's field named as a grid key (modes echoes
+`model.terms`) is kept as `answer.<key>` beside the coordinate."""
 
 import json
+import os
 
 import numpy as np
 import xarray as xr
@@ -15,6 +18,15 @@ from bladestab.errors import InputError
 
 COMPUTED = "computed"
 FAILED = "failed"
+FAILURE = "failure"
+RESERVED = {COMPUTED, FAILED, FAILURE, "point"}
+
+
+def held_study(store):
+    """The description of the study a store on disk holds, or None."""
+    if store is None or not os.path.exists(os.fspath(store)):
+        return None
+    return zarr.open_group(store, mode="r").attrs.get("bladestab_study")
 
 
 class StudyStore:
@@ -22,8 +34,12 @@ class StudyStore:
         self.plan = plan
         self.group = zarr.open_group(zarr.MemoryStore() if store is None else store, mode="a")
         held = self.group.attrs.get("bladestab_study")
-        if held is not None and held != json.loads(json.dumps(description)):
-            raise InputError(f"store {store}: holds another study ({held}); give a new store to start this one")
+        wanted = json.loads(json.dumps(description))
+        if held is not None and held != wanted:
+            entry = next(k for k in sorted(set(held) | set(wanted)) if held.get(k) != wanted.get(k))
+            differs = ("its scene's text is another" if entry == "scene_sha256"
+                       else f"its {entry} is {held.get(entry)!r}, this one's {wanted.get(entry)!r}")
+            raise InputError(f"store {store}: holds another study ({differs}); give a new store to start this one")
         if held is None:
             self.group.attrs["bladestab_study"] = description
             for dim, key in zip(plan.dims if plan.dims != ["point"] else [], plan.keys):
@@ -34,6 +50,7 @@ class StudyStore:
                     self._array(key, plan.coordinate(key), ["point"])
             self._variable(COMPUTED, np.int8, 0)
             self._variable(FAILED, bool, False)
+            self._variable(FAILURE, str, "")
 
     def _array(self, name, values, dims):
         array = self.group.create_dataset(name, data=values, shape=values.shape, dtype=values.dtype)
@@ -57,14 +74,16 @@ class StudyStore:
         for name in names:
             values = [a.get(name) if isinstance(a, dict) else None for a in answers]
             is_bool = all(isinstance(v, bool) or v is None for v in values)
-            if name not in self.group:
-                self._variable(name, bool if is_bool else float, False if is_bool else np.nan)
-            array = self.group[name]
+            stored = f"answer.{name}" if name in self.plan.keys or name in RESERVED else name
+            if stored not in self.group:
+                self._variable(stored, bool if is_bool else float, False if is_bool else np.nan)
+            array = self.group[stored]
             cells = np.array([False if v is None else v for v in values] if array.dtype == bool
                              else [np.nan if v is None else float(v) for v in values], dtype=array.dtype)
             array[region] = cells
         failed = np.array([not isinstance(a, dict) for a in answers])
         self.group[FAILED][region] = failed
+        self.group[FAILURE][region] = np.array(["" if isinstance(a, dict) else a[1] for a in answers], dtype=object)
         self.group[COMPUTED][region] = self.group[COMPUTED][region] + 1
 
     def dataset(self):
