@@ -344,6 +344,59 @@ TEST_CASE("boundaries at F̄ = 0 are the tongues' tips 2ω₁/n, in pairs, and n
   CHECK(instability_regions(s, r, a).empty());
 }
 
+TEST_CASE("boundaries: a thin tongue's region is checked until its estimate decides, not dropped as stable",
+          "[boundaries][regions][parallel]") {
+  // F̄ = 0.5: the +1 pair of order 4 at 209.72696 and 209.72706 rad/s encloses max|ρ| = 1.0000031,
+  // which the middle's check at 1e-4 left within its estimate (6.7e-6) of 1: the region was dropped.
+  const Scene s = paper_scene({"load.fmax_over_fcr=0.5"});
+  BoundaryRequest r;
+  r.window = std::make_pair(205.0, 215.0);
+  const BoundaryAnalysis a = boundaries_with_error_estimate(s, r);
+  const std::vector<InstabilityRegion> regions = instability_regions(s, r, a);
+  REQUIRE(regions.size() == 1);
+  const InstabilityRegion& thin = regions[0];
+  CHECK(thin.multiplier == 1);
+  CHECK(thin.upper - thin.lower < 2e-4);
+  // The reference: `stability` at the middle at 1e-9, whatever the region code asked.
+  Scene middle = s;
+  middle.load.pulse_frequency_hz = 0.5 * (thin.lower + thin.upper) / (2 * M_PI);
+  StabilityRequest tight;
+  tight.tolerance = 1e-9;
+  const StabilityAnswer reference = analyse_stability(middle, tight);
+  REQUIRE(reference.floquet.max_abs_multiplier - 1 > 10 * reference.budget.total());
+  CHECK(thin.middle_max_abs_multiplier - 1 > thin.middle_error_estimate);
+  CHECK(std::abs(thin.middle_max_abs_multiplier - reference.floquet.max_abs_multiplier) <=
+        thin.middle_error_estimate + reference.budget.total());
+}
+
+TEST_CASE("boundaries along θ with a pulse series: the regions' middles hold the series' duty, as the boundaries do",
+          "[boundaries][regions][series][parallel]") {
+  // t̄c = 0.3 under the Fourier series: the boundary equations keep the coefficients of the scene's
+  // duty t_c/T_p along θ. The middle was checked with t_c held instead (1.0426 at the middle of the
+  // order-2 region, where the duty held gives 1.0545), so regions and boundaries answered two loads.
+  const Scene s = paper_scene({"model.terms=8", "load.approximation=fourier", "load.contact_time_rev=0.3",
+                               "load.fmax_over_fcr=0.8"});
+  BoundaryRequest r;
+  r.window = std::make_pair(400.0, 450.0);
+  r.max_order = 2;
+  const BoundaryAnalysis a = boundaries_with_error_estimate(s, r);
+  const std::vector<InstabilityRegion> regions = instability_regions(s, r, a);
+  REQUIRE(regions.size() == 1);
+  const double middle_theta = 0.5 * (regions[0].lower + regions[0].upper);
+  const auto at_middle = [&](double contact_time_rev) {
+    Scene at = s;
+    at.load.pulse_frequency_hz = middle_theta / (2 * M_PI);
+    at.load.contact_time_rev = contact_time_rev;
+    StabilityRequest tight;
+    tight.tolerance = 1e-8;
+    return analyse_stability(at, tight);
+  };
+  const StabilityAnswer duty_held = at_middle(0.3 * 300 / middle_theta), contact_held = at_middle(0.3);
+  CHECK(std::abs(regions[0].middle_max_abs_multiplier - duty_held.floquet.max_abs_multiplier) <=
+        regions[0].middle_error_estimate + duty_held.budget.total());
+  CHECK(std::abs(contact_held.floquet.max_abs_multiplier - duty_held.floquet.max_abs_multiplier) > 1e-3);
+}
+
 TEST_CASE("boundaries: regions at the scene's load hold the paper point, and the Floquet verdict flips at their ends",
           "[boundaries][regions][slow][parallel]") {
   const Scene s = paper_scene({"model.terms=8"});  // θ = Ω = 300 rad/s, F̄ = 5

@@ -101,9 +101,14 @@ struct BoundaryOutput {
   double unit = 1;       // the window in θ [rad/s] or F̄_max
   PrintedDigits digits;
 
-  // A region's end: the window's as it is, a boundary's to the largest estimate.
+  // A region's end: the window's as it is, a boundary's to its own estimate (an unconverged one's,
+  // or one not found, to the largest).
   double region_end(double end, bool at_window) const {
-    return at_window ? end / unit : digits.relative(end / unit, result.total().total());
+    if (at_window) return end / unit;
+    const auto own = std::find_if(result.boundaries.begin(), result.boundaries.end(), [&](const EstimatedBoundary& e) {
+      return (in_load ? e.boundary.peak_force_n : e.boundary.theta_rad_s) == end;
+    });
+    return digits.relative(end / unit, own != result.boundaries.end() ? own->budget.total() : result.total().total());
   }
   // max|ρ| at a region's middle to its check's estimate.
   double middle_rho(const InstabilityRegion& r) const {
@@ -270,9 +275,11 @@ void print_table(const BoundaryOutput& o) {
     const std::string verdict = r.undecided.empty()
                                     ? fmt::format("max|ρ| = {} ± {:.1g} at the middle", o.middle_rho(r), r.middle_error_estimate)
                                     : "undecided: the check at the middle failed, " + r.undecided;
-    fmt::print("  {}{}{:.6g} … {:.6g}{}{}  multiplier {}  mode {}  order {}  ({})\n",
+    // The ends as JSON gives them (region_end): a thin tongue's two differ in their 8th digit.
+    fmt::print("  {}{}{} … {}{}{}  multiplier {}  mode {}  order {}  ({})\n",
                end(r.lower_open, r.lower_unconverged), r.lower_open || r.lower_unconverged ? " " : "",
-               r.lower / o.unit, r.upper / o.unit, r.upper_open || r.upper_unconverged ? " " : "",
+               o.region_end(r.lower, r.lower_open), o.region_end(r.upper, r.upper_open),
+               r.upper_open || r.upper_unconverged ? " " : "",
                end(r.upper_open, r.upper_unconverged), r.multiplier > 0 ? "+1" : "-1", r.mode, r.order, verdict);
   }
   if (o.regions.empty()) fmt::print("  (none in the window)\n");

@@ -202,12 +202,6 @@ std::string fixed_part(const ErrorBudget& b, double scale, const Fidelity& f, bo
   return fmt::format("its method part {:.2g} did not come down", b.method / scale);
 }
 
-// Whether the estimate decides the verdict (StabilityRequest::verdict_only, `stable` below).
-bool verdict_decided(const StabilityAnswer& a) {
-  const double rho = a.floquet.max_abs_multiplier, error = a.budget.total();
-  return rho > 1 + error || rho + error <= 1 + 1e-9;
-}
-
 // The next round's fidelity: the largest part of the budget that the scene leaves free, raised; or,
 // where none is or the basis part alone is beyond what more terms can reach (basis_can_reach: the
 // sine basis and a section table converge algebraically; 10 sine terms toward 1e-6 ran for ten
@@ -312,6 +306,11 @@ StabilityAnswer run_round(const Scene& scene, const Fidelity& f, const VariantPl
 }
 
 }  // namespace
+
+bool verdict_decided(const StabilityAnswer& a) {
+  const double rho = a.floquet.max_abs_multiplier, error = a.budget.total();
+  return rho > 1 + error || rho + error <= 1 + 1e-9;
+}
 
 // Rounds from the scene's fidelity, raised while the budget exceeds the tolerance (next_round). A
 // raised round that cannot finish (its ladders past the work limit, a check of its own failed)

@@ -67,4 +67,8 @@ struct StabilityAnswer {
 
 StabilityAnswer analyse_stability(const Scene& scene, const StabilityRequest& request);
 
+// Whether an answer's estimate decides its verdict: max|ρ| above 1 by more than the estimate, or
+// below 1 + 1e-9 with it (StabilityRequest::verdict_only; `stable` is max|ρ| ≤ 1 + the estimate).
+bool verdict_decided(const StabilityAnswer& answer);
+
 }  // namespace bladestab
