@@ -33,6 +33,8 @@ def run(command, scene, progress=None, **options):
             options = {"chart": "none", **options}
         answer = _core.run(command_line(command, name, options), text, progress)
         result = Result(command, answer)
+        if scratch:
+            result.files = []  # the scratch directory and its files are gone when this returns
     for note in result.notes:
         warnings.warn(note, Note, stacklevel=3)
     return result
