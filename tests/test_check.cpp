@@ -186,6 +186,33 @@ TEST_CASE("check: the example scenes end to end: two failures as JUnit", "[check
   }
 }
 
+TEST_CASE("check: a requirement whose computation fails has no verdict, and the others keep theirs",
+          "[check][parallel]") {
+  // 1 to 10 rad/s: the rub check's Floquet period at 1 rad/s would need more than 131072 Magnus
+  // steps. It ended the whole run in one line, and `--format junit` wrote nothing for CI to read.
+  const Outcome x = run_bladestab({"check", example("passes"), "--set", "requirements.speed_range_rad_s=[1, 10]",
+                                   "--format", "junit"},
+                                  {120});
+  INFO(describe(x) << "\n" << x.err);
+  REQUIRE(exit_code(x) == 1);
+  CHECK(x.out.find("tests=\"2\" failures=\"0\" errors=\"1\"") != std::string::npos);
+  CHECK(count_of(x.out, "<error message=\"no verdict: the check failed\">no verdict: the monodromy needs more than") == 1);
+  CHECK(count_of(x.out, "<failure") == 0);
+  // The Campbell margin still answers: at 10 rad/s mode 1 (28.69 Hz) is 83 % from engine order 3.
+  CHECK(x.out.find("name=\"campbell_margin\"") != std::string::npos);
+  CHECK(x.out.find("|f - kΩ/2π|/f = 0.8335") != std::string::npos);
+  const Outcome j = run_bladestab({"check", example("passes"), "--set", "requirements.speed_range_rad_s=[1, 10]",
+                                   "--format", "json"},
+                                  {120});
+  REQUIRE(exit_code(j) == 1);
+  const Json answer = parse_json(j.out);
+  CHECK_FALSE(answer["passed"].boolean);
+  CHECK(answer["checks"][0]["passed"].boolean);
+  CHECK_FALSE(answer["checks"][1]["passed"].boolean);
+  CHECK(answer["checks"][1]["worst"].type == Json::Type::null);
+  CHECK_THAT(answer["checks"][1]["error"].text, Catch::StartsWith("the monodromy needs more than"));
+}
+
 TEST_CASE("check: bad input is one line naming the key", "[check]") {
   const std::string scene = read_text(example("passes"));
   const auto with = [&](const std::string& name, const std::string& requirements) {

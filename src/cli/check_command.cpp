@@ -1,14 +1,17 @@
 // bladestab check SCENE: does the blade meet the [requirements] of its scene over its operating
 // range (requirements_check.hpp)? A table, JSON or JUnit XML for CI servers; exit 0 when every
-// requirement holds, 1 when one fails, 2 on bad input.
+// requirement holds, 1 when one fails or gets no verdict (its computation failed), 2 on bad input.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <optional>
+#include <string>
+#include <vector>
 
 #include <fmt/format.h>
 
 #include "bladestab/base/input_error.hpp"
+#include "bladestab/base/numerical_error.hpp"
 #include "bladestab/modal/basis_error.hpp"
 #include "bladestab/stability/requirements_check.hpp"
 #include "bladestab/stability/periodic_load.hpp"
@@ -28,6 +31,7 @@ namespace {
 struct CheckOutcome {
   std::string name;
   bool passed = false;
+  bool error = false;   // no verdict: the check's own computation failed (NumericalError); `detail` says how
   std::string summary;  // the worst point in one line, for the table
   std::string detail;   // what was found and how, in sentences
   double seconds = 0;
@@ -138,15 +142,19 @@ CheckOutcome rub_outcome(const Scene& scene, const RubStabilityResult& r) {
   o.write_worst = [r](Json& json, const PrintedDigits& digits) {
     const std::optional<double> onset = r.onset_fmax_over_fcr;
     const Json shown_onset = onset ? Json(digits.relative(*onset, r.onset_error_estimate)) : Json(nullptr);
+    // null where there is no region (its label) or no Floquet check (a required load of 0).
+    const auto of_region = [&onset](int label) { return onset ? Json(label) : Json(nullptr); };
+    const bool checked = r.required > 0;
+    const auto of_check = [&](double value) { return checked ? Json(digits.unestimated(value)) : Json(nullptr); };
     json["worst"] = {{"speed_rad_s", digits.unestimated(r.speed_rad_s)},
                      {"onset_fmax_over_fcr", shown_onset},
-                     {"mode", r.mode},
-                     {"order", r.order},
-                     {"multiplier", r.multiplier},
+                     {"mode", of_region(r.mode)},
+                     {"order", of_region(r.order)},
+                     {"multiplier", of_region(r.multiplier)},
                      {"tip", r.tip},
-                     {"check_speed_rad_s", digits.unestimated(r.check_speed_rad_s)},
-                     {"check_fmax_over_fcr", digits.unestimated(r.check_fmax_over_fcr)},
-                     {"max_abs_multiplier", digits.unestimated(r.max_abs_multiplier)},
+                     {"check_speed_rad_s", of_check(r.check_speed_rad_s)},
+                     {"check_fmax_over_fcr", of_check(r.check_fmax_over_fcr)},
+                     {"max_abs_multiplier", of_check(r.max_abs_multiplier)},
                      {"check_tolerance_met", r.check_tolerance_unmet.empty()}};
     json["required"] = r.required;
     json["error_estimate"] = digits.estimate(r.onset_error_estimate);
@@ -159,7 +167,6 @@ CheckOutcome rub_outcome(const Scene& scene, const RubStabilityResult& r) {
   return o;
 }
 
-// Failed only: a range within the limits adds no check.
 CheckOutcome static_limits_outcome(const StaticLimitsResult& l) {
   CheckOutcome o;
   o.name = "static_limits";
@@ -173,6 +180,28 @@ CheckOutcome static_limits_outcome(const StaticLimitsResult& l) {
     json["speed_lo_rad_s"] = l.speed_lo_rad_s;
     json["speed_hi_rad_s"] = l.speed_hi_rad_s;
   };
+  return o;
+}
+
+// A requirement whose computation fails in one line (a work limit, a check of its own): no verdict,
+// and not passed, while the other requirements keep theirs (JUnit: an <error>, not a <failure>).
+template <class Check>
+CheckOutcome outcome_or_error(const std::string& name, Check check) {
+  const auto start = std::chrono::steady_clock::now();
+  CheckOutcome o;
+  try {
+    o = check();
+  } catch (const NumericalError& e) {
+    o.name = name;
+    o.error = true;
+    o.summary = "no verdict: the check failed";
+    o.detail = fmt::format("no verdict: {}", e.what());
+    o.write_worst = [message = std::string(e.what())](Json& json, const PrintedDigits&) {
+      json["worst"] = nullptr;
+      json["error"] = message;
+    };
+  }
+  o.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return o;
 }
 
@@ -214,16 +243,17 @@ std::string xml_escaped(const std::string& text) {
 // the GitHub Actions reporters); a failed requirement carries a <failure>.
 std::string check_junit(const Scene& scene, const std::vector<CheckOutcome>& checks) {
   double seconds = 0;
-  int failures = 0;
-  for (const CheckOutcome& c : checks) seconds += c.seconds, failures += c.passed ? 0 : 1;
+  int failures = 0, errors = 0;
+  for (const CheckOutcome& c : checks) seconds += c.seconds, failures += !c.passed && !c.error, errors += c.error;
   std::string xml = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
-  xml += fmt::format("<testsuite name=\"bladestab check\" tests=\"{}\" failures=\"{}\" errors=\"0\" time=\"{:.3f}\">\n",
-                     checks.size(), failures, seconds);
+  xml += fmt::format("<testsuite name=\"bladestab check\" tests=\"{}\" failures=\"{}\" errors=\"{}\" time=\"{:.3f}\">\n",
+                     checks.size(), failures, errors, seconds);
   for (const CheckOutcome& c : checks) {
     xml += fmt::format("  <testcase classname=\"{}\" name=\"{}\" time=\"{:.3f}\">\n", xml_escaped(scene_title(scene)),
                        c.name, c.seconds);
     if (!c.passed) {
-      xml += fmt::format("    <failure message=\"{}\">{}</failure>\n", xml_escaped(c.summary), xml_escaped(c.detail));
+      xml += fmt::format("    <{0} message=\"{1}\">{2}</{0}>\n", c.error ? "error" : "failure", xml_escaped(c.summary),
+                         xml_escaped(c.detail));
     }
     xml += fmt::format("    <system-out>{}</system-out>\n  </testcase>\n", xml_escaped(c.detail));
   }
@@ -234,12 +264,18 @@ void print_table(const Scene& scene, const std::vector<CheckOutcome>& checks) {
   const RequirementsSpec& req = *scene.requirements;
   fmt::print("scene   {}\nrange   {:g} to {:g} rad/s\n\n", scene.source, req.speed_lo_rad_s, req.speed_hi_rad_s);
   fmt::print("{:<16} {:<6} {}\n", "requirement", "result", "worst");
-  for (const CheckOutcome& c : checks) fmt::print("{:<16} {:<6} {}\n", c.name, c.passed ? "pass" : "FAIL", c.summary);
+  for (const CheckOutcome& c : checks) {
+    fmt::print("{:<16} {:<6} {}\n", c.name, c.passed ? "pass" : c.error ? "ERROR" : "FAIL", c.summary);
+  }
   fmt::print("\n");
   for (const CheckOutcome& c : checks) fmt::print("{}: {}\n", c.name, c.detail);
-  const long failed = std::count_if(checks.begin(), checks.end(), [](const CheckOutcome& c) { return !c.passed; });
-  fmt::print("\n{}\n", failed == 0 ? "all requirements hold"
-                                   : fmt::format("{} of {} requirements not met", failed, checks.size()));
+  const long errors = std::count_if(checks.begin(), checks.end(), [](const CheckOutcome& c) { return c.error; });
+  const long failed =
+      std::count_if(checks.begin(), checks.end(), [](const CheckOutcome& c) { return !c.passed; }) - errors;
+  std::vector<std::string> verdicts;
+  if (failed > 0) verdicts.push_back(fmt::format("{} of {} requirements not met", failed, checks.size()));
+  if (errors > 0) verdicts.push_back(fmt::format("{} of {} without a verdict", errors, checks.size()));
+  fmt::print("\n{}\n", verdicts.empty() ? "all requirements hold" : fmt::format("{}", fmt::join(verdicts, "; ")));
 }
 
 // The dense eigensolves the checks cannot do without, before they start: the Campbell diagram's
@@ -272,14 +308,6 @@ void check_requirements_work(const Scene& scene) {
              "the whole-model eigensolves of the checks", flops / dense_flops_per_second, bytes);
 }
 
-template <class Run>
-auto timed(double& seconds, Run run) {
-  const auto start = std::chrono::steady_clock::now();
-  auto result = run();
-  seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  return result;
-}
-
 }  // namespace
 
 Command register_check(CLI::App& app) {
@@ -302,28 +330,22 @@ Command register_check(CLI::App& app) {
     check_requirements_work(scene);
     const bool for_people = options->format == "table";
     std::vector<CheckOutcome> checks;
-    double limits_seconds = 0;
-    const StaticLimitsResult limits = timed(limits_seconds, [&] { return check_static_limits(scene); });
-    if (!limits.passed) {
-      checks.push_back(static_limits_outcome(limits));
-      checks.back().seconds = limits_seconds;
-    }
+    // Listed only where it fails: a range within the limits adds no check.
+    CheckOutcome limits =
+        outcome_or_error("static_limits", [&] { return static_limits_outcome(check_static_limits(scene)); });
+    if (!limits.passed) checks.push_back(std::move(limits));
     if (scene.requirements->frequency_margin) {
-      double seconds = 0;
-      const FrequencyMarginResult m = timed(seconds, [&] {
-        return check_frequency_margin(scene, *tolerance, progress_reporter("check: Campbell speeds", for_people),
-                                      work_limits().seconds * dense_flops_per_second / 2);
-      });
-      checks.push_back(margin_outcome(scene, m));
-      checks.back().seconds = seconds;
+      checks.push_back(outcome_or_error("campbell_margin", [&] {
+        return margin_outcome(scene, check_frequency_margin(scene, *tolerance,
+                                                            progress_reporter("check: Campbell speeds", for_people),
+                                                            work_limits().seconds * dense_flops_per_second / 2));
+      }));
     }
     if (scene.requirements->max_fmax_over_fcr) {
-      double seconds = 0;
-      const RubStabilityResult r =
-          timed(seconds, [&] { return check_rub_stability(scene, progress_reporter("check: rub speeds", for_people),
-                                                                  work_limits().seconds * dense_flops_per_second); });
-      checks.push_back(rub_outcome(scene, r));
-      checks.back().seconds = seconds;
+      checks.push_back(outcome_or_error("rub_stability", [&] {
+        return rub_outcome(scene, check_rub_stability(scene, progress_reporter("check: rub speeds", for_people),
+                                                      work_limits().seconds * dense_flops_per_second));
+      }));
     }
     if (options->format == "json") {
       print_json_answer(check_json(scene, *tolerance, checks, options->printed_digits()));
