@@ -272,8 +272,12 @@ void print_table(const BoundaryOutput& o) {
     const auto end = [](bool open, bool unconverged) {
       return open ? "(window)" : unconverged ? "(not converged)" : "";
     };
+    // A growth below the printed digits' floor (finest_resolution) is shown as 1 + its excess: at
+    // F̄ = 0.001 a region's middle is 1.0000000051, which would print as 1.
+    const double excess = r.middle_max_abs_multiplier - 1;
+    const std::string rho = std::abs(excess) < 1e-6 ? fmt::format("1 + {:.2g}", excess) : fmt::format("{}", o.middle_rho(r));
     const std::string verdict = r.undecided.empty()
-                                    ? fmt::format("max|ρ| = {} ± {:.1g} at the middle", o.middle_rho(r), r.middle_error_estimate)
+                                    ? fmt::format("max|ρ| = {} ± {:.1g} at the middle", rho, r.middle_error_estimate)
                                     : "undecided: the check at the middle failed, " + r.undecided;
     // The ends as JSON gives them (region_end): a thin tongue's two differ in their 8th digit.
     fmt::print("  {}{}{} … {}{}{}  multiplier {}  mode {}  order {}  ({})\n",

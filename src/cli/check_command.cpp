@@ -82,6 +82,34 @@ CheckOutcome margin_outcome(const Scene& scene, const FrequencyMarginResult& m) 
 
 const char* sign_text(int multiplier) { return multiplier < 0 ? "-1" : "+1"; }
 
+// The onset to its estimate; the speeds found by the scan and the search, the Floquet check's
+// point and its max|ρ| have no estimate of their own (6 digits, printed_digits.hpp).
+void write_rub_worst(const RubStabilityResult& r, Json& json, const PrintedDigits& digits) {
+  const std::optional<double> onset = r.onset_fmax_over_fcr;
+  const Json shown_onset = onset ? Json(digits.relative(*onset, r.onset_error_estimate)) : Json(nullptr);
+  // null where there is no region (its label) or no Floquet check (a required load of 0).
+  const auto of_region = [&onset](int label) { return onset ? Json(label) : Json(nullptr); };
+  const bool checked = r.required > 0;
+  const auto of_check = [&](double value) { return checked ? Json(digits.unestimated(value)) : Json(nullptr); };
+  json["worst"] = {{"speed_rad_s", digits.unestimated(r.speed_rad_s)},
+                   {"onset_fmax_over_fcr", shown_onset},
+                   {"mode", of_region(r.mode)},
+                   {"order", of_region(r.order)},
+                   {"multiplier", of_region(r.multiplier)},
+                   {"tip", r.tip},
+                   {"check_speed_rad_s", of_check(r.check_speed_rad_s)},
+                   {"check_fmax_over_fcr", of_check(r.check_fmax_over_fcr)},
+                   {"max_abs_multiplier", of_check(r.max_abs_multiplier)},
+                   {"check_tolerance_met", r.check_tolerance_unmet.empty()}};
+  json["required"] = r.required;
+  json["error_estimate"] = digits.estimate(r.onset_error_estimate);
+  json["onset_converged"] = r.onset_converged;
+  json["unconverged_boundaries"] = r.unconverged_boundaries;
+  json["window_fmax_over_fcr"] = r.window_fmax_over_fcr;
+  json["approximation"] = r.approximation;
+  json["speeds_scanned"] = r.speeds_scanned;
+}
+
 CheckOutcome rub_outcome(const Scene& scene, const RubStabilityResult& r) {
   CheckOutcome o;
   o.name = "rub_stability";
@@ -137,33 +165,7 @@ CheckOutcome rub_outcome(const Scene& scene, const RubStabilityResult& r) {
                                                  : "",
                            r.required, floquet, scope, unconverged);
   }
-  // The onset to its estimate; the speeds found by the scan and the search, the Floquet check's
-  // point and its max|ρ| have no estimate of their own (6 digits, printed_digits.hpp).
-  o.write_worst = [r](Json& json, const PrintedDigits& digits) {
-    const std::optional<double> onset = r.onset_fmax_over_fcr;
-    const Json shown_onset = onset ? Json(digits.relative(*onset, r.onset_error_estimate)) : Json(nullptr);
-    // null where there is no region (its label) or no Floquet check (a required load of 0).
-    const auto of_region = [&onset](int label) { return onset ? Json(label) : Json(nullptr); };
-    const bool checked = r.required > 0;
-    const auto of_check = [&](double value) { return checked ? Json(digits.unestimated(value)) : Json(nullptr); };
-    json["worst"] = {{"speed_rad_s", digits.unestimated(r.speed_rad_s)},
-                     {"onset_fmax_over_fcr", shown_onset},
-                     {"mode", of_region(r.mode)},
-                     {"order", of_region(r.order)},
-                     {"multiplier", of_region(r.multiplier)},
-                     {"tip", r.tip},
-                     {"check_speed_rad_s", of_check(r.check_speed_rad_s)},
-                     {"check_fmax_over_fcr", of_check(r.check_fmax_over_fcr)},
-                     {"max_abs_multiplier", of_check(r.max_abs_multiplier)},
-                     {"check_tolerance_met", r.check_tolerance_unmet.empty()}};
-    json["required"] = r.required;
-    json["error_estimate"] = digits.estimate(r.onset_error_estimate);
-    json["onset_converged"] = r.onset_converged;
-    json["unconverged_boundaries"] = r.unconverged_boundaries;
-    json["window_fmax_over_fcr"] = r.window_fmax_over_fcr;
-    json["approximation"] = r.approximation;
-    json["speeds_scanned"] = r.speeds_scanned;
-  };
+  o.write_worst = [r](Json& json, const PrintedDigits& digits) { write_rub_worst(r, json, digits); };
   return o;
 }
 
