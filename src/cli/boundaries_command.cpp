@@ -101,14 +101,23 @@ struct BoundaryOutput {
   double unit = 1;       // the window in θ [rad/s] or F̄_max
   PrintedDigits digits;
 
-  // A region's end: the window's as it is, a boundary's to its own estimate (an unconverged one's,
-  // or one not found, to the largest).
-  double region_end(double end, bool at_window) const {
-    if (at_window) return end / unit;
+  // The estimate of a region's end: its boundary's own (an unconverged one's, or one not found:
+  // the largest).
+  double end_error(double end) const {
     const auto own = std::find_if(result.boundaries.begin(), result.boundaries.end(), [&](const EstimatedBoundary& e) {
       return (in_load ? e.boundary.peak_force_n : e.boundary.theta_rad_s) == end;
     });
-    return digits.relative(end / unit, own != result.boundaries.end() ? own->budget.total() : result.total().total());
+    return own != result.boundaries.end() ? own->budget.total() : result.total().total();
+  }
+  // A region's end in JSON: the window's as it is, a boundary's to its estimate (printed_digits.hpp).
+  double region_end(double end, bool at_window) const {
+    return at_window ? end / unit : digits.relative(end / unit, end_error(end));
+  }
+  // The same in the table, to the digits of the boundaries listed above it (a thin tongue's two
+  // ends may differ below the JSON's finest resolution, 1e-7 of the value).
+  std::string region_end_text(double end, bool at_window) const {
+    if (at_window) return fmt::format("{:g}", end / unit);
+    return fmt::format("{:#.{}g}", end / unit, significant_digits(end_error(end)));
   }
   // max|ρ| at a region's middle to its check's estimate.
   double middle_rho(const InstabilityRegion& r) const {
@@ -279,10 +288,9 @@ void print_table(const BoundaryOutput& o) {
     const std::string verdict = r.undecided.empty()
                                     ? fmt::format("max|ρ| = {} ± {:.1g} at the middle", rho, r.middle_error_estimate)
                                     : "undecided: the check at the middle failed, " + r.undecided;
-    // The ends as JSON gives them (region_end): a thin tongue's two differ in their 8th digit.
     fmt::print("  {}{}{} … {}{}{}  multiplier {}  mode {}  order {}  ({})\n",
                end(r.lower_open, r.lower_unconverged), r.lower_open || r.lower_unconverged ? " " : "",
-               o.region_end(r.lower, r.lower_open), o.region_end(r.upper, r.upper_open),
+               o.region_end_text(r.lower, r.lower_open), o.region_end_text(r.upper, r.upper_open),
                r.upper_open || r.upper_unconverged ? " " : "",
                end(r.upper_open, r.upper_unconverged), r.multiplier > 0 ? "+1" : "-1", r.mode, r.order, verdict);
   }
