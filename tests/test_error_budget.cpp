@@ -264,6 +264,19 @@ TEST_CASE("a verdict stops raising the fidelity where its estimate decides it, a
         verdict.budget.total() + full.budget.total());
 }
 
+namespace {
+
+// An answer left standing at `terms` because the work limit stopped the next round: `raising` and
+// `why` in the reason the tolerance is not met.
+void check_left_standing(const StabilityAnswer& a, int terms, const std::string& raising, const std::string& why) {
+  CHECK(a.model.terms == terms);
+  CHECK(a.work_limited);
+  CHECK_FALSE(a.tolerance_met);
+  CHECK_THAT(a.tolerance_unmet, Catch::Contains(raising) && Catch::Contains(why));
+}
+
+}  // namespace
+
 TEST_CASE("the systems of the fidelity rounds count against the work: a round past it is not started",
           "[budget][parallel]") {
   // 8 sine terms and the variants' 8 and 16 (24, 24 and 48 dofs) take 8 (2·24³ + 48³) = 1.1e6 flops
@@ -271,12 +284,8 @@ TEST_CASE("the systems of the fidelity rounds count against the work: a round pa
   const Scene scene = nine_pulse_scene();
   StabilityRequest request{FloquetMethod::automatic, 0, 1e-4};
   request.work_flops = 4 * 2e7;
-  const StabilityAnswer a = analyse_stability(scene, request);
-  CHECK(a.model.terms == 16);
-  CHECK(a.work_limited);
-  CHECK_FALSE(a.tolerance_met);
-  CHECK_THAT(a.tolerance_unmet, Catch::Contains("raising it to 32 terms per field") &&
-                                    Catch::Contains("would pass the work limit"));
+  check_left_standing(analyse_stability(scene, request), 16, "raising it to 32 terms per field",
+                      "would pass the work limit");
   request.work_flops = 4 * 1e6;
   CHECK_THROWS_AS(analyse_stability(scene, request), WorkLimitError);
 }
@@ -291,11 +300,7 @@ TEST_CASE("a raised round the work limit cannot finish leaves the last finished 
   StabilityRequest request;
   request.work_flops = 1e10;
   const StabilityAnswer a = analyse_stability(scene, request);
-  CHECK(a.model.terms == 18);
-  CHECK(a.work_limited);
-  CHECK_FALSE(a.tolerance_met);
-  CHECK_THAT(a.tolerance_unmet, Catch::Contains("raising it to 27 terms per field did not finish") &&
-                                    Catch::Contains("work limit"));
+  check_left_standing(a, 18, "raising it to 27 terms per field did not finish", "work limit");
   // Its estimate covers the converged true train: 1.014855 at 27 terms and 1e-6, 1.014854 ± 3.1e-7
   // at 36 (`stability` at its default work).
   CHECK(a.budget.total() < 1e-4);
