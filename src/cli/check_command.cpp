@@ -153,9 +153,12 @@ CheckOutcome rub_outcome(const Scene& scene, const RubStabilityResult& r) {
                            r.mode, r.order, sign_text(r.multiplier), *r.onset_fmax_over_fcr, estimate,
                            r.speed_rad_s, r.required, floquet, scope, unconverged);
   } else if (!r.check_stable) {
-    o.detail = fmt::format("no ±1 region opens below F̄ = {:g} in the range, but {}: a combination resonance "
-                           "(multipliers leaving the unit circle away from ±1); {}{}",
-                           r.window_fmax_over_fcr, floquet, scope, unconverged);
+    // The regions sought end at order max_order: at low speeds θ = kΩ meets tongues of far higher
+    // order (at 10 rad/s mode 1's principal one is of order ~46).
+    o.detail = fmt::format("no ±1 region of order <= {} opens below the required F̄ = {:g} (the lowest: {}), but {}: "
+                           "a combination resonance (multipliers leaving the unit circle away from ±1) or a region of "
+                           "higher order; {}{}",
+                           r.max_order, r.required, onset, floquet, scope, unconverged);
   } else {
     o.detail = fmt::format("the lowest onset, {}{} at {:.9g} rad/s{}, is above the required {:g}; {}; {}{}", onset,
                            r.onset_fmax_over_fcr ? fmt::format(" ({})", estimate) : "",
