@@ -194,7 +194,9 @@ void print_json(const BoundaryOutput& o) {
                                {"middle_max_abs_multiplier",
                                 r.undecided.empty() ? Json(o.middle_rho(r)) : Json(nullptr)},
                                {"middle_error_estimate",
-                                r.undecided.empty() ? Json(o.digits.estimate(r.middle_error_estimate)) : Json(nullptr)}});
+                                r.undecided.empty() ? Json(o.digits.estimate(r.middle_error_estimate)) : Json(nullptr)},
+                               {"inner_boundaries", Json::array()}});
+    for (const double inner : r.inner) json["regions"].back()["inner_boundaries"].push_back(o.region_end(inner, false));
   }
   print_json_answer(json_text(json));
 }
@@ -285,8 +287,10 @@ void print_table(const BoundaryOutput& o) {
     // F̄ = 0.001 a region's middle is 1.0000000051, which would print as 1.
     const double excess = r.middle_max_abs_multiplier - 1;
     const std::string rho = std::abs(excess) < 1e-6 ? fmt::format("1 + {:.2g}", excess) : fmt::format("{}", o.middle_rho(r));
+    std::string inner;
+    for (const double x : r.inner) inner += (inner.empty() ? "; a boundary inside at " : ", ") + o.region_end_text(x, false);
     const std::string verdict = r.undecided.empty()
-                                    ? fmt::format("max|ρ| = {} ± {:.1g} at the middle", rho, r.middle_error_estimate)
+                                    ? fmt::format("max|ρ| = {} ± {:.1g} at the middle{}", rho, r.middle_error_estimate, inner)
                                     : "undecided: the check at the middle failed, " + r.undecided;
     fmt::print("  {}{}{} … {}{}{}  multiplier {}  mode {}  order {}  ({})\n",
                end(r.lower_open, r.lower_unconverged), r.lower_open || r.lower_unconverged ? " " : "",

@@ -52,6 +52,21 @@ Verdict verdict_at(const Scene& at, int multiplier, StabilityRequest request) {
   }
 }
 
+// `next`, an unstable interval beginning where the unstable `region` ends, joined to it: the
+// boundary between becomes inner, the label the higher order's, the middle the larger growth's.
+void merge_into(InstabilityRegion& region, const InstabilityRegion& next) {
+  region.inner.push_back(region.upper);
+  region.inner.insert(region.inner.end(), next.inner.begin(), next.inner.end());
+  region.upper = next.upper;
+  region.upper_open = next.upper_open;
+  region.upper_unconverged = next.upper_unconverged;
+  if (next.order > region.order) region.mode = next.mode, region.order = next.order;
+  if (next.middle_max_abs_multiplier > region.middle_max_abs_multiplier) {
+    region.middle_max_abs_multiplier = next.middle_max_abs_multiplier;
+    region.middle_error_estimate = next.middle_error_estimate;
+  }
+}
+
 }  // namespace
 
 std::vector<InstabilityRegion> instability_regions(const Scene& scene, const BoundaryRequest& request,
@@ -118,10 +133,19 @@ std::vector<InstabilityRegion> instability_regions(const Scene& scene, const Bou
   std::vector<InstabilityRegion> regions;
   for (std::size_t i = 0; i < candidates.size(); ++i) {
     if (!verdicts[i].unstable && verdicts[i].undecided.empty()) continue;
-    regions.push_back(candidates[i]);
-    regions.back().middle_max_abs_multiplier = verdicts[i].max_abs;
-    regions.back().middle_error_estimate = verdicts[i].error;
-    regions.back().undecided = verdicts[i].undecided;
+    InstabilityRegion r = candidates[i];
+    r.middle_max_abs_multiplier = verdicts[i].max_abs;
+    r.middle_error_estimate = verdicts[i].error;
+    r.undecided = verdicts[i].undecided;
+    // Candidates of a sign come in order along the line: an unstable one that begins where the
+    // last region (unstable, of that sign) ends continues it.
+    InstabilityRegion* last = regions.empty() ? nullptr : &regions.back();
+    if (last && last->multiplier == r.multiplier && last->upper == r.lower && last->undecided.empty() &&
+        r.undecided.empty()) {
+      merge_into(*last, r);
+    } else {
+      regions.push_back(std::move(r));
+    }
   }
   std::sort(regions.begin(), regions.end(),
             [](const InstabilityRegion& a, const InstabilityRegion& b) { return a.lower < b.lower; });

@@ -13,8 +13,11 @@
 // labelled order 1). A region is labelled by its edges, the higher order where they differ. Regions of
 // different kinds may overlap; combination resonances have no ±1 boundaries and are not listed
 // (the map's shading shows them). The boundaries that did not converge divide the line too, so no
-// interval spans one; a region that ends at one says so. An interval whose check fails is listed
-// as undecided, so one hard middle does not sink the verdicts that were reached.
+// interval spans one; a region that ends at one says so. Two neighbouring intervals of one sign both
+// unstable are one region: the boundary between them is another multiplier of that sign crossing
+// inside it (on the paper blade at F̄ = 5, the −1 boundary at 514.29 rad/s inside the principal
+// region, the upper edge of a mode-2 tongue of order 5), listed as `inner`. An interval whose check
+// fails is listed as undecided, so one hard middle does not sink the verdicts that were reached.
 #include <string>
 #include <vector>
 
@@ -36,6 +39,9 @@ struct InstabilityRegion {
   // Set where the check failed (its analysis's one-line NumericalError, e.g. its share of
   // BoundaryRequest::work_flops spent): the interval may be a region or a gap, and is listed.
   std::string undecided;
+  // Boundaries of the region's sign inside it, between intervals both checked unstable; the middle
+  // reported is the interval's whose max|ρ| is largest.
+  std::vector<double> inner;
 };
 
 // `analysis` from boundaries_with_error_estimate(scene, request); each middle is checked by
