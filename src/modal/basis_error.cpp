@@ -87,8 +87,11 @@ std::vector<double> compare(const std::vector<ModalSolution>& models, const std:
     const int rank = rank_in_family[static_cast<int>(m.family)]++;
     const bool by_frequency = m.frequency_hz > 0;
     std::vector<double> f{by_frequency ? m.frequency_hz : std::abs(m.eigenvalue)};
+    // A counterpart that does not oscillate where the mode does (overdamped in the richer model, its
+    // frequency 0: heavy stiffness-proportional damping) is none: the frequency is not known.
     for (std::size_t k = 1; k < models.size(); ++k) {
-      if (const std::optional<double> c = counterpart(models[k], m.family, rank, by_frequency)) f.push_back(*c);
+      const std::optional<double> c = counterpart(models[k], m.family, rank, by_frequency);
+      if (c && *c > 0) f.push_back(*c);
     }
     error.push_back(f.size() == models.size() ? basis_tail(f, terms, convergence).relative : 1.0);  // no counterpart: nothing is known
   }
