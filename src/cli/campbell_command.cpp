@@ -154,19 +154,28 @@ void print_table(const Scene& scene, const CampbellWithErrors& r, const std::vec
     fmt::print("reduction {} vectors from the modes at {} speeds, each frequency bounded against the whole model\n",
                d.basis_vectors, d.sample_speeds_rad_s.size());
   }
+  const int still = r.points_not_oscillating();
   fmt::print("error     {} relative, largest over the points and crossings (tolerance {:g}; basis against {}-term "
-             "models)\n\n",
-             describe_error_budget(worst), r.tolerance, fmt::join(r.reference_terms, "- and "));
+             "models){}\n\n",
+             describe_error_budget(worst), r.tolerance, fmt::join(r.reference_terms, "- and "),
+             still == 0 ? "" : fmt::format("; {} points where a mode does not oscillate (overdamped, 0 Hz) are not "
+                                           "held to it", still));
   fmt::print("{:>4}  {:<9} {:>16} {:>16} {:>9} {:>9}\n", "mode", "family", "f first [Hz]", "f last [Hz]", "min MAC",
              "error");
   for (std::size_t i = 0; i < d.curves.size(); ++i) {
     const CampbellCurve& c = d.curves[i];
     double lowest = 1, error = 0;
+    bool oscillates = false;
     for (double m : c.correlation) lowest = std::min(lowest, m);
-    for (const ErrorBudget& b : r.budget[i]) error = std::max(error, b.total());
+    for (std::size_t s = 0; s < c.frequency_hz.size(); ++s) {
+      if (!(c.frequency_hz[s] > 0)) continue;  // overdamped: no frequency, held to nothing (worst())
+      oscillates = true;
+      error = std::max(error, r.budget[i][s].total());
+    }
     const int digits = significant_digits(error);
-    fmt::print("{:>4}  {:<9} {:>#16.{}g} {:>#16.{}g} {:>9.3f} {:>9.1e}\n", c.mode, family_path(c),
-               c.frequency_hz.front(), digits, c.frequency_hz.back(), digits, lowest, error);
+    const auto frequency = [digits](double f) { return f > 0 ? fmt::format("{:#.{}g}", f, digits) : std::string("0"); };
+    fmt::print("{:>4}  {:<9} {:>16} {:>16} {:>9.3f} {:>9}\n", c.mode, family_path(c), frequency(c.frequency_hz.front()),
+               frequency(c.frequency_hz.back()), lowest, oscillates ? fmt::format("{:.1e}", error) : std::string("—"));
   }
   fmt::print("\nengine-order crossings ({}):\n", d.crossings.size());
   fmt::print("{:>4} {:>5} {:>16} {:>14} {:>16} {:>9}\n", "EO", "mode", "speed [rad/s]", "speed [rpm]", "frequency [Hz]",

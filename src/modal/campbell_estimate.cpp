@@ -314,11 +314,21 @@ private:
 
 ErrorBudget CampbellWithErrors::worst() const {
   ErrorBudget w;
-  for (const auto& curve : budget) {
-    for (const ErrorBudget& b : curve) w.raise_to(b);
+  for (std::size_t i = 0; i < budget.size(); ++i) {
+    for (std::size_t s = 0; s < budget[i].size(); ++s) {
+      if (diagram.curves[i].frequency_hz[s] > 0) w.raise_to(budget[i][s]);  // as worst_total
+    }
   }
   for (const ErrorBudget& b : crossing_budget) w.raise_to(b);
   return w;
+}
+
+int CampbellWithErrors::points_not_oscillating() const {
+  int count = 0;
+  for (const CampbellCurve& c : diagram.curves) {
+    count += static_cast<int>(std::count_if(c.frequency_hz.begin(), c.frequency_hz.end(), [](double f) { return !(f > 0); }));
+  }
+  return count;
 }
 
 ErrorBudget CampbellWithErrors::worst_at(std::size_t speed) const {

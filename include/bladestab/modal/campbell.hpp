@@ -109,7 +109,11 @@ struct CampbellWithErrors {
   std::vector<ErrorBudget> approach_budget;
   double work_flops = 0;  // the whole-model eigensolves of every round, counted as CampbellOptions::work_flops
 
-  ErrorBudget worst() const;                       // each part the largest over points and crossings
+  // Each part the largest over the points where the mode oscillates and over the crossings: the
+  // tolerance holds there. A point whose mode does not oscillate (overdamped: 0 Hz) has no
+  // frequency to hold to it; its budget is 1 where the richer model's counterpart oscillates or is missing.
+  ErrorBudget worst() const;
+  int points_not_oscillating() const;
   ErrorBudget worst_at(std::size_t speed) const;   // each part the largest over the curves there
 };
 
