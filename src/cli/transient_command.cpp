@@ -117,7 +117,7 @@ void with_whole_error(TransientResult& r, TransientSummary& s, const TransientRe
   if (const TransientQuantity* q = estimated(e, "peak_tip_lateral_m")) {
     s.peak_lateral_m = digits.absolute(raw.peak_lateral_m, q->budget.total());
   }
-  if (const TransientQuantity* q = estimated(e, "peak_tip_axial_change_m")) {
+  if (const TransientQuantity* q = estimated(e, "peak_tip_axial_m")) {
     s.peak_axial_m = digits.absolute(raw.peak_axial_m, q->budget.total());
   }
   if (const TransientQuantity* q = estimated(e, "mean_tip_axial_m")) {

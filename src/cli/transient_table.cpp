@@ -104,7 +104,7 @@ void print_table(const Scene& scene, const BladeModel& model, const TransientOpt
                millimetres(s.peak_lateral_m, estimated(error, "peak_tip_lateral_m"), shown.digits), hz(s.lateral_hz),
                millimetres(s.mean_axial_m, estimated(error, "mean_tip_axial_m"), shown.digits),
                1e3 * r.static_tip_axial_m,
-               millimetres(s.peak_axial_m, estimated(error, "peak_tip_axial_change_m"), shown.digits), hz(s.axial_hz));
+               millimetres(s.peak_axial_m, estimated(error, "peak_tip_axial_m"), shown.digits), hz(s.axial_hz));
     if (r.contact) {
       // Each with its whole error where the run has one (unit: the factor to the printed unit).
       const auto with_error = [&](double printed, const char* name, double unit) {

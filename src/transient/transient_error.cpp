@@ -28,18 +28,20 @@ std::optional<double> relative_method_error(const TransientResult& r, const Tran
 }  // namespace
 
 std::vector<TransientQuantity> transient_quantities(const TransientResult& r) {
-  double lateral = 0, axial = 0, energy = 0, mean = 0;
+  double lateral = 0, axial = 0, energy = 0, mean = 0, axial_peak = 0;
   const double start = r.samples.empty() ? 0 : r.samples.front().total_energy_j;
   for (const TransientSample& s : r.samples) {
     lateral = std::max(lateral, std::abs(s.tip_lateral_m));
     axial = std::max(axial, std::abs(s.tip_axial_m - r.static_tip_axial_m));
+    axial_peak = std::max(axial_peak, std::abs(s.tip_axial_m));
     energy = std::max(energy, r.initial_vibration_energy_j + s.total_energy_j - start);
     mean += s.tip_axial_m / static_cast<double>(r.samples.size());
   }
   std::vector<TransientQuantity> q{{"peak_tip_lateral_m", lateral, {}},
                                    {"peak_tip_axial_change_m", axial, {}},
                                    {"peak_vibration_energy_j", energy, {}},
-                                   {"mean_tip_axial_m", mean, {}}};
+                                   {"mean_tip_axial_m", mean, {}},
+                                   {"peak_tip_axial_m", axial_peak, {}}};
   if (r.growth.omitted.empty()) q.push_back({"growth_per_revolution", r.growth.growth, {}});
   if (r.contact) {  // clearance mode: the casing's contacts, which the high modes shape
     q.push_back({"contact_closures", static_cast<double>(r.contact->closures), {}});

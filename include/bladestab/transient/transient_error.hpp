@@ -33,8 +33,8 @@ struct TransientQuantity {
 };
 
 // The measures of a run the estimate is about: |v(L)| and |u(L) − u_eq(L)| at their peaks, the
-// largest vibration energy E(t) − E_eq, the mean of u(L) over the samples, and the growth where the
-// run reports one.
+// largest vibration energy E(t) − E_eq, the mean of u(L) over the samples, the peak of |u(L)| (the
+// table's axial "peak"), and the growth where the run reports one.
 std::vector<TransientQuantity> transient_quantities(const TransientResult& result);
 
 struct TransientErrorEstimate {
