@@ -107,12 +107,15 @@ void print_table(const Scene& scene, const BladeModel& model, const TransientOpt
                millimetres(s.peak_axial_m, estimated(error, "peak_tip_axial_m"), shown.digits), hz(s.axial_hz));
     if (r.contact) {
       // Each with its whole error where the run has one (unit: the factor to the printed unit).
+      // The count too is rounded to its error's decade, as the error line prints it (15 ± 23: 20).
       const auto with_error = [&](double printed, const char* name, double unit) {
         const TransientQuantity* q = estimated(error, name);
-        return q ? fmt::format("{:.6g} ± {:.2g}", unit * printed, unit * shown.digits.measure(q->budget.total()))
+        return q ? fmt::format("{:.6g} ± {:.2g}", unit * shown.digits.absolute(printed, q->budget.total()),
+                               unit * shown.digits.measure(q->budget.total()))
                  : fmt::format("{:.6g}", unit * printed);
       };
-      fmt::print("casing     {} contacts, {} ms in all; peak force {} kN (F̄ = {:.3g}) at the deepest overlap "
+      // F̄ of the peak force to two digits at most: the force is known to its estimate only.
+      fmt::print("casing     {} contacts, {} ms in all; peak force {} kN (F̄ = {:.2g}) at the deepest overlap "
                  "{} µm of the penalty wall (k = {:.4g} N/m)\n",
                  with_error(r.contact->closures, "contact_closures", 1), with_error(r.contact->contact_time_s, "contact_time_s", 1e3),
                  with_error(r.contact->peak_force_n, "contact_peak_force_n", 1e-3),
