@@ -79,8 +79,9 @@ void print_table(const Scene& scene, const std::vector<CrosscheckPoint>& result,
              "propagators' own error. Each transient runs the fast method on the model its Floquet\n"
              "multipliers use, so the two share its basis and reduction error and differ in their methods only\n"
              "(each ± is a method's error on that model, not against the continuum, which `stability` states):\n"
-             "the cosine rows on {} modes (model.reduction), the pulse rows on {} modes of {} (the model\n"
-             "`stability` analyses the true train on). Floquet: auto method for the cosine load, the monodromy\n"
+             "the cosine rows on {} modes (model.reduction), the pulse rows on {} modes of {} (the model of\n"
+             "`stability`'s first round on the true train; `stability` then raises the terms or vectors to its\n"
+             "tolerance, these rows keep the scene's). Floquet: auto method for the cosine load, the monodromy\n"
              "through each contact for the pulse train (as `stability` with load.approximation = \"exact\").\n",
              growth_continuation, first.cosine_modes, first.pulse_modes, first.model_modes);
   if (!result.empty() && result.front().load_periods_per_revolution != 1) {
