@@ -418,3 +418,16 @@ TEST_CASE("fast transient: a run that ends inside a revolution carries on its la
     CHECK(std::abs(r.growth.growth - per_revolution) <= r.growth.error_estimate + 3 * floquet.error_estimate * per_revolution);
   }
 }
+
+TEST_CASE("fast transient without load: the state never changes, and the growth says so", "[transient][fast]") {
+  // F̄ = 0 from the rotating equilibrium: nothing moves (every revolution's change is 0). The growth
+  // said "0 whole revolutions; the fit needs 6" after six.
+  const Scene scene = paper_scene({"load.fmax_over_fcr=0", "model.terms=8"});
+  TransientOptions o;
+  o.revolutions = 6;
+  const TransientResult r = run_transient(assemble_model(scene), scene, o);
+  REQUIRE(r.revolution_change.size() == 6);
+  for (const double change : r.revolution_change) CHECK(change == 0);
+  for (const TransientSample& s : r.samples) CHECK(s.tip_lateral_m == 0);
+  CHECK_THAT(r.growth.omitted, Catch::Contains("did not change over its 6 whole revolutions"));
+}

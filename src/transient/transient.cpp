@@ -161,6 +161,13 @@ GrowthFit fit_run_growth(const TransientResult& r) {
     none.omitted = fmt::format("0 whole revolutions{}; the growth needs 1", r.stopped ? " before the stop" : "");
     return none;
   }
+  if (r.continued_log_change.empty() && !r.revolution_change.empty() && resolved_changes(r.revolution_change).empty()) {
+    // No revolution changed the state beyond rounding (no load, or a load that excites nothing).
+    GrowthFit none;
+    none.omitted = fmt::format("the state did not change over its {} whole revolutions (no vibration): nothing "
+                               "grows or decays", r.revolution_change.size());
+    return none;
+  }
   GrowthFit fit = !r.continued_log_change.empty() ? fit_continued_growth(r.continued_log_change)
                   : r.stopped                     ? latest_growth(resolved_changes(r.revolution_change))
                                                   : fit_growth(resolved_changes(r.revolution_change));
