@@ -41,6 +41,14 @@ const Boundary* counterpart(const Boundary& b, const std::vector<Boundary>& all)
   return best;
 }
 
+// The regions of `s` along θ in [lo, hi] (boundaries of order ≤ max_order), as `boundaries` lists them.
+std::vector<InstabilityRegion> regions_between(const Scene& s, double lo, double hi, int max_order = 4) {
+  BoundaryRequest r;
+  r.window = std::make_pair(lo, hi);
+  r.max_order = max_order;
+  return instability_regions(s, r, boundaries_with_error_estimate(s, r));
+}
+
 }  // namespace
 
 TEST_CASE("boundaries at theta = 300: k is raised until converged, to the large-k value within the estimate",
@@ -349,10 +357,7 @@ TEST_CASE("boundaries: a thin tongue's region is checked until its estimate deci
   // F̄ = 0.5: the +1 pair of order 4 at 209.72696 and 209.72706 rad/s encloses max|ρ| = 1.0000031,
   // which the middle's check at 1e-4 left within its estimate (6.7e-6) of 1: the region was dropped.
   const Scene s = paper_scene({"load.fmax_over_fcr=0.5"});
-  BoundaryRequest r;
-  r.window = std::make_pair(205.0, 215.0);
-  const BoundaryAnalysis a = boundaries_with_error_estimate(s, r);
-  const std::vector<InstabilityRegion> regions = instability_regions(s, r, a);
+  const std::vector<InstabilityRegion> regions = regions_between(s, 205, 215);
   REQUIRE(regions.size() == 1);
   const InstabilityRegion& thin = regions[0];
   CHECK(thin.multiplier == 1);
@@ -376,11 +381,7 @@ TEST_CASE("boundaries along θ with a pulse series: the regions' middles hold th
   // order-2 region, where the duty held gives 1.0545), so regions and boundaries answered two loads.
   const Scene s = paper_scene({"model.terms=8", "load.approximation=fourier", "load.contact_time_rev=0.3",
                                "load.fmax_over_fcr=0.8"});
-  BoundaryRequest r;
-  r.window = std::make_pair(400.0, 450.0);
-  r.max_order = 2;
-  const BoundaryAnalysis a = boundaries_with_error_estimate(s, r);
-  const std::vector<InstabilityRegion> regions = instability_regions(s, r, a);
+  const std::vector<InstabilityRegion> regions = regions_between(s, 400, 450, 2);
   REQUIRE(regions.size() == 1);
   const double middle_theta = 0.5 * (regions[0].lower + regions[0].upper);
   const auto at_middle = [&](double contact_time_rev) {
@@ -402,10 +403,7 @@ TEST_CASE("boundaries: neighbouring unstable intervals of one sign are one regio
   // F̄ = 5: past the principal −1 region's lower edge at 473.77 rad/s a −1 boundary at 514.29 (the
   // upper edge of a mode-2 tongue of order 5) had split it into two regions, each checked unstable.
   const Scene s = paper_scene({"model.terms=8"});
-  BoundaryRequest r;
-  r.window = std::make_pair(460.0, 600.0);
-  const BoundaryAnalysis a = boundaries_with_error_estimate(s, r);
-  const std::vector<InstabilityRegion> regions = instability_regions(s, r, a);
+  const std::vector<InstabilityRegion> regions = regions_between(s, 460, 600);
   REQUIRE(regions.size() == 1);
   CHECK(regions[0].multiplier == -1);
   CHECK(regions[0].lower == Approx(473.7713).epsilon(1e-6));

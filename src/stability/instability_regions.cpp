@@ -67,6 +67,31 @@ void merge_into(InstabilityRegion& region, const InstabilityRegion& next) {
   }
 }
 
+// The candidates the verdicts keep (unstable or undecided), with their middles' answers, sorted
+// along the line. Candidates of a sign come in order: an unstable one that begins where the last
+// region (unstable, of that sign) ends continues it (merge_into).
+std::vector<InstabilityRegion> regions_of(const std::vector<InstabilityRegion>& candidates,
+                                          const std::vector<Verdict>& verdicts) {
+  std::vector<InstabilityRegion> regions;
+  for (std::size_t i = 0; i < candidates.size(); ++i) {
+    if (!verdicts[i].unstable && verdicts[i].undecided.empty()) continue;
+    InstabilityRegion r = candidates[i];
+    r.middle_max_abs_multiplier = verdicts[i].max_abs;
+    r.middle_error_estimate = verdicts[i].error;
+    r.undecided = verdicts[i].undecided;
+    InstabilityRegion* last = regions.empty() ? nullptr : &regions.back();
+    if (last && last->multiplier == r.multiplier && last->upper == r.lower && last->undecided.empty() &&
+        r.undecided.empty()) {
+      merge_into(*last, r);
+    } else {
+      regions.push_back(std::move(r));
+    }
+  }
+  std::sort(regions.begin(), regions.end(),
+            [](const InstabilityRegion& a, const InstabilityRegion& b) { return a.lower < b.lower; });
+  return regions;
+}
+
 }  // namespace
 
 std::vector<InstabilityRegion> instability_regions(const Scene& scene, const BoundaryRequest& request,
@@ -130,26 +155,7 @@ std::vector<InstabilityRegion> instability_regions(const Scene& scene, const Bou
     const InstabilityRegion& r = candidates[i];
     return verdict_at(at_point(0.5 * (r.lower + r.upper)), r.multiplier, verdict);
   });
-  std::vector<InstabilityRegion> regions;
-  for (std::size_t i = 0; i < candidates.size(); ++i) {
-    if (!verdicts[i].unstable && verdicts[i].undecided.empty()) continue;
-    InstabilityRegion r = candidates[i];
-    r.middle_max_abs_multiplier = verdicts[i].max_abs;
-    r.middle_error_estimate = verdicts[i].error;
-    r.undecided = verdicts[i].undecided;
-    // Candidates of a sign come in order along the line: an unstable one that begins where the
-    // last region (unstable, of that sign) ends continues it.
-    InstabilityRegion* last = regions.empty() ? nullptr : &regions.back();
-    if (last && last->multiplier == r.multiplier && last->upper == r.lower && last->undecided.empty() &&
-        r.undecided.empty()) {
-      merge_into(*last, r);
-    } else {
-      regions.push_back(std::move(r));
-    }
-  }
-  std::sort(regions.begin(), regions.end(),
-            [](const InstabilityRegion& a, const InstabilityRegion& b) { return a.lower < b.lower; });
-  return regions;
+  return regions_of(candidates, verdicts);
 }
 
 }  // namespace bladestab
