@@ -117,7 +117,7 @@ struct BoundaryOutput {
   // ends may differ below the JSON's finest resolution, 1e-7 of the value).
   std::string region_end_text(double end, bool at_window) const {
     if (at_window) return fmt::format("{:g}", end / unit);
-    return fmt::format("{:#.{}g}", end / unit, significant_digits(end_error(end)));
+    return to_significant_digits(end / unit, end_error(end));
   }
   // max|ρ| at a region's middle to its check's estimate.
   double middle_rho(const InstabilityRegion& r) const {
@@ -264,9 +264,8 @@ void print_table(const BoundaryOutput& o) {
   for (const EstimatedBoundary& e : o.result.boundaries) {
     const Boundary& b = e.boundary;
     // Only the digits the estimate supports, on the quantity it is relative to; the other is given.
-    const int digits = significant_digits(e.budget.total());
-    const auto shown = [digits](double value, bool estimated) {
-      return estimated ? fmt::format("{:#.{}g}", value, digits) : fmt::format("{:.6g}", value);
+    const auto shown = [&e](double value, bool estimated) {
+      return estimated ? to_significant_digits(value, e.budget.total()) : fmt::format("{:.6g}", value);
     };
     fmt::print("{:>16} {:>14} {:>10} {:>5} {:>6} {:>9.1e}\n", shown(b.theta_rad_s, !o.in_load),
                shown(b.peak_force_n / o.fcr, o.in_load), b.multiplier > 0 ? "+1" : "-1", b.mode, b.order,

@@ -172,8 +172,7 @@ void print_table(const Scene& scene, const CampbellWithErrors& r, const std::vec
       oscillates = true;
       error = std::max(error, r.budget[i][s].total());
     }
-    const int digits = significant_digits(error);
-    const auto frequency = [digits](double f) { return f > 0 ? fmt::format("{:#.{}g}", f, digits) : std::string("0"); };
+    const auto frequency = [error](double f) { return f > 0 ? to_significant_digits(f, error) : std::string("0"); };
     fmt::print("{:>4}  {:<9} {:>16} {:>16} {:>9.3f} {:>9}\n", c.mode, family_path(c), frequency(c.frequency_hz.front()),
                frequency(c.frequency_hz.back()), lowest, oscillates ? fmt::format("{:.1e}", error) : std::string("—"));
   }

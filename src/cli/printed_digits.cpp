@@ -99,6 +99,10 @@ int significant_digits(double error) {
   return std::clamp(static_cast<int>(std::floor(-std::log10(std::max(error, 1e-15)))) + 1, 3, 12);
 }
 
+std::string to_significant_digits(double value, double relative_error) {
+  return fmt::format("{:#.{}g}", value, significant_digits(relative_error));
+}
+
 std::string fixed_to_error(double value, double error, int max_decimals) {
   if (std::abs(value) >= 1e6) return fmt::format("{:.{}e}", value, significant_digits(error / std::abs(value)) - 1);
   const int decimals =

@@ -50,6 +50,9 @@ private:
 // Significant digits worth printing for a value with relative error `error` (3 to 12).
 int significant_digits(double error);
 
+// A table's number to those significant digits, trailing zeros kept ("329.38710").
+std::string to_significant_digits(double value, double relative_error);
+
 // A table's number: in fixed point to the decade of its error, at most max_decimals of them, without
 // a negative zero; from 1e6 on in exponent form with the significant digits the error supports.
 std::string fixed_to_error(double value, double error, int max_decimals = 12);
