@@ -25,40 +25,60 @@ namespace {
 
 // Ctrl-C while a run computes. Python's own handler only marks the signal for the main thread's
 // next PyErr_CheckSignals, which a run's other threads cannot call; so while a run started on the
-// main thread computes, this handler notes the signal for every thread and then hands it on to
-// Python's, which raises KeyboardInterrupt when the run has unwound.
-std::atomic<bool> interrupted{false};
+// main thread computes, this handler counts the signal for every thread of the run and then hands
+// it on to Python's, which raises KeyboardInterrupt when the run has unwound. Only where SIGINT's
+// Python handler is Python's default (KeyboardInterrupt): a handler of the caller's own runs at the
+// caller thread's progress reports and stops the run only if it raises, as in plain Python.
+std::atomic<unsigned long> interrupts{0};
 struct sigaction python_handler;
+int watches = 0;  // the runs watching on the main thread (a run started in another's progress callback); GIL
 
 extern "C" void note_interrupt(int signal_number) {
-  interrupted.store(true);
+  interrupts.fetch_add(1);
   python_handler.sa_handler(signal_number);
+}
+
+// Whether Ctrl-C raises KeyboardInterrupt on this thread: the main thread, under Python's default handler.
+bool default_interrupt_here() {
+  const py::object threading = py::module_::import("threading");
+  const py::object signal = py::module_::import("signal");
+  return threading.attr("current_thread")().is(threading.attr("main_thread")()) &&
+         signal.attr("getsignal")(SIGINT).is(signal.attr("default_int_handler"));
 }
 
 class InterruptWatch {
 public:
   InterruptWatch() {
-    struct sigaction current;
-    const py::object threading = py::module_::import("threading");
-    if (!threading.attr("current_thread")().is(threading.attr("main_thread")()) ||
-        sigaction(SIGINT, nullptr, &current) != 0 || (current.sa_flags & SA_SIGINFO) != 0 ||
-        current.sa_handler == SIG_DFL || current.sa_handler == SIG_IGN) {
-      return;  // not the main thread, or no Python handler to hand the signal on to
-    }
-    python_handler = current;
-    struct sigaction ours = current;
-    ours.sa_handler = note_interrupt;
-    interrupted.store(false);
-    watching_ = sigaction(SIGINT, &ours, nullptr) == 0;
+    if (!default_interrupt_here()) return;
+    if (watches == 0 && !install()) return;
+    ++watches;
+    watching_ = true;
+    start_ = interrupts.load();
   }
   ~InterruptWatch() {
-    if (watching_) sigaction(SIGINT, &python_handler, nullptr);
+    if (watching_ && --watches == 0) sigaction(SIGINT, &python_handler, nullptr);
   }
   InterruptWatch(const InterruptWatch&) = delete;
   InterruptWatch& operator=(const InterruptWatch&) = delete;
 
+  // Whether Ctrl-C came since this run started; any thread.
+  bool interrupted() const { return watching_ && interrupts.load() != start_; }
+
 private:
+  static bool install() {
+    struct sigaction current;
+    if (sigaction(SIGINT, nullptr, &current) != 0 || (current.sa_flags & SA_SIGINFO) != 0 ||
+        current.sa_handler == SIG_DFL || current.sa_handler == SIG_IGN) {
+      return false;  // no Python handler at the C level to hand the signal on to
+    }
+    python_handler = current;
+    struct sigaction ours = current;
+    ours.sa_handler = note_interrupt;
+    return sigaction(SIGINT, &ours, nullptr) == 0;
+  }
+
   bool watching_ = false;
+  unsigned long start_ = 0;
 };
 
 // Thrown through the library to stop a run; it is no std::exception, so nothing on the way takes
@@ -69,11 +89,12 @@ struct Stopped {};
 // callback's own), kept until the run has unwound.
 class RunStop {
 public:
-  RunStop(py::object callback) : callback_(std::move(callback)), caller_(std::this_thread::get_id()) {}
+  RunStop(py::object callback, const InterruptWatch& watch)
+      : callback_(std::move(callback)), caller_(std::this_thread::get_id()), watch_(watch) {}
 
   // Called from the library, on any of its threads, without the GIL.
   void report(const std::string& label, int done, int total) {
-    if (stopped_.load() || interrupted.load()) throw Stopped{};
+    if (stopped_.load() || watch_.interrupted()) throw Stopped{};
     py::gil_scoped_acquire gil;
     try {
       // Signal handlers run only on the main thread; PyErr_CheckSignals elsewhere does nothing.
@@ -90,13 +111,15 @@ public:
   // handler Ctrl-C was handed on to).
   [[noreturn]] void raise() {
     if (error_) throw std::move(*error_);
-    if (PyErr_CheckSignals() == 0) PyErr_SetNone(PyExc_KeyboardInterrupt);  // a handler that did not raise
+    // Python's default handler raises KeyboardInterrupt; a run inside this one's callback may have taken it.
+    if (PyErr_CheckSignals() == 0) PyErr_SetNone(PyExc_KeyboardInterrupt);
     throw py::error_already_set();
   }
 
 private:
   py::object callback_;
   std::thread::id caller_;
+  const InterruptWatch& watch_;
   std::atomic<bool> stopped_{false};
   std::optional<py::error_already_set> error_;  // guarded by the GIL
 };
@@ -114,7 +137,11 @@ py::dict answer_dict(const bladestab::cli::EmbeddedAnswer& answer) {
 // run(arguments, scene_text="", progress=None) -> {"json", "notes", "files", "negative",
 // "negative_reason"}; the arguments as after `bladestab` on the command line.
 py::dict run(const std::vector<std::string>& arguments, const std::string& scene_text, py::object progress) {
-  auto stop = std::make_shared<RunStop>(std::move(progress));
+  if (!progress.is_none() && !PyCallable_Check(progress.ptr())) {
+    throw bladestab::InputError("progress: must be callable as progress(label, done, total), or None");
+  }
+  const InterruptWatch watch;
+  auto stop = std::make_shared<RunStop>(std::move(progress), watch);
   bladestab::cli::EmbeddedRun request;
   request.scene_text = scene_text;
   RunStop* reports = stop.get();
@@ -122,7 +149,6 @@ py::dict run(const std::vector<std::string>& arguments, const std::string& scene
   std::optional<bladestab::cli::EmbeddedAnswer> answer;
   bool stopped = false;
   {
-    const InterruptWatch watch;
     py::gil_scoped_release released;
     try {
       answer = bladestab::cli::run_embedded(arguments, request);
@@ -144,5 +170,5 @@ PYBIND11_MODULE(_core, m) {
   py::register_exception<bladestab::cli::TimeLimitReached>(m, "TimeLimitReached", PyExc_TimeoutError);
   m.def("run", &run, py::arg("arguments"), py::arg("scene_text") = "", py::arg("progress") = py::none(),
         "Runs one command in this process: the arguments as after `bladestab` on the command line.");
-  m.def("command_options", &bladestab::cli::command_options, "Each command's long option names.");
+  m.def("command_options", &bladestab::cli::command_options, "Each command's long option names, each with whether it takes a value.");
 }

@@ -25,7 +25,8 @@ def run(command, scene, progress=None, **options):
         raise InputError(f"{command}: unknown command; known: {', '.join(sorted(command_options()))}")
     name, text = scene_source(scene)
     writes = "--out" in command_options()[command]
-    scratch = writes and "out" not in options
+    scratch = writes and options.get("out") is None
+    options = {key: value for key, value in options.items() if not (key == "out" and value is None)}
     with tempfile.TemporaryDirectory(prefix="bladestab-") if scratch else contextlib.nullcontext() as out:
         if out is not None:
             options = {"out": out, "chart": "none", **options}

@@ -1,7 +1,8 @@
 """Keyword arguments to the program's command line: dotted names are scene overrides (`--set
 section.key=value`), plain names the command's options (`tolerance=1e-6` is `--tolerance 1e-6`,
-`cutoff_hz` is `--cutoff-hz`); True adds a flag, False leaves it out. The answer is always the
-command's JSON (`--format json`)."""
+`cutoff_hz` is `--cutoff-hz`); a flag takes True (given) or False (left out), an option with a
+value takes that value, or None for the command's default. The answer is always the command's JSON
+(`--format json`)."""
 
 import functools
 import math
@@ -17,15 +18,16 @@ RESERVED = {"--format": "the answer is always the command's JSON document (to_di
 
 @functools.lru_cache(maxsize=None)
 def command_options():
-    """Each command's long option names, as the program registers them."""
-    return {name: frozenset(options) for name, options in _core.command_options().items()}
+    """Each command's long option names, as the program registers them, each mapped to whether it
+    takes a value (False for a flag)."""
+    return {name: dict(options) for name, options in _core.command_options().items()}
 
 
 def scene_value(value):
     """A Python value as a `--set` value: TOML syntax for numbers, booleans and lists, a string as
     it is (a bare word, or TOML text the caller quoted)."""
-    if hasattr(value, "item") and not isinstance(value, (list, tuple)):
-        value = value.item()  # NumPy scalars
+    if hasattr(value, "tolist"):
+        value = value.tolist()  # NumPy scalars and arrays
     if isinstance(value, bool):
         return "true" if value else "false"
     if isinstance(value, numbers.Integral):
@@ -45,8 +47,8 @@ def _list_item(value):
 def option_value(value):
     """A Python value as an option's text: numbers in their shortest round-trip form, lists joined
     by commas (--engine-orders 1,2,3), strings as they are (--speeds 0:600:61)."""
-    if hasattr(value, "item") and not isinstance(value, (list, tuple)):
-        value = value.item()
+    if hasattr(value, "tolist"):
+        value = value.tolist()  # NumPy scalars and arrays
     if isinstance(value, (list, tuple)):
         return ",".join(option_value(v) for v in value)
     if isinstance(value, numbers.Real) and not isinstance(value, bool):
@@ -61,6 +63,8 @@ def command_line(command, scene_name, options):
     arguments = [command, scene_name, "--format", "json"]
     for key, value in options.items():
         if "." in key:
+            if "=" in key:
+                raise InputError(f"{key}: a scene key has no '='; give its value as the keyword's value")
             arguments += ["--set", f"{key}={scene_value(value)}"]
             continue
         option = "--" + key.replace("_", "-")
@@ -70,19 +74,42 @@ def command_line(command, scene_name, options):
             names = sorted(o[2:].replace("-", "_") for o in known if o not in RESERVED and o not in ("--set", "--help"))
             raise InputError(f"{key}: not an option of {command}; its options: {', '.join(names)} "
                              "(and scene keys as section.key)")
-        if value is True:
-            arguments.append(option)
-        elif value is not False and value is not None:
-            arguments += [option, option_value(value)]
+        arguments += _option_arguments(command, key, option, known[option], value)
     return arguments
 
 
-def _plain(value):
-    """A scene dict with NumPy scalars and arrays as the Python numbers and lists TOML writes."""
+def _option_arguments(command, key, option, takes_value, value):
+    """The arguments for one plain option: a flag's True or False, an option's value (None: the
+    command's default); InputError for a value of the other kind."""
+    if not takes_value:
+        if not isinstance(value, bool):
+            raise InputError(f"{key} = {value!r}: a flag, True or False")
+        if value:
+            return [option]
+        # A flag on by default is turned off by its negation ("--no-error-estimate").
+        negation = "--no-" + option[2:]
+        return [negation] if negation in command_options()[command] else []
+    if value is None:
+        return []
+    if isinstance(value, bool):
+        raise InputError(f"{key} = {value!r}: {option} takes a value, not True or False (None leaves its default)")
+    return [option, option_value(value)]
+
+
+def _plain(value, where="scene"):
+    """A scene dict with NumPy scalars and arrays as the Python numbers and lists TOML writes, paths
+    as strings; InputError for what TOML cannot hold (None, a key that is no string)."""
     if isinstance(value, dict):
-        return {key: _plain(item) for key, item in value.items()}
+        for key in value:
+            if not isinstance(key, str):
+                raise InputError(f"{where}: the key {key!r} is no string")
+        return {key: _plain(item, f"{where}.{key}" if where != "scene" else key) for key, item in value.items()}
     if isinstance(value, (list, tuple)):
-        return [_plain(item) for item in value]
+        return [_plain(item, where) for item in value]
+    if value is None:
+        raise InputError(f"{where} = None: a scene key takes a value; leave the key out for its default")
+    if isinstance(value, os.PathLike):
+        return os.fspath(value)
     return value.tolist() if hasattr(value, "tolist") else value
 
 
@@ -98,6 +125,8 @@ def scene_source(scene):
         return os.fspath(scene), ""
     if not isinstance(scene, str):
         raise InputError(f"scene: must be a path, TOML text or a dict, not {type(scene).__name__}")
-    if "\n" in scene or ("=" in scene and not os.path.exists(scene)):
+    if "\n" in scene:  # a scene's text has its tables on lines of their own
         return "<text>", scene
+    if "\0" in scene:
+        raise InputError(f"scene: {scene!r}: a path has no NUL character")
     return scene, ""

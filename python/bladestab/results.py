@@ -60,6 +60,18 @@ class Result:
             return as_arrays(self.document[key])
         raise KeyError(key)
 
+    def __contains__(self, key):
+        return key in self._answer or (self.document is not None and key in self.document)
+
+    def __iter__(self):
+        return iter(self._answer)
+
+    def __len__(self):
+        return len(self._answer)
+
+    def get(self, key, default=None):
+        return self[key] if key in self else default
+
     def __getattr__(self, name):
         if name.startswith("_"):
             raise AttributeError(name)
@@ -73,8 +85,18 @@ class Result:
         return sorted(set(super().__dir__()) | set(self._answer))
 
     def __repr__(self):
-        fields = ", ".join(f"{k}={v!r}" for k, v in self._answer.items() if not isinstance(v, (list, dict)))
-        return f"<bladestab {self.command} result: {fields[:300]}>"
+        """The answer's plain fields, each whole, as many as fit in about 300 characters."""
+        fields, length = [], 0
+        for key, value in self._answer.items():
+            if isinstance(value, (list, dict)):
+                continue
+            field = f"{key}={value!r}"
+            if length + len(field) > 300:
+                fields.append("…")
+                break
+            fields.append(field)
+            length += len(field) + 2
+        return f"<bladestab {self.command} result: {', '.join(fields)}>"
 
     def plot(self, path=None):
         """The program's chart of this answer (campbell, map, sweep, transient), drawn by its chart

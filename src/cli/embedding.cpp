@@ -86,12 +86,13 @@ EmbeddedAnswer run_embedded(const std::vector<std::string>& arguments, const Emb
   return answer;
 }
 
-std::map<std::string, std::vector<std::string>> command_options() {
+std::map<std::string, std::map<std::string, bool>> command_options() {
   CLI::App app{"bladestab"};
-  std::map<std::string, std::vector<std::string>> names;
+  std::map<std::string, std::map<std::string, bool>> names;
   for (const auto& [name, unused] : register_commands(app)) {
     for (const CLI::Option* option : app.get_subcommand(name)->get_options()) {
-      for (const std::string& long_name : option->get_lnames()) names[name].push_back("--" + long_name);
+      const bool takes_value = option->get_items_expected_max() > 0;
+      for (const std::string& long_name : option->get_lnames()) names[name]["--" + long_name] = takes_value;
     }
   }
   return names;

@@ -40,9 +40,9 @@ struct EmbeddedAnswer {
 // a failed check NumericalError or another exception, as the program reports them.
 EmbeddedAnswer run_embedded(const std::vector<std::string>& arguments, const EmbeddedRun& run);
 
-// Each command's long option names ("--tolerance", "--set", …), for callers that check names
-// before running.
-std::map<std::string, std::vector<std::string>> command_options();
+// Each command's long option names ("--tolerance", "--set", …), each with whether it takes a value
+// (false for a flag such as "--help"), for callers that check options before running.
+std::map<std::string, std::map<std::string, bool>> command_options();
 
 // The answer's JSON document: into the current thread's embedded answer, else to stdout.
 void print_json_answer(const std::string& text);

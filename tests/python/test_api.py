@@ -58,11 +58,19 @@ def test_scene_as_text_and_dict_gives_the_same_answer():
     ({"toleranse": 1e-6}, "toleranse"),
     ({"format": "table"}, "format"),
     ({"harmonics": "x"}, "--harmonics"),
+    ({"tolerance": False}, "--tolerance"),
+    ({"tolerance": True}, "--tolerance"),
 ])
 def test_bad_input_raises_input_error_naming_the_key(options, named):
     with pytest.raises(bladestab.InputError, match=named.replace(".", r"\.")) as error:
         bladestab.stability(SCENE, **options)
     assert isinstance(error.value, ValueError) and "\n" not in str(error.value)
+
+
+def test_a_flag_takes_a_boolean_and_none_leaves_an_option_default():
+    with pytest.raises(bladestab.InputError, match="follower = 1: a flag, True or False"):
+        bladestab.transient(SCENE, follower=1)
+    assert bladestab.stability(SCENE, tolerance=None).to_dict() == bladestab.stability(SCENE).to_dict()
 
 
 def test_missing_scene_file_is_input_error():
@@ -101,3 +109,33 @@ def test_plot_draws_the_programs_chart(tmp_path):
     run_program("map", SCENE, *grid, "--out", str(tmp_path), "--chart", "png")
     with open(tmp_path / "python.png", "rb") as a, open(tmp_path / "map_theta_fmax.png", "rb") as b:
         assert a.read() == b.read()
+
+
+def test_a_flag_on_by_default_is_turned_off_by_false_and_out_none_writes_nowhere(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    r = bladestab.transient(SCENE, revolutions=1, threads=1, error_estimate=False, out=None)
+    program = run_program("transient", SCENE, "--revolutions", "1", "--threads", "1", "--no-error-estimate", "--chart",
+                          "none", "--out", str(tmp_path / "program"))
+    assert "error_estimate" not in r.to_dict() and "error_estimate" not in program
+    assert r.to_dict()["peak_tip_lateral_m"] == program["peak_tip_lateral_m"]
+    assert sorted(os.listdir(tmp_path)) == ["program"] and r.files == []
+
+
+def test_numpy_arrays_are_lists_and_a_missing_path_with_an_equals_sign_is_a_path():
+    assert bladestab.stability(SCENE, **{"load.fmax_over_fcr": np.float64(3.0)}).to_dict() == \
+        bladestab.stability(SCENE, **{"load.fmax_over_fcr": 3.0}).to_dict()
+    with pytest.raises(bladestab.InputError, match="load.fmax_over_fcr"):
+        bladestab.stability(SCENE, **{"load.fmax_over_fcr": np.array([1.0, 2.0])})
+    with pytest.raises(bladestab.InputError, match="fmax=3/blade.toml"):
+        bladestab.stability("no-such-study/fmax=3/blade.toml")
+    with pytest.raises(bladestab.InputError, match="progress: must be callable"):
+        bladestab.stability(SCENE, progress=5)
+    with pytest.raises(bladestab.InputError, match="load.bogus = None"):
+        bladestab.stability({"load": {"bogus": None}})
+
+
+def test_a_result_is_a_read_only_mapping_of_its_fields():
+    r = bladestab.stability(SCENE)
+    assert "stable" in r and "no-such-field" not in r and r.get("no-such-field") is None
+    assert list(r) == list(r.keys()) and len(r) == len(r.to_dict()) and r.get("stable") == r.stable
+    assert all(field == "…" or "=" in field for field in repr(r).rstrip(">").split(": ", 1)[1].split(", "))

@@ -62,3 +62,36 @@ def test_ctrl_c_stops_a_transient_inside_its_contact_pieces_and_its_richer_run()
         f'**{{"load.contact_time_rev": 0.5}})')
     # Within a contact piece of each run (0.2 s here), not at the richer run's end ~30 s later.
     assert delay < 5.0 and status == 0
+
+
+def test_ctrl_c_after_a_run_inside_a_progress_callback_stops_the_next_run_and_only_it():
+    # A run started inside another's progress callback, then Ctrl-C during a later run: that run
+    # stops; the analysis after it, on another thread, is not stopped by the Ctrl-C before it.
+    lines, delay, status = interrupt_when_ready(
+        f'inner = []; bladestab.stability({SCENE!r}, progress=lambda *report: inner or '
+        f'inner.append(bladestab.modes({SCENE!r}, count=2))); '
+        f'bladestab.transient({SCENE!r}, revolutions=60, chart="none", threads=2, progress=ready, '
+        f'**{{"load.contact_time_rev": 0.5}})',
+        'import concurrent.futures\n'
+        f'print("then", concurrent.futures.ThreadPoolExecutor(1).submit(bladestab.stability, {SCENE!r}).result().stable, '
+        'flush=True)')
+    assert delay < 5.0
+    assert lines[1] == "then False" and status == 0
+
+
+def test_a_sigint_handler_of_the_callers_own_that_does_not_raise_lets_the_run_finish():
+    script = f"""
+import signal, bladestab
+calls = []
+signal.signal(signal.SIGINT, lambda number, frame: calls.append(number))
+def ready(label, done, total):
+    if not calls and done == 1:
+        print("ready", flush=True)
+answer = bladestab.stability({SCENE!r}, tolerance=1e-9, threads=1, progress=ready)
+print(len(calls), answer.stable, flush=True)
+"""
+    child = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE, text=True, env=os.environ)
+    assert child.stdout.readline().strip() == "ready"
+    child.send_signal(signal.SIGINT)
+    out, _ = child.communicate(timeout=120)
+    assert out.strip() == "1 False" and child.returncode == 0
