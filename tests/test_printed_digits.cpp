@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <random>
 #include <stdexcept>
@@ -116,4 +117,34 @@ TEST_CASE("JSON documents: lists of numbers on one line, two-space indentation, 
   // JSON has no NaN: an unflagged one is a bug upstream, refused rather than printed as null.
   document["point"]["y"] = std::numeric_limits<double>::infinity();
   CHECK_THROWS_AS(bladestab::cli::json_text(document), std::logic_error);
+}
+
+TEST_CASE("a table's number shows exactly the significant digits asked for, as C's %#g without its point",
+          "[digits]") {
+  using bladestab::cli::with_figures;
+  // Worked by hand: 236.3787 to 3 figures is 236 (fmt's '#' gives "236.0", a fourth digit that is wrong).
+  CHECK(with_figures(236.3787, 3) == "236");
+  CHECK(with_figures(1279.6, 4) == "1280");
+  CHECK(with_figures(3390.2, 3) == "3.39e+03");
+  CHECK(with_figures(8.37, 3) == "8.37");
+  CHECK(with_figures(1.5, 3) == "1.50");
+  CHECK(with_figures(68.2, 12) == "68.2000000000");
+  CHECK(with_figures(9.996, 3) == "10.0");
+  CHECK(with_figures(999.6, 3) == "1.00e+03");
+  CHECK(with_figures(0.000123456, 3) == "0.000123");
+  CHECK(with_figures(0.0000123456, 3) == "1.23e-05");
+  CHECK(with_figures(-42.25, 2) == "-42");
+  CHECK(with_figures(0, 3) == "0");
+  // Against C's printf %#.*g, whose only difference is the trailing point of a whole number.
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> exponent(-6, 8), mantissa(1, 10);
+  for (int k = 0; k < 2000; ++k) {
+    const double value = mantissa(random) * std::pow(10.0, std::floor(exponent(random)));
+    const int figures = 3 + k % 10;
+    char c[64];
+    std::snprintf(c, sizeof c, "%#.*g", figures, value);
+    std::string expected = c;
+    if (expected.back() == '.') expected.pop_back();
+    CHECK(with_figures(value, figures) == expected);
+  }
 }

@@ -183,8 +183,8 @@ void print_table(const Scene& scene, const CampbellWithErrors& r, const std::vec
     const EngineOrderCrossing& x = d.crossings[k];
     const double error = r.crossing_budget[k].total();
     const int digits = significant_digits(error);
-    fmt::print("{:>4} {:>5} {:>#16.{}g} {:>#14.{}g} {:>#16.{}g} {:>9.1e}\n", x.engine_order, x.mode, x.speed_rad_s,
-               digits, x.speed_rad_s * rpm_per_rad_s, digits, x.frequency_hz, digits, error);
+    fmt::print("{:>4} {:>5} {:>16} {:>14} {:>16} {:>9.1e}\n", x.engine_order, x.mode, with_figures(x.speed_rad_s, digits),
+               with_figures(x.speed_rad_s * rpm_per_rad_s, digits), with_figures(x.frequency_hz, digits), error);
   }
   if (!files.empty()) fmt::print("\nwritten: {}\n", fmt::join(files, ", "));
 }

@@ -120,8 +120,8 @@ void print_modes_table(const Scene& scene, const ConvergedModes& result) {
     const int figures = significant_digits(budget.total());
     // ζ below 1e-12 is rounding in an undamped model's eigenvalues, not damping.
     const double zeta = std::abs(m.damping_ratio) < 1e-12 ? 0.0 : m.damping_ratio;
-    fmt::print("{:>4}  {:<9} {:>#16.{}g} {:>#16.{}g} {:>10.3g} {:>10.1e}\n", m.index, to_string(m.family),
-               m.frequency_hz, figures, m.lambda, figures, zeta, budget.total());
+    fmt::print("{:>4}  {:<9} {:>16} {:>16} {:>10.3g} {:>10.1e}\n", m.index, to_string(m.family),
+               with_figures(m.frequency_hz, figures), with_figures(m.lambda, figures), zeta, budget.total());
   }
 }
 

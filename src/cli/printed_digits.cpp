@@ -99,8 +99,17 @@ int significant_digits(double error) {
   return std::clamp(static_cast<int>(std::floor(-std::log10(std::max(error, 1e-15)))) + 1, 3, 12);
 }
 
+std::string with_figures(double value, int figures) {
+  if (!std::isfinite(value) || value == 0) return fmt::format("{:.{}g}", value, figures);
+  // The decimal exponent after rounding to `figures` digits (9.996 to 3 figures is 1.00e+01).
+  const std::string scientific = fmt::format("{:.{}e}", value, figures - 1);
+  const int exponent = std::stoi(scientific.substr(scientific.find('e') + 1));
+  if (exponent < -4 || exponent >= figures) return scientific;  // where %g takes the exponent form
+  return fmt::format("{:.{}f}", value, figures - 1 - exponent);
+}
+
 std::string to_significant_digits(double value, double relative_error) {
-  return fmt::format("{:#.{}g}", value, significant_digits(relative_error));
+  return with_figures(value, significant_digits(relative_error));
 }
 
 std::string fixed_to_error(double value, double error, int max_decimals) {

@@ -50,7 +50,11 @@ private:
 // Significant digits worth printing for a value with relative error `error` (3 to 12).
 int significant_digits(double error);
 
-// A table's number to those significant digits, trailing zeros kept ("329.38710").
+// `value` to `figures` significant digits, trailing zeros kept ("329.38710", "236", "3.39e+03"): as
+// C's %#.*g but without its trailing point, and without the digit past them that fmt's '#' adds ("236.0").
+std::string with_figures(double value, int figures);
+
+// A table's number to the significant digits its relative error supports (with_figures).
 std::string to_significant_digits(double value, double relative_error);
 
 // A table's number: in fixed point to the decade of its error, at most max_decimals of them, without

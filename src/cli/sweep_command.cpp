@@ -125,7 +125,7 @@ void print_table(const Scene& scene, const ParameterSweep& s, const std::vector<
   for (std::size_t v = 0; v < nv; ++v) {
     fmt::print("{:>{}.6g}", s.values[v], width);
     for (const SweptMode& m : s.modes) {
-      fmt::print(" {:>#14.{}g}", m.frequency_hz[v], std::min(10, significant_digits(m.error_estimate[v])));
+      fmt::print(" {:>14}", with_figures(m.frequency_hz[v], std::min(10, significant_digits(m.error_estimate[v]))));
     }
     fmt::print("\n");
   }
