@@ -112,6 +112,23 @@ TEST_CASE("check: the Campbell margin's worst point against dense solves", "[che
   }
 }
 
+TEST_CASE("check: the Campbell margin reaches the modes of the raised model, past the scene's own dofs",
+          "[check][long_under_sanitizers]") {
+  // The scene's 4 terms have 12 modes, all far below engine order 270 over 245–280 rad/s (39–45 kHz·k/1000).
+  // The axial rod's fifth mode, (2n − 1)c/4L = 9/4·√(E/ρ)/L = 11516.4 Hz, crosses it at 268.0 rad/s:
+  // the requirement fails, whatever the bending modes do.
+  const Scene scene = load_scene(example("passes"), {"model.terms=4", "requirements.engine_orders=[270]"});
+  const double axial = 9.0 / 4 * std::sqrt(scene.blade.youngs_modulus / scene.blade.density) / scene.blade.length;
+  REQUIRE(two_pi * axial / 270 == Approx(268.0).epsilon(1e-3));
+  const FrequencyMarginResult m = check_frequency_margin(scene, 1e-3);
+  CHECK_FALSE(m.passed);
+  CHECK(m.worst.distance == 0);
+  CHECK(m.modes_checked > 12);
+  // The crossing it names against a dense solve of its model at that speed.
+  CHECK(dense_frequency(scene, m.terms, m.worst.mode, m.worst.speed_rad_s) ==
+        Approx(270 * m.worst.speed_rad_s / two_pi).epsilon(1e-3));
+}
+
 TEST_CASE("check: the stability onset at the worst speed against Floquet either side", "[check][parallel][long_under_sanitizers]") {
   // Damped, so the regions lift off F̄ = 0 and the onset is a boundary: max|ρ| ≤ 1 just below it,
   // > 1 just above.

@@ -215,7 +215,7 @@ FrequencyMarginResult check_frequency_margin(const Scene& scene, double toleranc
   options.speeds_rad_s = speed_grid(result.speed_lo_rad_s, result.speed_hi_rad_s, margin_speeds);
   options.engine_orders = req.engine_orders;
   options.closest_approaches = true;
-  const int dofs = dof_layout(scene.model, scene.blade.two_planes()).size();
+  int dofs = dof_layout(scene.model, scene.blade.two_planes()).size();
   // Track more modes until the highest one tracked stays above the threshold over the whole range.
   for (int count = std::min(4, dofs);; count = std::min(2 * count, dofs)) {
     options.mode_count = count;
@@ -226,6 +226,8 @@ FrequencyMarginResult check_frequency_margin(const Scene& scene, double toleranc
       return *std::min_element(c.frequency_hz.begin(), c.frequency_hz.end());
     };
     const std::vector<CampbellCurve>& curves = campbell.diagram.curves;
+    // The diagram's model has the terms raised to the tolerance: as many modes as its dofs.
+    dofs = dof_layout(campbell.model.spec, scene.blade.two_planes()).size();
     if (lowest(curves.back()) < result.threshold_hz && count < dofs) continue;
     std::vector<int> checked;  // the curves below the threshold, at least the lowest
     for (const CampbellCurve& c : curves) {
