@@ -431,3 +431,23 @@ TEST_CASE("fast transient without load: the state never changes, and the growth 
   for (const TransientSample& s : r.samples) CHECK(s.tip_lateral_m == 0);
   CHECK_THAT(r.growth.omitted, Catch::Contains("did not change over its 6 whole revolutions"));
 }
+
+TEST_CASE("fast transient: pulses not locked to the revolution carry no revolution's propagators on", "[transient][fast]") {
+  // 30 Hz pulses at 47.7 revolutions a second: no two revolutions see the same pulses, so the last
+  // one's propagators say nothing of the next (they gave 1 ± 1e-10 here). The true train's max|ρ|
+  // per pulse period, 1.105, is 1.105^(T_rev/T_p) ≈ 1.065 a revolution: the growth the run states,
+  // if it states one, covers it.
+  const Scene scene =
+      paper_scene({"model.terms=8", "load.profile=rectangular", "load.contact_time_rev=0.05", "load.pulse_frequency_hz=30"});
+  const BladeModel model = assemble_model(scene);
+  const FloquetResult floquet = true_train_floquet(scene, model, 1e-6);
+  const double per_revolution =
+      std::pow(floquet.max_abs_multiplier, 2 * M_PI / scene.operation.speed_rad_s * 30);
+  REQUIRE(per_revolution > 1.05);
+  TransientOptions o;
+  o.revolutions = 20;
+  const TransientResult r = run_transient(model, scene, o);
+  CAPTURE(r.growth.growth, r.growth.error_estimate, r.growth.omitted, per_revolution);
+  CHECK(r.continued_log_change.empty());
+  CHECK((!r.growth.omitted.empty() || std::abs(r.growth.growth - per_revolution) <= r.growth.error_estimate));
+}

@@ -78,7 +78,8 @@ void cosine_rows(const BladeModel& model, const Scene& scene, const CrosscheckOp
   Scene cosine = scene;
   cosine.load.approximation = LoadApproximation::cosine;
   cosine.load.profile = PulseProfile::cosine;
-  cosine.load.contact_time_rev = 1.0 / cosine.load.pulses_per_rev;
+  // The cosine over a whole load period, in revolutions (pulses_per_rev⁻¹ unless load.pulse_frequency_hz sets it).
+  cosine.load.contact_time_rev = pulse_train(scene).period_s * scene.operation.speed_rad_s / two_pi;
   const PeriodicSystem cosine_system = periodic_system(model, cosine, load_series(cosine), scene.model.reduction);
   const FloquetResult fc = floquet_multipliers(cosine_system, {FloquetMethod::automatic, 0, o.tolerance});
   p.cosine_modes = cosine_system.kept_modes;

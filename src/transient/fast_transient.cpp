@@ -71,7 +71,7 @@ TransientResult run_fast_transient(const BladeModel& model, const Scene& scene, 
     }
   }
   const int whole = static_cast<int>(result.revolution_change.size());
-  if (whole >= 1 && resolved_change.size() > 0) {
+  if (whole >= 1 && resolved_change.size() > 0 && revolutions_repeat(stepper.pulses(), begin.revolution, whole)) {
     // The last whole revolution's landings, after the (whole − 1)-th whole revolution's and up to the
     // whole-th, found by their flags: a time window would drop the revolution's end where an output
     // time sums to it with rounding (in a run that goes on past it).

@@ -55,4 +55,13 @@ std::vector<double> continue_change(ExactStepper& stepper, const Eigen::VectorXd
   return log_norms;
 }
 
+bool revolutions_repeat(const PulseTrain& pulses, double revolution, int whole) {
+  if (pulses.count > 0) {
+    const double last_pulse_end = (pulses.count - 1) * pulses.period_s + std::min(pulses.contact_time_s, pulses.period_s);
+    return (whole - 1) * revolution >= last_pulse_end;
+  }
+  const double periods = revolution / pulses.period_s;
+  return std::round(periods) >= 1 && std::abs(periods - std::round(periods)) <= 1e-9 * periods;
+}
+
 }  // namespace bladestab::detail

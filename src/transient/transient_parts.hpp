@@ -101,6 +101,11 @@ private:
 std::vector<double> continue_change(ExactStepper& stepper, const Eigen::VectorXd& change, const std::vector<Landing>& revolution,
                              double start);
 
+// Whether every revolution from the `whole`-th whole one on has that revolution's propagators (the
+// premise of continue_change): an endless train whose pulse period divides the revolution
+// (`revolution` s), or a finite one whose last pulse is over before that revolution starts.
+bool revolutions_repeat(const PulseTrain& pulses, double revolution, int whole);
+
 // run_transient by RKF45.
 TransientResult run_rkf45_transient(const BladeModel& model, const Scene& scene, const TransientOptions& options);
 
