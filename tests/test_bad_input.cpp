@@ -110,6 +110,8 @@ TEST_CASE("bad input: wrong types and unknown choices in the scene (bad_input)",
       {"damping.model=viscous", {"damping.model = \"viscous\"", "\"modal\"", "\"rayleigh\""}},
       {"load.profile=square", {"load.profile = \"square\"", "\"half-sine\"", "\"rectangular\""}},
       {"blade.colour=red", {"blade.colour = \"red\"", "unknown key", "youngs_modulus"}},
+      // The keys a section may omit are named too.
+      {"load.bogus=1", {"load.bogus = 1", "unknown key", "pulse_frequency_hz"}},
   });
 }
 

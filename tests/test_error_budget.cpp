@@ -35,7 +35,11 @@ namespace {
 
 constexpr double two_pi = 6.28318530717958647692;
 
-double reference_max_rho(Scene scene, int vectors = 3) {
+// max|ρ| of a much richer model: 24 terms or 8 more, the Fourier series as the true train; on the
+// whole Ritz model where the answer's is (`whole`) and for the true train, else on the automatic
+// reduction of `vectors` (12 where max|ρ| > 10: a growth that large leaves 3 vectors' error at 1e-6
+// of it, as large as the answer's).
+double reference_max_rho(Scene scene, bool whole, int vectors = 3) {
   scene.model.basis = BasisKind::legendre;
   scene.model.terms = std::max(24, scene.model.terms + 8);
   if (scene.load.approximation == LoadApproximation::fourier) scene.load.approximation = LoadApproximation::exact;
@@ -43,13 +47,13 @@ double reference_max_rho(Scene scene, int vectors = 3) {
   // The true train is integrated only through its contacts: the whole Ritz model.
   const bool exact = scene.load.approximation == LoadApproximation::exact;
   const PeriodicSystem sys = periodic_system(model, scene, load_series(scene),
-                                             {exact ? ReductionKind::none : ReductionKind::automatic, vectors, 0});
+                                             {exact || whole ? ReductionKind::none : ReductionKind::automatic, vectors, 0});
   // The true train's contact ladder at 1e-9: its last level is within 1e-9 of the one before,
   // so (sixth-order Magnus) ~2e-11 from the limit, below the 1e-8 floor.
   const FloquetOptions o{FloquetMethod::monodromy, 0, exact ? 1e-9 : 1e-10, false};
   const double rho =
       (exact ? pulse_train_multipliers(sys, periodic_pulse(pulse_train(scene)), o) : floquet_multipliers(sys, o)).max_abs_multiplier;
-  return rho > 10 && vectors < 12 && !exact ? reference_max_rho(scene, 12) : rho;
+  return rho > 10 && vectors < 12 && !whole && !exact ? reference_max_rho(scene, false, 12) : rho;
 }
 
 // The regions of the space a user tries; each is its own test case, so that ctest runs them side by side.
@@ -89,7 +93,7 @@ TEST_CASE("the reduced reference agrees with the whole Ritz model (N = 8, 16384 
   CHECK(std::abs(red - full) < 1e-8);
   // Two independent integrations of this model in the issue (N = 12 and 14) give 2.1992296566 at
   // convergence; N = 8 is 2.3e-6 below it.
-  CHECK(std::abs(reference_max_rho(paper_scene()) - 2.1992296566) < 1e-8);
+  CHECK(std::abs(reference_max_rho(paper_scene(), false) - 2.1992296566) < 1e-8);
 }
 
 namespace {
@@ -137,6 +141,9 @@ std::vector<Case> survey() {
        loose},
       {R::true_pulse, "exact pulse, 2 per rev, 240 rad/s",
        {"load.approximation=exact", "operation.speed_rad_s=240", "load.pulses_per_rev=2"}, loose},
+      // At 10 rad/s the reduction converges irregularly in its vectors: 6 and 12 agree to 3.7e-7, both
+      // 4.2e-5 off the whole model (its 3 → 6 change, 7e-5, holds the part; the whole model answers).
+      {R::true_pulse, "exact pulse, 10 rad/s", {"load.approximation=exact", "operation.speed_rad_s=10"}, plain},
       {R::damping, "paper damping 1 %", {"damping.model=paper", "damping.ratio=0.01"}, plain},
       {R::damping, "modal damping 2 %, F = 10", {"damping.model=modal", "damping.ratio=0.02", "load.fmax_over_fcr=10"},
        plain},
@@ -156,7 +163,8 @@ void check_region(Region region, std::size_t least_scenes) {
     if (c.region != region) continue;
     const Scene scene = paper_scene(c.overrides);
     const StabilityAnswer a = analyse_stability(scene, c.request);
-    const double reference = c.whole_model_steps ? whole_model_max_rho(scene, c.whole_model_steps) : reference_max_rho(scene);
+    const double reference = c.whole_model_steps ? whole_model_max_rho(scene, c.whole_model_steps)
+                                                 : reference_max_rho(scene, a.reduction.kind == ReductionKind::none);
     const double error = std::abs(a.floquet.max_abs_multiplier - reference);
     const double estimate = a.budget.total();
     const double floor = 1e-8 * std::max(1.0, reference);
@@ -300,7 +308,7 @@ TEST_CASE("a raised round the work limit cannot finish leaves the last finished 
   StabilityRequest request;
   request.work_flops = 1e10;
   const StabilityAnswer a = analyse_stability(scene, request);
-  check_left_standing(a, 18, "raising it to 27 terms per field did not finish", "work limit");
+  check_left_standing(a, 18, "raising it to 27 terms per field on the whole model did not finish", "work limit");
   // Its estimate covers the converged true train: 1.014855 at 27 terms and 1e-6, 1.014854 ± 3.1e-7
   // at 36 (`stability` at its default work).
   CHECK(a.budget.total() < 1e-4);

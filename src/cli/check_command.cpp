@@ -117,8 +117,12 @@ CheckOutcome rub_outcome(const Scene& scene, const RubStabilityResult& r) {
   // "F̄ = 0.62", or "F̄ > 2" where no region opens within the window.
   const std::string onset = r.onset_fmax_over_fcr ? fmt::format("F̄ = {:.6g}", *r.onset_fmax_over_fcr)
                                                   : fmt::format("F̄ > {:g}", r.window_fmax_over_fcr);
-  o.summary = fmt::format("lowest onset {} (required stable to {:g}) at {:.6g} rad/s; max|ρ| = {:.6g} at F̄ = {:.4g}",
-                          onset, r.required, r.speed_rad_s, r.max_abs_multiplier, r.check_fmax_over_fcr);
+  // No Floquet point where only the unloaded blade is required (JSON's nulls).
+  o.summary = fmt::format("lowest onset {} (required stable to {:g}) at {:.6g} rad/s; {}", onset, r.required,
+                          r.speed_rad_s,
+                          r.required > 0 ? fmt::format("max|ρ| = {:.6g} at F̄ = {:.4g}", r.max_abs_multiplier,
+                                                       r.check_fmax_over_fcr)
+                                         : std::string("no Floquet check (only the unloaded blade)"));
   const std::string scope = fmt::format(
       "θ = {}·Ω over {:g} to {:g} rad/s, load {} ({}), damping {}; regions of order <= {} sought up to F̄ = {:g} "
       "from the boundary equations at {} speeds",

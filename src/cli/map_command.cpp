@@ -93,7 +93,8 @@ Json curve_fidelity_json(const StabilityMap& m, const PrintedDigits& digits) {
                {"work_limited", f.work_limited},
                {"drawn", f.drawn},
                {"error_measure", m.plane == MapPlane::theta_fmax ? "distance in θ over the window's θ span"
-                                                                  : "distance in F̄ over the window's F̄ span"}};
+                                                                  : "distance in F̄ over the window's top F̄ (the "
+                                                                    "curves are traced from F̄ = 0)"}};
   write_error_budget(json, f.budget, digits);
   return json;
 }
@@ -301,14 +302,15 @@ void print_map_table(const Scene& scene, const BladeModel& model, const std::str
                          : fmt::format(", θ = {}·Ω", o.engine_order));
   const CurveFidelity& f = m.curve_fidelity;
   if (!f.drawn) {
-    fmt::print("curves    none: a pulse's own series needs many more harmonics in the boundary equations, not "
+    fmt::print("curves    none: they are drawn for the cosine approximation (42); the pulse's own series (load."
+               "approximation \"fourier\", or \"exact\") needs many more harmonics in the boundary equations, not "
                "monotonically; the shading (Floquet) shows the regions\n");
   } else {
-    fmt::print("curves    {} boundary curves ({} harmonics per family, {} model{}); error over the window's "
-               "span {}{}\n",
+    fmt::print("curves    {} boundary curves ({} harmonics per family, {} model{}); error over {} {}{}\n",
                m.curves.size(), f.approximation, to_string(f.reduction.kind),
                f.reduction.kind == ReductionKind::automatic ? fmt::format(", {} vectors per load level", f.reduction.vectors)
                                                             : "",
+               theta_plane ? std::string("the window's θ span") : fmt::format("F̄ from 0 to the window's top {:g}", m.grid_fbar.back()),
                describe_error_budget(f.budget), curves_unmet(f, o.tolerance));
   }
   const ShadingFidelity& sf = m.shading_fidelity;

@@ -146,6 +146,7 @@ public:
 
   std::optional<double> optional_number(const std::string& key, const AllowedRange& allowed,
                                         const std::string& meaning) {
+    known_.insert(key);  // named among the section's keys in a message, given or not
     if (!has(key)) return std::nullopt;
     return number(key, allowed, meaning);
   }
