@@ -197,8 +197,8 @@ Command register_crosscheck(CLI::App& app) {
       case OutputFormat::table: print_table(scene, result, *revolutions);
     }
     if (disagreeing > 0) {
-      throw std::runtime_error(fmt::format("crosscheck: {} of {} points disagree beyond their error estimates or have a transient growth the fit does not resolve",
-                                           disagreeing, result.size()));
+      throw AnswerIsNegative{fmt::format("crosscheck: {} of {} points disagree beyond their error estimates or have a "
+                                         "transient growth the fit does not resolve", disagreeing, result.size())};
     }
   };
 }

@@ -102,6 +102,18 @@ def test_check_answer_is_a_result_not_an_error():
         run_program("check", os.path.join(ci, "fails.toml"), expect_status=1))
 
 
+def test_a_crosscheck_that_disagrees_is_a_negative_result():
+    # 30 Hz pulses at 47.7 revolutions a second: no revolution repeats the last, so the transient's
+    # growth is not resolved and the point cannot agree (exit status 1 on the command line).
+    args = {"points": 1, "revolutions": 6, "model.terms": 4, "load.pulse_frequency_hz": 30,
+            "load.profile": "rectangular", "load.contact_time_rev": 0.05}
+    r = bladestab.crosscheck(SCENE, **args)
+    assert not r.passed and "1 of 1 points disagree" in r.failure
+    assert r.to_dict() == run_program("crosscheck", SCENE, "--points", "1", "--revolutions", "6", "--set", "model.terms=4",
+                                      "--set", "load.pulse_frequency_hz=30", "--set", "load.profile=rectangular",
+                                      "--set", "load.contact_time_rev=0.05", expect_status=1)
+
+
 def test_plot_draws_the_programs_chart(tmp_path):
     grid = ["--plane", "theta-fmax", "--theta", "100:1000:3", "--fmax", "0:5:3", "--trace", "5", "--resolution", "4x4"]
     r = bladestab.map(SCENE, plane="theta-fmax", theta="100:1000:3", fmax="0:5:3", trace=5, resolution="4x4")
