@@ -290,6 +290,12 @@ TEST_CASE("bad input: stability, boundaries and map options (bad_input)", "[bad_
   SECTION("map speed plane without speeds") {
     expect_rejected(with({"map", "--plane", "speed-fmax", "--chart", "none"}), {"--speeds", "required"});
   }
+  SECTION("map with the other plane's grid") {
+    expect_rejected(with({"map", "--plane", "theta-fmax", "--speeds", "100:600:4", "--chart", "none"}),
+                    {"--speeds 100:600:4", "only with --plane speed-fmax"});
+    expect_rejected(with({"map", "--plane", "speed-fmax", "--speeds", "100:600:4", "--theta", "100:600:4", "--chart", "none"}),
+                    {"--theta 100:600:4", "only with --plane theta-fmax"});
+  }
   SECTION("map empty F range") {
     expect_rejected(with({"map", "--plane", "theta-fmax", "--fmax", "5:5:3", "--chart", "none"}),
                     {"--fmax 5:5:3", "start < stop"});

@@ -266,6 +266,14 @@ struct PlaneTexts {
 void set_plane_grids(const CLI::App& command, const Scene& scene, const BladeModel& model, const PlaneTexts& texts,
                      MapOptions& o) {
   const bool theta_plane = o.plane == MapPlane::theta_fmax;
+  if (theta_plane && command.count("--speeds") > 0) {
+    throw InputError(fmt::format("--speeds {}: only with --plane speed-fmax; the theta-fmax plane is at the scene's "
+                                 "speed (--set operation.speed_rad_s=…)", texts.speeds));
+  }
+  if (!theta_plane && command.count("--theta") > 0) {
+    throw InputError(fmt::format("--theta {}: only with --plane theta-fmax; in the speed-fmax plane θ = k·Ω "
+                                 "(--engine-order k)", texts.theta));
+  }
   if (theta_plane) {
     if (command.count("--theta") == 0) {
       const double speed = scene.operation.speed_rad_s;

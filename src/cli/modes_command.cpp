@@ -9,6 +9,7 @@
 #include "bladestab/base/input_error.hpp"
 #include "bladestab/modal/basis_error.hpp"
 #include "commands.hpp"
+#include "notes.hpp"
 #include "embedding.hpp"
 #include "error_output.hpp"
 #include "finite_results.hpp"
@@ -171,7 +172,13 @@ Command register_modes(CLI::App& app) {
     if (command->count("--tolerance") > 0) tol = *tolerance;
     const Scene scene = options->load();
     check_modes_work(scene);
-    print_modes(*options, scene, modes_with_error_estimate(scene, *count, options->eigen_solver(), tol));
+    const ConvergedModes modes = modes_with_error_estimate(scene, *count, options->eigen_solver(), tol);
+    print_modes(*options, scene, modes);
+    if (static_cast<int>(modes.solution.modes.size()) < *count) {
+      print_note(fmt::format("--count {}: the model has {} modes ({} terms per field), all listed; their errors say "
+                             "how many of them the continuum blade shares",
+                             *count, modes.solution.modes.size(), modes.model.spec.terms));
+    }
   };
 }
 
