@@ -142,7 +142,7 @@ std::vector<Case> survey() {
       {R::true_pulse, "exact pulse, 2 per rev, 240 rad/s",
        {"load.approximation=exact", "operation.speed_rad_s=240", "load.pulses_per_rev=2"}, loose},
       // At 10 rad/s the reduction converges irregularly in its vectors: 6 and 12 agree to 3.7e-7, both
-      // 4.2e-5 off the whole model (its 3 → 6 change, 7e-5, holds the part; the whole model answers).
+      // 4.2e-5 off the whole model; its 3 → 6 change, 7e-5, holds the part.
       {R::true_pulse, "exact pulse, 10 rad/s", {"load.approximation=exact", "operation.speed_rad_s=10"}, plain},
       {R::damping, "paper damping 1 %", {"damping.model=paper", "damping.ratio=0.01"}, plain},
       {R::damping, "modal damping 2 %, F = 10", {"damping.model=modal", "damping.ratio=0.02", "load.fmax_over_fcr=10"},
@@ -308,7 +308,7 @@ TEST_CASE("a raised round the work limit cannot finish leaves the last finished 
   StabilityRequest request;
   request.work_flops = 1e10;
   const StabilityAnswer a = analyse_stability(scene, request);
-  check_left_standing(a, 18, "raising it to 27 terms per field on the whole model did not finish", "work limit");
+  check_left_standing(a, 18, "raising it to 27 terms per field did not finish", "work limit");
   // Its estimate covers the converged true train: 1.014855 at 27 terms and 1e-6, 1.014854 ± 3.1e-7
   // at 36 (`stability` at its default work).
   CHECK(a.budget.total() < 1e-4);

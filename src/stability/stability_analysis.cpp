@@ -181,17 +181,20 @@ ErrorBudget budget_of(const FloquetResult& r, const VariantPlan& plan, RunningVa
   return b;
 }
 
-// What fixes the reduction: the scene's cut-off or vectors (vectors left to the program are raised
-// to the whole model, next_round).
-std::string reduction_fixed_by(const ReductionSpec& r) {
+// What fixes the reduction: the scene's cut-off or vectors, or, for vectors left to the program,
+// the automatic reduction's richest level (its check, twice the vectors, would be the whole model).
+std::string reduction_fixed_by(const ReductionSpec& r, bool vectors_free, int all_modes) {
   if (r.kind == ReductionKind::modal) return "the modal cut-off (--cutoff-hz or model.cutoff_hz)";
-  return "model.reduction_vectors";
+  if (!vectors_free) return "model.reduction_vectors";
+  return fmt::format("the automatic reduction's richest level, {} vectors of {} modes (model.reduction = \"none\" "
+                     "takes the whole model)", r.vectors, all_modes);
 }
 
 // The part of a budget above the tolerance that the analysis may not lower, in words.
-std::string fixed_part(const ErrorBudget& b, double scale, const Fidelity& f) {
+std::string fixed_part(const ErrorBudget& b, double scale, const Fidelity& f, bool vectors_free, int all_modes) {
   if (b.reduction >= std::max(b.load, b.method)) {
-    return fmt::format("its reduction part {:.2g} is fixed by {}", b.reduction / scale, reduction_fixed_by(f.reduction));
+    return fmt::format("its reduction part {:.2g} is fixed by {}", b.reduction / scale,
+                       reduction_fixed_by(f.reduction, vectors_free, all_modes));
   }
   if (b.load >= b.method) {
     return fmt::format("its load part {:.2g} is fixed by the scene's load series (load.approximation)", b.load / scale);
@@ -220,19 +223,14 @@ NextRound next_round(const Scene& scene, const Fidelity& f, const StabilityAnswe
     return {next, {}};
   }
   if ((basis_reachable || b.basis <= allowed) && b.reduction >= b.load && vectors_free &&
-      f.reduction.kind == ReductionKind::automatic) {
-    // Twice the vectors while the budget's richer variant (twice as many again) stays a reduced
-    // model, then the whole model.
-    if (12 * f.reduction.vectors < a.full_size) {
-      next.reduction.vectors *= 2;
-    } else {
-      next.reduction = {ReductionKind::none, 0, 0};
-    }
+      12 * f.reduction.vectors < a.full_size) {
+    // Only while the budget's richer variant (twice as many again) stays a reduced model.
+    next.reduction.vectors *= 2;
     return {next, {}};
   }
   if (b.basis > allowed) return {std::nullopt, tolerance_not_met(tol, f.model, b.basis / scale).what()};
   return {std::nullopt, fmt::format("tolerance {}: not met (estimated error {:.2g}): {}", tol, b.total() / scale,
-                                    fixed_part(b, scale, f))};
+                                    fixed_part(b, scale, f, vectors_free, a.full_size))};
 }
 
 // A round whose reduction has twice the vectors of the round `before`: its reduction part (twice
@@ -278,10 +276,8 @@ Fidelity first_fidelity(const Scene& scene, bool vectors_free, double& built, do
   return f;
 }
 
-// "N terms per field", and "and V reduction vectors" where the reduction is automatic, "on the whole
-// model" where there is none.
+// "N terms per field", and "and V reduction vectors" where the reduction is automatic.
 std::string fidelity_text(const Fidelity& f) {
-  if (f.reduction.kind == ReductionKind::none) return fmt::format("{} terms per field on the whole model", f.model.terms);
   if (f.reduction.kind != ReductionKind::automatic) return fmt::format("{} terms per field", f.model.terms);
   return fmt::format("{} terms per field and {} reduction vectors", f.model.terms, f.reduction.vectors);
 }

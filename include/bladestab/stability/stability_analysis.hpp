@@ -15,9 +15,9 @@
 //       load       the series against the true pulse train ("fourier"); 0 where the scene's load is
 //                  the series itself (the cosine approximation (42)) or the true train ("exact");
 //       method     step or harmonic convergence of the whole multiplier set;
-//  4. fidelity raised where the budget exceeds the tolerance (terms, the whole model for a reduction,
-//     steps), as far as the scene leaves it free and more terms can reach it (basis_can_reach,
-//     basis_error.hpp); what was chosen is reported, and a tolerance not met says why.
+//  4. fidelity raised where the budget exceeds the tolerance (terms, vectors, steps), as far as the
+//     scene leaves it free and more terms can reach it (basis_can_reach, basis_error.hpp); what
+//     was chosen is reported, and a tolerance not met says why.
 #include <functional>
 #include <limits>
 #include <string>
