@@ -74,21 +74,22 @@ def command_line(command, scene_name, options):
             names = sorted(o[2:].replace("-", "_") for o in known if o not in RESERVED and o not in ("--set", "--help"))
             raise InputError(f"{key}: not an option of {command}; its options: {', '.join(names)} "
                              "(and scene keys as section.key)")
-        arguments += _option_arguments(command, key, option, known[option], value)
+        arguments += _option_arguments(key, option, known, value)
     return arguments
 
 
-def _option_arguments(command, key, option, takes_value, value):
-    """The arguments for one plain option: a flag's True or False, an option's value (None: the
-    command's default); InputError for a value of the other kind."""
-    if not takes_value:
+def _option_arguments(key, option, known, value):
+    """The arguments for one plain option of the command whose options are `known` (command_options):
+    a flag's True or False, an option's value (None: the command's default); InputError for a value
+    of the other kind."""
+    if not known[option]:
         if not isinstance(value, bool):
             raise InputError(f"{key} = {value!r}: a flag, True or False")
         if value:
             return [option]
         # A flag on by default is turned off by its negation ("--no-error-estimate").
         negation = "--no-" + option[2:]
-        return [negation] if negation in command_options()[command] else []
+        return [negation] if negation in known else []
     if value is None:
         return []
     if isinstance(value, bool):

@@ -182,9 +182,9 @@ void print_table(const Scene& scene, const CampbellWithErrors& r, const std::vec
   for (std::size_t k = 0; k < d.crossings.size(); ++k) {
     const EngineOrderCrossing& x = d.crossings[k];
     const double error = r.crossing_budget[k].total();
-    const int digits = significant_digits(error);
-    fmt::print("{:>4} {:>5} {:>16} {:>14} {:>16} {:>9.1e}\n", x.engine_order, x.mode, with_figures(x.speed_rad_s, digits),
-               with_figures(x.speed_rad_s * rpm_per_rad_s, digits), with_figures(x.frequency_hz, digits), error);
+    fmt::print("{:>4} {:>5} {:>16} {:>14} {:>16} {:>9.1e}\n", x.engine_order, x.mode,
+               to_significant_digits(x.speed_rad_s, error), to_significant_digits(x.speed_rad_s * rpm_per_rad_s, error),
+               to_significant_digits(x.frequency_hz, error), error);
   }
   if (!files.empty()) fmt::print("\nwritten: {}\n", fmt::join(files, ", "));
 }

@@ -49,9 +49,8 @@ void check_crosscheck_work(const Scene& scene, std::size_t points, double revolu
 // The table: per point and load, Floquet max|ρ| and the transient growth, each with its estimate,
 // and whether they agree within the two.
 void print_table(const Scene& scene, const std::vector<CrosscheckPoint>& result, double revolutions) {
-  const double pulses = two_pi / scene.operation.speed_rad_s / pulse_train(scene).period_s;
   fmt::print("scene  {}\nspeed  {:g} rad/s, {:g} pulse(s) per revolution of {} shape, t̄c = {:g}; transients of {:g} revolutions\n\n",
-             scene.source, scene.operation.speed_rad_s, pulses, to_string(scene.load.profile),
+             scene.source, scene.operation.speed_rad_s, load_periods_per_revolution(scene), to_string(scene.load.profile),
              scene.load.contact_time_rev, revolutions);
   fmt::print("{:>7} | {:>8} | {:>13} {:>8} | {:>16} {:>8} | {:>6} | {:>15} {:>11}\n", "F̄_max", "load", "Floquet max|ρ|",
              "± est.", "transient growth", "± est.", "agree", "RKF45 Φ: max|ρ|", "‖ΔΦ‖/‖Φ‖");

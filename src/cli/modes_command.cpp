@@ -118,11 +118,11 @@ void print_modes_table(const Scene& scene, const ConvergedModes& result) {
   for (std::size_t k = 0; k < sol.modes.size(); ++k) {
     const Mode& m = sol.modes[k];
     const ErrorBudget budget = result.budget(k);
-    const int figures = significant_digits(budget.total());
     // ζ below 1e-12 is rounding in an undamped model's eigenvalues, not damping.
     const double zeta = std::abs(m.damping_ratio) < 1e-12 ? 0.0 : m.damping_ratio;
     fmt::print("{:>4}  {:<9} {:>16} {:>16} {:>10.3g} {:>10.1e}\n", m.index, to_string(m.family),
-               with_figures(m.frequency_hz, figures), with_figures(m.lambda, figures), zeta, budget.total());
+               to_significant_digits(m.frequency_hz, budget.total()), to_significant_digits(m.lambda, budget.total()), zeta,
+               budget.total());
   }
 }
 

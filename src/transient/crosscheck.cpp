@@ -78,8 +78,7 @@ void cosine_rows(const BladeModel& model, const Scene& scene, const CrosscheckOp
   Scene cosine = scene;
   cosine.load.approximation = LoadApproximation::cosine;
   cosine.load.profile = PulseProfile::cosine;
-  // The cosine over a whole load period, in revolutions (pulses_per_rev⁻¹ unless load.pulse_frequency_hz sets it).
-  cosine.load.contact_time_rev = pulse_train(scene).period_s * scene.operation.speed_rad_s / two_pi;
+  cosine.load.contact_time_rev = 1 / load_periods_per_revolution(scene);  // the cosine over a whole load period
   const PeriodicSystem cosine_system = periodic_system(model, cosine, load_series(cosine), scene.model.reduction);
   const FloquetResult fc = floquet_multipliers(cosine_system, {FloquetMethod::automatic, 0, o.tolerance});
   p.cosine_modes = cosine_system.kept_modes;
@@ -135,7 +134,7 @@ void pulse_rows(const BladeModel& model, const Scene& scene, const CrosscheckOpt
 CrosscheckPoint crosscheck_point(const BladeModel& model, const Scene& base, double fbar, const CrosscheckOptions& o) {
   CrosscheckPoint p;
   p.fmax_over_fcr = fbar;
-  p.load_periods_per_revolution = two_pi / base.operation.speed_rad_s / pulse_train(base).period_s;
+  p.load_periods_per_revolution = load_periods_per_revolution(base);
   Scene scene = base;
   scene.load.fmax_over_fcr = fbar;
   scene.load.pulse_count = 0;  // a periodic load
@@ -145,6 +144,10 @@ CrosscheckPoint crosscheck_point(const BladeModel& model, const Scene& base, dou
 }
 
 }  // namespace
+
+double load_periods_per_revolution(const Scene& scene) {
+  return two_pi / scene.operation.speed_rad_s / pulse_train(scene).period_s;
+}
 
 std::vector<CrosscheckPoint> crosscheck(const Scene& base, const CrosscheckOptions& o) {
   // The time domain integrates an impulse as a rectangle t_c long, the frequency domain takes its

@@ -51,4 +51,7 @@ struct CrosscheckOptions {
 
 std::vector<CrosscheckPoint> crosscheck(const Scene& scene, const CrosscheckOptions& options);
 
+// Load periods T_p in a revolution: pulses_per_rev, unless load.pulse_frequency_hz sets T_p.
+double load_periods_per_revolution(const Scene& scene);
+
 }  // namespace bladestab
