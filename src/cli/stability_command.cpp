@@ -163,9 +163,11 @@ void print_table(const Scene& scene, const StabilityAnswer& a) {
   const double fbar = scene.load.fmax_over_fcr;
   const double error = a.budget.total();
   const LoadSeries& load = a.load;
-  fmt::print("scene      {}\nmodel      {}, {} basis, {} terms/field (budget against {}), axial {}, coriolis {}\n",
+  const std::string other_basis =
+      a.model.basis == BasisKind::sine ? fmt::format(" and {} Legendre terms", a.model.terms) : "";
+  fmt::print("scene      {}\nmodel      {}, {} basis, {} terms/field (budget against {}{}), axial {}, coriolis {}\n",
              scene.source, to_string(a.model.theory), to_string(a.model.basis), a.model.terms, a.reference_terms,
-             a.model.axial ? "on" : "off", a.model.coriolis ? "on" : "off");
+             other_basis, a.model.axial ? "on" : "off", a.model.coriolis ? "on" : "off");
   fmt::print("reduction  {}\n", describe_reduction(a.reduction, a.reduced_size, a.full_size));
   fmt::print("operation  Ω = {:.6g} rad/s, {}F̄_max = {:.6g}, θ = {:.6g} rad/s; load: {}\n",
              scene.operation.speed_rad_s,
