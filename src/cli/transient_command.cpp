@@ -289,11 +289,12 @@ std::string summary_json(const Scene& scene, const BladeModel& model, const Tran
 // The run's work before it starts: RKF45 never steps beyond the cap of the stiffest mode
 // (transient.hpp): duration/cap steps (adaptive runs take up to twice as many, each cheaper than
 // rkf45_seconds assumes); the history holds samples-per-rev × revolutions samples.
-// The fast method: the distinct contact pieces of one revolution at about one Magnus step per RKF45
-// step (measured 0.65 on the scene as shipped), and a propagator product per sample and pulse edge;
-// in clearance mode every revolution's contact windows at most, by RKF78 (13 right-hand sides a
-// step against RKF45's 6). An upper bound: 24× (t̄c = 0.01) to 84× (t̄c = 0.5) the time measured on
-// the 2-core machine of docs/benchmarks.md for the scene as shipped, 70–112× at 24 terms. `share`
+// The fast method: the distinct contact pieces of one revolution at half a Magnus step per RKF45
+// step (their step doubling takes 0.31 at 16 terms and 0.27 at 24, t̄c = 0.01 and 0.5), and a
+// propagator product per sample and pulse edge; in clearance mode every revolution's contact
+// windows at most, by RKF78 (13 right-hand sides a step against RKF45's 6). An upper bound: at 16
+// terms, t̄c = 0.5, 10 revolutions, 2.2 min against 6.5 s measured on one core (before: 4.6 min; at
+// 24 terms 37 min, refused, against 41 s). `share`
 // scales it for a run whose refusal loses less than the answer (the richer run of the estimate).
 // `spent`: the estimates of the rounds before (transient_fidelity.hpp), which the limits cover too.
 // Returns this run's estimate (× share).
@@ -310,7 +311,7 @@ double check_transient_work(const BladeModel& model, const Scene& scene, const T
                      o.samples_per_revolution % scene.load.pulses_per_rev == 0;
   const double contact = std::min(1.0, scene.load.contact_time_rev * (alike ? 1 : scene.load.pulses_per_rev)) *
                          revolution * (clearance ? o.revolutions : 1.0);
-  const double steps = fast ? contact / step.step_s : duration / step.step_s;
+  const double steps = !fast ? duration / step.step_s : contact / step.step_s / (clearance ? 1 : 2);
   const int dofs = model.layout.size();
   const double intervals = o.revolutions * (o.samples_per_revolution + 2.0 * scene.load.pulses_per_rev);
   const double seconds = !fast       ? rkf45_seconds(steps, dofs)
@@ -480,7 +481,7 @@ Command register_transient(CLI::App& app) {
     const std::optional<double> tolerance =
         command->count("--tolerance") > 0 ? std::optional(args->tolerance) : std::nullopt;
     const TransientOptions o = transient_options(*args, tolerance);
-    const TransientAtTolerance run = run_command(scene, o, args->with_error ? tolerance : std::nullopt, args->with_error,
+    TransientAtTolerance run = run_command(scene, o, args->with_error ? tolerance : std::nullopt, args->with_error,
                                                  args->scene.output_format() == OutputFormat::table);
     const TransientResult& r = run.run.result;
     const TransientSummary s = summarize(r, args->samples * scene.operation.speed_rad_s / two_pi);
@@ -491,6 +492,12 @@ Command register_transient(CLI::App& app) {
     TransientResult printed = as_printed(r, shown);
     TransientSummary printed_summary = as_printed(s, shown);
     with_whole_error(printed, printed_summary, r, s, run.run.error, digits);
+    // A work limit's stop names the option that sets it.
+    const auto limit_named = [](const std::string& why, bool work_limited) {
+      return work_limited ? with_max_seconds(why) : why;
+    };
+    run.tolerance_unmet = limit_named(run.tolerance_unmet, run.work_limited);
+    run.run.error_unavailable = limit_named(run.run.error_unavailable, run.run.work_limited);
     const PrintedError shown_error{run.run.error, run.run.error_unavailable, digits,
                                    args->with_error ? tolerance : std::nullopt, run.tolerance_unmet};
     const std::vector<std::string> files =

@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "bladestab/base/numerical_error.hpp"
 #include "bladestab/modal/basis_error.hpp"
 #include "support/work_pool.hpp"
 
@@ -231,6 +232,7 @@ EstimatedTransient run_transient_with_error(const BladeModel& model, const std::
     } catch (const std::exception& e) {
       speculative.cancel();
       answer.error_unavailable = fmt::format("the run on {} terms failed: {}", m.spec.terms, e.what());
+      answer.work_limited = dynamic_cast<const WorkLimitError*>(&e) != nullptr;
       return answer;
     }
   }
@@ -241,6 +243,7 @@ EstimatedTransient run_transient_with_error(const BladeModel& model, const std::
     } catch (const std::exception& e) {
       speculative.cancel();
       answer.error_unavailable = fmt::format("the run at 1/100 of the tolerances failed: {}", e.what());
+      answer.work_limited = dynamic_cast<const WorkLimitError*>(&e) != nullptr;
       return answer;
     }
   }

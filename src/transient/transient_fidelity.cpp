@@ -66,6 +66,7 @@ TransientAtTolerance run_transient_to_tolerance(const Scene& scene, double toler
     answer.tolerance_met = false;
     answer.tolerance_unmet = fmt::format("tolerance {}: not known to be met without the error estimate ({})",
                                          tolerance, answer.run.error_unavailable);
+    answer.work_limited = answer.run.work_limited;
     return answer;
   }
   double previous_basis = std::numeric_limits<double>::infinity();
@@ -92,17 +93,21 @@ TransientAtTolerance run_transient_to_tolerance(const Scene& scene, double toler
       stop = e.what();
     }
     std::optional<EstimatedTransient> raised;
+    bool work_limited = false;
     if (stop.empty()) {
       try {
         raised = run_transient_round(models, next, richer_progress);
         if (!raised->error) stop = raised->error_unavailable;
+        work_limited = raised->work_limited;
       } catch (const NumericalError& e) {  // its own checks failed; a stop (Ctrl-C, a deadline) goes through
         stop = e.what();
+        work_limited = dynamic_cast<const WorkLimitError*>(&e) != nullptr;
       }
     }
     if (!stop.empty()) {
       answer.tolerance_unmet = fmt::format("{}; {} terms: {}", not_met(tolerance, round.model.terms, worst),
                                            next.model.terms, stop);
+      answer.work_limited = work_limited;
       return answer;
     }
     answer = {std::move(*raised), models.model, true, {}};

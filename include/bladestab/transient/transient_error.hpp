@@ -59,6 +59,7 @@ struct EstimatedTransient {
   TransientResult result;
   std::optional<TransientErrorEstimate> error;
   std::string error_unavailable;  // a richer model's run failed: its one line
+  bool work_limited = false;      // that run stopped at the work limit (WorkLimitError)
 };
 
 // The run of `model` and its estimate against `richer` (assemble_richer_models): the

@@ -50,6 +50,7 @@ struct TransientAtTolerance {
   BladeModel model;        // the model it ran
   bool tolerance_met = true;
   std::string tolerance_unmet;  // why not, one line
+  bool work_limited = false;    // the rounds ended at the work limit (WorkLimitError)
 };
 
 // The rounds above on `scene` toward `tolerance` (0 < tolerance < 1). The first round's builder
