@@ -377,6 +377,21 @@ TEST_CASE("fast transient in clearance mode: the history of RKF45 at rtol 1e-10 
   }
 }
 
+TEST_CASE("fast transient in clearance mode: a tip at rest against a still casing stays at rest, touching it",
+          "[transient][fast][clearance]") {
+  // Clearance 0, no distortion: the overlap is 0 all along the free flight and nothing moves the tip.
+  const Scene scene = paper_scene({"model.terms=8", "load.mode=clearance", "load.clearance=0", "load.intrusion=0"});
+  const TransientResult r = checked_run(scene, 2);
+  REQUIRE(r.method == TransientMethod::fast);
+  CHECK(r.contact->closures == 0);
+  CHECK(r.contact->peak_force_n == 0);
+  const Eigen::VectorXd equilibrium = rotating_equilibrium(assemble_model(scene), scene.operation.speed_rad_s);
+  CHECK((r.final_state - equilibrium).norm() <= 1e-12 * equilibrium.norm());
+  // No vibration: the self-check's difference is on the reference's resolution, and within it.
+  CHECK(r.self_check->relative_to_resolution);
+  CHECK(r.self_check->difference <= r.self_check->allowed);
+}
+
 TEST_CASE("fast transient: a short run's growth is the blade's, where its response has not yet shown it",
           "[transient][fast]") {
   // Rectangular pulses on 9 terms: the true train's max|ρ| is 1.0375 (its monodromy through the

@@ -189,6 +189,7 @@ void method_fields(Json& json, const TransientResult& r) {
     json["self_check"] = {{"until_revolution", c->until_revolutions}, {"reference", c->reference},
                           {"reference_tolerance", c->reference_tolerance},
                           {"relative_difference", c->difference}, {"allowed", c->allowed},
+                          {"relative_to", c->relative_to_resolution ? "reference_resolution" : "vibration"},
                           {"reference_part", c->reference_part}, {"seconds", c->seconds}};
   }
   if (r.stopped) json["stopped"] = {{"revolution", r.stopped->revolution}, {"reason", r.stopped->reason}};

@@ -27,10 +27,12 @@ void print_method(const TransientOptions& o, const TransientResult& r) {
     fmt::print("method     rkf45, not fast: {}\n", r.fallback);
   }
   if (const std::optional<SelfCheck>& c = r.self_check) {
-    fmt::print("check      against {} (rtol {:g}) to revolution {:.4g}: states differ by {:.2g} of the vibration "
+    fmt::print("check      against {} (rtol {:g}) to revolution {:.4g}: states differ by {:.2g} of {} "
                "(allowed {:.2g}), {:.3g} s\n",
                c->reference == "rkf78" ? "RKF78 (Boost.Odeint)" : "RKF45", c->reference_tolerance,
-               c->until_revolutions, c->difference, c->allowed, c->seconds);
+               c->until_revolutions, c->difference,
+               c->relative_to_resolution ? "the reference's resolution (no vibration above it)" : "the vibration",
+               c->allowed, c->seconds);
   }
   if (r.stopped) fmt::print("stopped    at revolution {:.4g}: {}\n", r.stopped->revolution, r.stopped->reason);
 }

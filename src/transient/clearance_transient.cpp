@@ -73,7 +73,8 @@ private:
 // ½r² (|y| never grows in free flight: the damping takes energy, the Coriolis forces none), g is
 // L-Lipschitz with L = a r + h r² + d max|ṡ|: a = ‖Φᵀ(p_u − G f_eq)‖ bounds the tip's axial speed,
 // h = ‖D⁻¹ΦᵀGΦ‖_F the bending shortening's rate, d max|ṡ| the wall's speed. A cell [t₀, t₁] with
-// ½(g₀ + g₁) + ½L(t₁ − t₀) < 0 holds no contact.
+// ½(g₀ + g₁) + ½L(t₁ − t₀) ≤ 0 holds no closing (g would have to pass 0): a tip at rest against a
+// still wall (clearance 0, no distortion: g = 0, L = 0) clears at once, not at every resolution step.
 class ClosingSearch {
 public:
   ClosingSearch(const ExactStepper& stepper, const CasingContact& casing, const BladeModel& model, double resolution)
@@ -103,7 +104,7 @@ private:
   // Cells in time order, halved until cleared or as short as the resolution (as fine as RKF45's
   // steps look: only a touch shallower than ½L·resolution can pass between two looks).
   std::optional<double> search(double a, double ga, double b, double gb) const {
-    if (0.5 * (ga + gb) + 0.5 * lipschitz_ * (b - a) < 0) return std::nullopt;
+    if (0.5 * (ga + gb) + 0.5 * lipschitz_ * (b - a) <= 0) return std::nullopt;
     if (b - a <= resolution_) {
       if (!(ga <= 0 && gb > 0)) return std::nullopt;
       return event_time([this](double t) { return overlap(t); }, a, b, ga, gb);

@@ -103,6 +103,7 @@ SelfCheck self_check(const BladeModel& model, const Scene& scene, const Transien
   const double vibration = std::max(energy_norm(K, model.M, start - equilibrium),
                                     energy_norm(K, model.M, reference.state - equilibrium));
   const double scale = std::max(vibration, reference_tolerance * whole);
+  check.relative_to_resolution = vibration < reference_tolerance * whole;
   // A blade the load leaves at rest in the zero state (no axial field) has no scale at all: its
   // difference counts only if it is not zero.
   const double difference = energy_norm(K, model.M, fast_state - reference.state);

@@ -125,6 +125,9 @@ struct SelfCheck {
   double reference_tolerance = 0;
   double difference = 0, allowed = 0;
   double reference_part = 0;  // of `allowed`, the reference's: 10 rtol of the whole state (f_eq included)
+  // `difference` is relative to the vibration, or, where there is none above the reference's
+  // resolution (a tip at rest against the casing), to that resolution: rtol of the whole state.
+  bool relative_to_resolution = false;
   double seconds = 0;
 };
 
