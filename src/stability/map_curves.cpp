@@ -164,23 +164,41 @@ CurveFidelity check_curves(const Scene& scene, const CurveWindow& w, const Curve
   return f;
 }
 
-// Flops of check_curves at model m, counting every variant on each of its three lines as solved
-// (the cache spares some): boundary_level_flops at each model's dofs, in θ (the larger).
 // The dofs of the curves' model.
 int curve_dofs(const CurveModel& m) {
   const int all = static_cast<int>(m.model->layout.size());
   return m.reduction.kind == ReductionKind::automatic ? std::min(m.reduction.vectors, all) : all;
 }
 
-double check_flops(const CurveModel& m, const BladeModel& richer) {
-  const int all = static_cast<int>(m.model->layout.size());
-  const auto level = [](int k, int dofs) { return boundary_level_flops(k, dofs, true); };
-  const bool reduced = m.reduction.kind == ReductionKind::automatic;
-  const int dofs = curve_dofs(m);
-  double flops = 2 * level(m.approximation, dofs) + level(m.approximation + 2, dofs) +
-                 level(m.approximation, reduced ? dofs : static_cast<int>(richer.layout.size()));
-  if (reduced) flops += level(std::min(m.approximation, 4), all) + level(m.approximation, std::min(2 * dofs, all));
-  return 3 * flops;
+// The models check_curves at m solves on each of its lines: m, and each variant and its pair.
+std::vector<CurveModel> check_models(const CurveModel& m, const BladeModel& richer) {
+  std::vector<CurveModel> models{m, {&richer, m.reduction, m.approximation}, {m.model, m.reduction, m.approximation + 2}};
+  if (m.reduction.kind == ReductionKind::automatic) {
+    const int whole_k = std::min(m.approximation, 4);
+    models.push_back({m.model, {ReductionKind::none, 0, 0}, whole_k});
+    models.push_back({m.model, m.reduction, whole_k});
+    models.push_back({m.model, {ReductionKind::automatic, 2 * m.reduction.vectors, 0}, m.approximation});
+  }
+  return models;
+}
+
+// Flops of check_curves at m beyond the models of the checks before (`solved`, which the line
+// cache keeps): boundary_level_flops at each model's dofs, in θ (the larger), on three lines. The
+// whole model's check at 4 harmonics is solved once for every later level (the fan blade at 16
+// terms stopped at 4 harmonics and a curve error of 0.4, counting it again, where 8 take 20 s).
+double new_check_flops(const CurveModel& m, const BladeModel& richer, const std::vector<CurveModel>& solved) {
+  const auto same = [](const CurveModel& a, const CurveModel& b) {
+    return a.model == b.model && a.reduction.kind == b.reduction.kind && a.reduction.vectors == b.reduction.vectors &&
+           a.approximation == b.approximation;
+  };
+  double flops = 0;
+  std::vector<CurveModel> counted = solved;
+  for (const CurveModel& x : check_models(m, richer)) {
+    if (std::any_of(counted.begin(), counted.end(), [&](const CurveModel& y) { return same(x, y); })) continue;
+    flops += 3 * boundary_level_flops(x.approximation, curve_dofs(x), true);
+    counted.push_back(x);
+  }
+  return flops;
 }
 
 // The curves' model: the window's reduction at the map's harmonics, raised part by part (the
@@ -199,9 +217,11 @@ MapCurves chosen_model(const Scene& scene, const BladeModel& model, const CurveW
   const BladeModel richer = assemble_model(scene, richer_spec);
   c.fidelity.drawn = cosine_load;
   double spent = 0;
+  std::vector<CurveModel> solved;
   while (c.fidelity.drawn) {
     c.fidelity = check_curves(scene, window, c.model, richer, o, cache);
-    spent += check_flops(c.model, richer);
+    spent += new_check_flops(c.model, richer, solved);
+    for (const CurveModel& m : check_models(c.model, richer)) solved.push_back(m);
     const ErrorBudget& b = c.fidelity.budget;
     if (c.fidelity.tolerance_met) break;
     CurveModel next = c.model;
@@ -217,7 +237,7 @@ MapCurves chosen_model(const Scene& scene, const BladeModel& model, const CurveW
     // work: the shading takes the rest.
     const double traces = static_cast<double>(o.trace.size()) *
                           boundary_level_flops(next.approximation, curve_dofs(next), true);
-    if (spent + check_flops(next, richer) + traces > o.work_flops / 2) {
+    if (spent + new_check_flops(next, richer, solved) + traces > o.work_flops / 2) {
       c.fidelity.work_limited = true;
       break;
     }
