@@ -271,6 +271,12 @@ TEST_CASE("bad input: stability, boundaries and map options (bad_input)", "[bad_
                     {"--export-matrices", "load.approximation = \"exact\"", "no series"});
     CHECK(!fs::exists(scratch() / "exact.json"));
   }
+  SECTION("boundaries of the true pulse train") {
+    // Its edges would be the mean load's tongue tips, both at one speed (284.32294 rad/s, where
+    // `stability` finds the tongue from 283.7 to 284.95).
+    expect_rejected(with({"boundaries", "--set", "load.approximation=exact"}),
+                    {"load.approximation = \"exact\"", "need the load as a series", "\"fourier\""});
+  }
   SECTION("boundaries --approximation 0") {
     expect_rejected(with({"boundaries", "--approximation", "0"}), {"--approximation 0", "[1, 36]"});
   }

@@ -579,6 +579,13 @@ BoundaryAnalysis boundaries_with_error_estimate(const Scene& scene, const Bounda
                                             "{} less the two levels it is compared with)", r.first_approximation,
                                             r.max_approximation - 4, r.max_approximation));
   }
+  // The boundary equations balance harmonics of a series; the true train has none to balance (its
+  // mean load alone would set the edges: the unloaded blade's tongue tips, a zero width).
+  if (scene.load.approximation == LoadApproximation::exact) {
+    throw InputError(fmt::format("{}: load.approximation = \"exact\": the boundary equations need the load as a "
+                                 "series; use \"fourier\" (its truncation is in the error budget) or \"cosine\", or "
+                                 "`stability` and `map` for the true pulse train", scene.source));
+  }
   return BoundaryRun(scene, r).run();
 }
 
