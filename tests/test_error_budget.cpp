@@ -21,6 +21,8 @@
 #include <string>
 #include <vector>
 
+#include <fmt/format.h>
+
 #include "bladestab/modal/campbell.hpp"
 #include "bladestab/ltp/floquet.hpp"
 #include "bladestab/base/numerical_error.hpp"
@@ -409,4 +411,17 @@ TEST_CASE("stability's progress counts the answer's levels and its variants, and
     CHECK(calls.back().first == calls.back().second);
     CHECK(calls.back().first >= levels + variants);
   }
+}
+
+TEST_CASE("a tolerance the reduction keeps out of reach names the reduction part and quotes the whole estimate",
+          "[budget]") {
+  // 8 terms at 129 rad/s under the Fourier series: the 3 vectors are 0.097 off twice as many, the
+  // basis 1.8e-3; 3 vectors are the richest level below the 24-dof model.
+  const Scene scene = paper_scene({"model.terms=8", "load.approximation=fourier", "operation.speed_rad_s=129"});
+  const StabilityAnswer a = analyse_stability(scene, {FloquetMethod::automatic, 0, 1e-4});
+  REQUIRE_FALSE(a.tolerance_met);
+  REQUIRE(a.budget.reduction > 10 * a.budget.basis);
+  CHECK_THAT(a.tolerance_unmet, Catch::Contains("its reduction part") && Catch::Contains("model.reduction = \"none\""));
+  const double relative = a.budget.total() / std::max(1.0, a.floquet.max_abs_multiplier);
+  CHECK_THAT(a.tolerance_unmet, Catch::Contains(fmt::format("estimated error {:.2g}", relative)));
 }

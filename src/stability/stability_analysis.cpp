@@ -244,7 +244,9 @@ NextRound next_round(const Scene& scene, const Fidelity& f, const StabilityAnswe
     next.reduction.vectors *= 2;
     return {next, {}};
   }
-  if (b.basis > allowed) return {std::nullopt, tolerance_not_met(tol, f.model, b.basis / scale).what()};
+  if (b.basis > allowed && b.basis >= std::max(b.reduction, b.load)) {
+    return {std::nullopt, tolerance_not_met(tol, f.model, b.total() / scale).what()};
+  }
   return {std::nullopt, fmt::format("tolerance {}: not met (estimated error {:.2g}): {}", tol, b.total() / scale,
                                     fixed_part(b, scale, f, vectors_free, a.full_size))};
 }
