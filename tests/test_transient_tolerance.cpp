@@ -128,3 +128,30 @@ TEST_CASE("the CLI: a tolerance the work limits keep out of reach is one note, t
   const testing_support::Json refused = testing_support::parse_json(unmet.out);
   CHECK_FALSE(refused["tolerance_met"].boolean);
 }
+
+TEST_CASE("the CLI: the peaks are the samples', and peak_sampling bounds a peak between them against 20 times the samples",
+          "[transient]") {
+  // 8 terms, 3 revolutions: at 200 samples a revolution the 1280 Hz response has about 7.5 samples
+  // a period; 4000 samples a revolution resolve the peak between them.
+  const auto run = [](const std::string& samples) {
+    const testing_support::Outcome o = testing_support::run_bladestab(
+        {"transient", testing_support::paper_scene_path(), "--set", "model.terms=8", "--revolutions", "3",
+         "--samples-per-rev", samples, "--no-error-estimate", "--format", "json", "--chart", "none", "--out",
+         testing_support::scratch().string()});
+    INFO(o.err);
+    REQUIRE(WIFEXITED(o.wait_status));
+    REQUIRE(WEXITSTATUS(o.wait_status) == 0);
+    return testing_support::parse_json(o.out);
+  };
+  testing_support::Json coarse = run("200"), fine = run("4000");
+  const double n = coarse["peak_sampling"]["samples_per_period"].number;
+  const double bound = coarse["peak_sampling"]["peak_between_samples_bound"].number;
+  CHECK(n == Approx(200 * 300 / (2 * 3.14159265358979323846) / coarse["peak_sampling"]["dominant_frequency_hz"].number).epsilon(1e-9));
+  CHECK(bound == Approx(1 / std::cos(3.14159265358979323846 / n) - 1).epsilon(1e-12));
+  CHECK(n < 10);
+  for (const char* peak : {"peak_tip_lateral_m", "peak_tip_axial_m"}) {
+    CAPTURE(peak, coarse[peak].number, fine[peak].number, bound);
+    CHECK(fine[peak].number <= coarse[peak].number * (1 + bound));
+  }
+  CHECK(fine["peak_tip_lateral_m"].number > coarse["peak_tip_lateral_m"].number);  // not vacuous: the samples miss it
+}

@@ -56,6 +56,7 @@ TransientSummary summarize(const TransientResult& r, double sample_rate) {
     s.peak_axial_m = std::max(s.peak_axial_m, std::abs(ax[k]));
     s.mean_axial_m += ax[k] / ax.size();
   }
+  s.sample_rate_hz = sample_rate;
   s.checks = check_transient(r);
   return s;
 }
@@ -202,6 +203,10 @@ void summary_fields(Json& json, const TransientResult& r, const TransientSummary
   json["peak_tip_axial_m"] = s.peak_axial_m;
   json["mean_tip_axial_m"] = s.mean_axial_m;
   json["static_tip_axial_m"] = r.static_tip_axial_m;
+  if (const std::optional<PeakSampling> p = peak_sampling(s)) {
+    json["peak_sampling"] = {{"dominant_frequency_hz", p->frequency_hz}, {"samples_per_period", p->samples_per_period},
+                             {"peak_between_samples_bound", std::isfinite(p->peak_bound) ? Json(p->peak_bound) : Json(nullptr)}};
+  }
   if (r.growth.omitted.empty()) {
     json["growth_per_revolution"] = r.growth.growth;
     json["growth_per_revolution_ln_standard_error"] = r.growth.standard_error;
@@ -514,7 +519,7 @@ Command register_transient(CLI::App& app) {
       case OutputFormat::table:
         print_table(scene, run.model, o, printed, printed_summary,
                     s.checks.energy_error_j / std::max(s.checks.vibration_energy_j, 1e-300), shown_error);
-        print_error(shown_error, run.model);
+        print_error(shown_error, run.model, peak_sampling(s));
         fmt::print("written    {}\n", fmt::join(files, ", "));
     }
   };

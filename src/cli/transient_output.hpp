@@ -18,9 +18,19 @@ namespace bladestab::cli {
 struct TransientSummary {
   Spectrum lateral, axial;  // empty for a history of fewer than 4 samples (a run stopped at once)
   std::optional<double> lateral_hz, axial_hz;
-  double peak_lateral_m = 0, peak_axial_m = 0, mean_axial_m = 0;
+  double peak_lateral_m = 0, peak_axial_m = 0, mean_axial_m = 0;  // over the samples
+  double sample_rate_hz = 0;
   TransientChecks checks;
 };
+
+// How finely the samples resolve the faster dominant response (of the tip's lateral and axial
+// deflection): its samples a period n, and how much higher than the samples' largest a sinusoid of
+// that period can peak between them, 1/cos(π/n) − 1 (its crest midway between two samples). The
+// peaks and their estimates are the samples'.
+struct PeakSampling {
+  double frequency_hz = 0, samples_per_period = 0, peak_bound = 0;
+};
+std::optional<PeakSampling> peak_sampling(const TransientSummary& s);
 
 // The run's estimate as the outputs print it, and the tolerance the run was held to (none: not
 // asked; `tolerance_unmet` empty: met).
@@ -44,7 +54,7 @@ void print_table(const Scene& scene, const BladeModel& model, const TransientOpt
                  const TransientSummary& s, double energy_fraction, const PrintedError& shown);
 
 // The table's `error` line (each quantity's whole error and its parts) and, where a tolerance was
-// asked, its `tolerance` line.
-void print_error(const PrintedError& error, const BladeModel& model);
+// asked, its `tolerance` line (which says where a peak between the samples could pass it).
+void print_error(const PrintedError& error, const BladeModel& model, const std::optional<PeakSampling>& sampling);
 
 }  // namespace bladestab::cli

@@ -1,6 +1,7 @@
 // The transient command's table (transient_output.hpp).
 
 #include <algorithm>
+#include <cmath>
 
 #include <fmt/format.h>
 
@@ -71,10 +72,12 @@ void print_error_line(const PrintedError& error) {
 }
 
 // The `tolerance` line where one was asked: the terms that meet it, or why it is not met.
-void print_tolerance(const PrintedError& error, const BladeModel& model) {
+void print_tolerance(const PrintedError& error, const BladeModel& model, const std::optional<PeakSampling>& sampling) {
   if (!error.tolerance) return;
   if (error.tolerance_unmet.empty()) {
-    fmt::print("tolerance  {:g} met with {} terms per field\n", *error.tolerance, model.spec.terms);
+    const bool coarse = sampling && !(sampling->peak_bound <= *error.tolerance);
+    fmt::print("tolerance  {:g} met with {} terms per field{}\n", *error.tolerance, model.spec.terms,
+               coarse ? " by the samples' peaks (see sampling: between them a peak may pass it)" : "");
   } else {
     fmt::print("tolerance  --{}; the answer stands with its estimate\n", error.tolerance_unmet);
   }
@@ -82,9 +85,9 @@ void print_tolerance(const PrintedError& error, const BladeModel& model) {
 
 }  // namespace
 
-void print_error(const PrintedError& error, const BladeModel& model) {
+void print_error(const PrintedError& error, const BladeModel& model, const std::optional<PeakSampling>& sampling) {
   print_error_line(error);
-  print_tolerance(error, model);
+  print_tolerance(error, model, sampling);
 }
 
 void print_table(const Scene& scene, const BladeModel& model, const TransientOptions& o, const TransientResult& r,
@@ -107,6 +110,12 @@ void print_table(const Scene& scene, const BladeModel& model, const TransientOpt
                millimetres(s.mean_axial_m, estimated(error, "mean_tip_axial_m"), shown.digits),
                1e3 * r.static_tip_axial_m,
                millimetres(s.peak_axial_m, estimated(error, "peak_tip_axial_m"), shown.digits), hz(s.axial_hz));
+    if (const std::optional<PeakSampling> p = peak_sampling(s); p && p->samples_per_period < 20) {
+      fmt::print("sampling   the peaks are the samples' largest, their ± too: the {:.5g} Hz response has {:.3g} samples "
+                 "a period, between which it can peak up to {} higher; --samples-per-rev resolves it\n",
+                 p->frequency_hz, p->samples_per_period,
+                 std::isfinite(p->peak_bound) ? fmt::format("{:.2g} %", 100 * p->peak_bound) : std::string("unboundedly"));
+    }
     if (r.contact) {
       // Each with its whole error where the run has one (unit: the factor to the printed unit).
       // The count too is rounded to its error's decade, as the error line prints it (15 ± 23: 20).
@@ -164,6 +173,13 @@ std::string load_description(const Scene& scene) {
   }
   return fmt::format("{} pulses{}, F̄ = {:g}, t̄c = {:g}, μ = {:g}", to_string(l.profile), pulses, l.fmax_over_fcr,
                      l.contact_time_rev, l.friction);
+}
+
+std::optional<PeakSampling> peak_sampling(const TransientSummary& s) {
+  const double fastest = std::max(s.lateral_hz.value_or(0), s.axial_hz.value_or(0));
+  if (!(fastest > 0) || !(s.sample_rate_hz > 0)) return std::nullopt;
+  const double n = s.sample_rate_hz / fastest;
+  return PeakSampling{fastest, n, n > 2 ? 1 / std::cos(pi / n) - 1 : HUGE_VAL};
 }
 
 }  // namespace bladestab::cli
