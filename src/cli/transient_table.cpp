@@ -12,6 +12,9 @@
 namespace bladestab::cli {
 namespace {
 
+// A quantity the run counts (the casing's contacts): printed as counted, with its error beside it.
+bool is_count(const std::string& name) { return name == "contact_closures"; }
+
 // The method line(s) of the table: the fast method's pieces and its check, or why RKF45 ran.
 void print_method(const TransientOptions& o, const TransientResult& r) {
   if (r.method == TransientMethod::fast && r.contact) {
@@ -62,7 +65,8 @@ void print_error_line(const PrintedError& error) {
       continue;
     }
     const double total = q.budget.total();
-    parts.push_back(fmt::format("{} {} ± {} (basis {}, method {})", q.name, error.digits.absolute(q.value, total),
+    parts.push_back(fmt::format("{} {} ± {} (basis {}, method {})", q.name,
+                                is_count(q.name) ? q.value : error.digits.absolute(q.value, total),
                                 error.digits.measure(total), error.digits.measure(q.budget.basis),
                                 error.digits.measure(q.budget.method)));
   }
@@ -117,12 +121,12 @@ void print_table(const Scene& scene, const BladeModel& model, const TransientOpt
                  std::isfinite(p->peak_bound) ? fmt::format("{:.2g} %", 100 * p->peak_bound) : std::string("unboundedly"));
     }
     if (r.contact) {
-      // Each with its whole error where the run has one (unit: the factor to the printed unit).
-      // The count too is rounded to its error's decade, as the error line prints it (15 ± 23: 20).
+      // Each with its whole error where the run has one (unit: the factor to the printed unit); the
+      // count as the run counted it (outputs.md: integers are unchanged), 13 ± 17.
       const auto with_error = [&](double printed, const char* name, double unit) {
         const TransientQuantity* q = estimated(error, name);
-        return q ? fmt::format("{:.6g} ± {:.2g}", unit * shown.digits.absolute(printed, q->budget.total()),
-                               unit * shown.digits.measure(q->budget.total()))
+        const double value = is_count(name) ? printed : shown.digits.absolute(printed, q ? q->budget.total() : 0);
+        return q ? fmt::format("{:.6g} ± {:.2g}", unit * value, unit * shown.digits.measure(q->budget.total()))
                  : fmt::format("{:.6g}", unit * printed);
       };
       // F̄ of the peak force to two digits at most: the force is known to its estimate only.
