@@ -434,3 +434,22 @@ TEST_CASE("speed-plane map: a contact of 0.3 revolution is no contact past the p
   const BladeModel model = assemble_model(slow);
   CHECK(tongue_vectors(model, slow, 600, 4) == tongue_vectors(model, short_contact, 600, 4));
 }
+
+TEST_CASE("a map point too slow for the Magnus ladder does not sink the map: its check is skipped, the rest stand",
+          "[map][parallel]") {
+  // At Ω = 1 rad/s the pulse period is 6.28 s: the reduction check's richer model (4 vectors per
+  // load level) needs more than 131072 Magnus steps there; every other point, from 21 rad/s, runs.
+  const Scene scene = paper_scene({});
+  MapOptions o;
+  o.plane = MapPlane::speed_fmax;
+  o.grid_x = linspace(1, 101, 6);
+  o.grid_fbar = linspace(0, 2, 5);
+  o.trace = linspace(1, 101, 11);
+  o.resolution_x = 6;
+  o.resolution_y = 5;
+  const StabilityMap map = stability_map(scene, o);
+  CHECK(map.samples.size() >= 30);
+  CHECK(map.shading_fidelity.checked.size() < 12);  // the Ω = 1 check point left out
+  CHECK_FALSE(map.shading_fidelity.checked.empty());
+  for (const ShadingCheck& c : map.shading_fidelity.checked) CHECK(c.x > 1);
+}

@@ -108,7 +108,8 @@ ShadingFidelity check_shading(const BladeModel& model, const Scene& scene, const
     previous = at;
   }
   // A point whose ladders do not converge within their work cannot check the reduction: +∞, so
-  // the vectors are doubled toward the whole Ritz model, which needs no check.
+  // the vectors are doubled toward the whole Ritz model, which needs no check. A point no model can
+  // take (a period too long for the Magnus ladder) checks nothing.
   const std::vector<double> part = run_indexed(points.size(), o.threads, [&](std::size_t k) {
     const Scene at = window.point(scene, points[k].first, points[k].second);
     try {
@@ -118,6 +119,8 @@ ShadingFidelity check_shading(const BladeModel& model, const Scene& scene, const
               richer.error_estimate) / std::max(1.0, r.max_abs_multiplier);
     } catch (const WorkLimitError&) {
       return std::numeric_limits<double>::infinity();
+    } catch (const NumericalError&) {  // the point itself cannot be taken (its shading says why): no check
+      return std::numeric_limits<double>::quiet_NaN();
     }
   });
   for (std::size_t k = 0; k < points.size(); ++k) {
@@ -319,9 +322,11 @@ FloquetResult point_multipliers(const BladeModel& model, const Scene& scene, int
 
 std::optional<FloquetResult> decided_multipliers(const BladeModel& model, const Scene& scene, int vectors,
                                                  const MapOptions& o, std::string& undecided) {
+  // A point the analysis cannot take (its work share, or a period too long for the Magnus ladder,
+  // such as Ω = 1 rad/s among points from 21 rad/s on) is undecided; the map's other points stand.
   try {
     return point_multipliers(model, scene, vectors, o.tolerance, point_work_flops(o));
-  } catch (const WorkLimitError& e) {
+  } catch (const NumericalError& e) {
     undecided = e.what();
     return std::nullopt;
   }
