@@ -164,10 +164,11 @@ CurveFidelity check_curves(const Scene& scene, const CurveWindow& w, const Curve
   return f;
 }
 
-// The dofs of the curves' model.
+// The dofs of the curves' model: the automatic reduction's 3 vectors per `vectors` (modes at two
+// load levels and their gyroscopic corrections, reduction.hpp) at most.
 int curve_dofs(const CurveModel& m) {
   const int all = static_cast<int>(m.model->layout.size());
-  return m.reduction.kind == ReductionKind::automatic ? std::min(m.reduction.vectors, all) : all;
+  return m.reduction.kind == ReductionKind::automatic ? std::min(3 * m.reduction.vectors, all) : all;
 }
 
 // The models check_curves at m solves on each of its lines: m, and each variant and its pair.
