@@ -287,9 +287,9 @@ TEST_CASE("end to end: map, json, csv, grid and curve files, PNG and SVG, the sc
   const double point = j["scene_point"]["max_abs_multiplier"].number;
   INFO("scene point " << point << ", reference " << reference << ", shading error " << j["shading_max_relative_error"].number);
   // The printed max|ρ| is rounded to the decade of the shading's accuracy — the default --tolerance
-  // 1e-3 or the estimate, method and reduction, if larger (docs/outputs.md): half that unit more.
-  const double shading =
-      std::max(1e-3, j["shading_max_relative_error"].number + j["shading_reduction_error"].number);
+  // 1e-3 or the estimate, method, reduction and basis, if larger (docs/outputs.md): half that unit more.
+  const double shading = std::max(1e-3, j["shading_max_relative_error"].number + j["shading_reduction_error"].number +
+                                            j["shading_basis_error"].number);
   CHECK(std::abs(point / reference - 1) <=
         j["shading_max_relative_error"].number + testing_support::half_printed_unit(shading * point) / point);
   CHECK(j["grid"]["max_abs_multiplier"][1][1].number == Approx(point).epsilon(j["shading_max_relative_error"].number));

@@ -14,6 +14,7 @@
 #include "support/message_text.hpp"
 #include "bladestab/scene/scene_limits.hpp"
 #include "bladestab/modal/modes.hpp"
+#include "bladestab/modal/basis_error.hpp"
 #include "bladestab/stability/stability_map.hpp"
 #include "chart.hpp"
 #include "error_output.hpp"
@@ -36,8 +37,15 @@ namespace {
 // fraction of θ read from the angles of multipliers that carry that error); each curve's points to
 // the curves' estimate, a fraction of the window's span, in both coordinates. The shading's
 // estimates get their 2 digits here, the curves' budget where it is written.
+// The shading's whole error, relative to max(1, max|ρ|): at least the tolerance. The digits of
+// max|ρ| follow it; a point is unstable on the map's model above 1 + max(tolerance, method part)
+// (`stable_below`, the chart's threshold), by more than its whole error above 1 + shading_error.
+double shading_error(const StabilityMap& m, double tolerance) {
+  return std::max(tolerance, m.max_error_estimate + m.shading_fidelity.reduction_error + m.shading_fidelity.basis_error);
+}
+
 StabilityMap as_printed(StabilityMap m, double tolerance, const PrintedDigits& digits) {
-  const double shading = digits.estimate(std::max(tolerance, m.max_error_estimate + m.shading_fidelity.reduction_error));
+  const double shading = digits.estimate(shading_error(m, tolerance));
   const auto rho = [&](double& v) { v = digits.relative(v, shading); };
   for (Eigen::Index k = 0; k < m.max_abs_multiplier.size(); ++k) rho(m.max_abs_multiplier.data()[k]);
   for (MapSample& p : m.samples) rho(p.max_abs_multiplier);
@@ -61,6 +69,7 @@ StabilityMap as_printed(StabilityMap m, double tolerance, const PrintedDigits& d
   }
   m.max_error_estimate = digits.estimate(m.max_error_estimate);
   m.shading_fidelity.reduction_error = digits.estimate(m.shading_fidelity.reduction_error);
+  m.shading_fidelity.basis_error = digits.estimate(m.shading_fidelity.basis_error);
   return m;
 }
 
@@ -142,6 +151,8 @@ std::string map_json(const Scene& scene, const BladeModel& model, const MapOptio
   json["shading_max_relative_error"] = m.max_error_estimate;
   json["shading_reduction_vectors"] = m.shading_fidelity.reduction_vectors;
   json["shading_reduction_error"] = m.shading_fidelity.reduction_error;
+  json["shading_basis_error"] = m.shading_fidelity.basis_error;
+  json["shading_basis_points"] = m.shading_fidelity.basis_checked.size();
   // Within the shading's accuracy, max|ρ| this close to 1 cannot be told from stable.
   json["stable_below"] = 1 + std::max(o.tolerance, m.max_error_estimate);
   Json rows = Json::array();
@@ -300,10 +311,14 @@ void set_plane_grids(const CLI::App& command, const Scene& scene, const BladeMod
 void print_map_table(const Scene& scene, const BladeModel& model, const std::string& plane, const MapOptions& o,
                      const StabilityMap& m, const std::vector<std::string>& files) {
   const bool theta_plane = o.plane == MapPlane::theta_fmax;
-  int unstable = 0, points = 0;
+  int unstable = 0, points = 0, within = 0;  // within: unstable by less than the shading's whole error
   for (Eigen::Index k = 0; k < m.max_abs_multiplier.size(); ++k) {
     const double v = m.max_abs_multiplier.data()[k];
-    if (!std::isnan(v)) ++points, unstable += v > 1 + std::max(o.tolerance, m.max_error_estimate);
+    if (std::isnan(v)) continue;
+    ++points;
+    const bool above = v > 1 + std::max(o.tolerance, m.max_error_estimate);
+    unstable += above;
+    within += above && v <= 1 + shading_error(m, o.tolerance);
   }
   fmt::print("scene     {}\nmodel     {}\nplane     {}{}\n", scene.source, describe_model(model), plane,
              theta_plane ? fmt::format(" at Ω = {:g} rad/s", scene.operation.speed_rad_s)
@@ -322,14 +337,18 @@ void print_map_table(const Scene& scene, const BladeModel& model, const std::str
                describe_error_budget(f.budget), curves_unmet(f, o.tolerance));
   }
   const ShadingFidelity& sf = m.shading_fidelity;
-  fmt::print("shading   {} of {} grid points unstable; refined to {} × {} cells with {} Floquet points; "
+  fmt::print("shading   {} of {} grid points unstable{}; refined to {} × {} cells with {} Floquet points; "
              "max|ρ| relative error ≤ {:.1e} (method, every point){}\n",
-             unstable, points, m.cells_x, m.cells_y, m.samples.size(), m.max_error_estimate,
+             unstable, points, within > 0 ? fmt::format(" ({} of them by less than the error below)", within) : "",
+             m.cells_x, m.cells_y, m.samples.size(), m.max_error_estimate,
              sf.reduction_vectors > 0
                  ? fmt::format(" + {:.1e} (reduction to {} vectors per load level, {} grid points checked "
                                "against twice as many)", sf.reduction_error, sf.reduction_vectors,
                                sf.checked.size())
                  : std::string("; the whole Ritz model (fewer vectors missed the tolerance)"));
+  fmt::print("          + {:.1e} (basis: {} grid points against {}{})\n", sf.basis_error, sf.basis_checked.size(),
+             fmt::format("{} terms", reference_terms(scene.model.basis, scene.model.terms)),
+             scene.model.basis == BasisKind::sine ? fmt::format(" and {} Legendre terms", scene.model.terms) : "");
   if (!m.undecided.empty()) {
     fmt::print("undecided {} shading points, shaded blank: {}\n", m.undecided.size(), with_max_seconds(m.undecided_reason));
   }

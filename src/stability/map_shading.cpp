@@ -12,6 +12,7 @@
 #include "bladestab/blade/reduction.hpp"
 #include "bladestab/blade/static_limits.hpp"
 #include "bladestab/blade/undamped_modes.hpp"
+#include "bladestab/modal/basis_error.hpp"
 #include "stability/map_parts.hpp"
 #include "support/work_pool.hpp"
 
@@ -95,18 +96,28 @@ std::vector<CombinationRegion> combination_islands(const std::vector<NamedSample
 // model: the exact reference), each to a quarter of the tolerance; the part is twice the
 // difference (Galerkin projections do not converge monotonically in max|ρ|, as in `stability`)
 // plus both method errors, relative to max(1, max|ρ|).
-ShadingFidelity check_shading(const BladeModel& model, const Scene& scene, const CurveWindow& window,
-                              const MapOptions& o, int vectors) {
-  ShadingFidelity f;
-  f.reduction_vectors = vectors;
+namespace {
+
+// Up to 12 points of the grid that check the shading, spread over it: the middles of 12 equal runs.
+std::vector<std::pair<double, double>> check_points(const MapOptions& o) {
   const std::size_t nx = o.grid_x.size(), ny = o.grid_fbar.size(), count = nx * ny;
   std::vector<std::pair<double, double>> points;
   std::size_t previous = count;
   for (std::size_t k = 0; k < 12; ++k) {
-    const std::size_t at = (2 * k + 1) * count / 24;  // the middles of 12 equal runs of the grid
+    const std::size_t at = (2 * k + 1) * count / 24;
     if (at != previous && o.grid_x[at % nx] > 0) points.emplace_back(o.grid_x[at % nx], o.grid_fbar[at / nx]);
     previous = at;
   }
+  return points;
+}
+
+}  // namespace
+
+ShadingFidelity check_shading(const BladeModel& model, const Scene& scene, const CurveWindow& window,
+                              const MapOptions& o, int vectors) {
+  ShadingFidelity f;
+  f.reduction_vectors = vectors;
+  const std::vector<std::pair<double, double>> points = check_points(o);
   // A point whose ladders do not converge within their work cannot check the reduction: +∞, so
   // the vectors are doubled toward the whole Ritz model, which needs no check. A point no model can
   // take (a period too long for the Magnus ladder) checks nothing.
@@ -332,18 +343,73 @@ std::optional<FloquetResult> decided_multipliers(const BladeModel& model, const 
   }
 }
 
-ShadingFidelity shading_fidelity(const BladeModel& model, const Scene& scene, const CurveWindow& window,
-                                 const MapOptions& o, bool exact_pulse) {
+namespace {
+
+// The shading's basis part on the check points (the map's vectors, or the whole Ritz model): max|ρ|
+// against each richer model of `stability`'s budget — the richer basis times its tail factor, and
+// for the sine basis the same terms in the Legendre basis, which shares none of its spurious
+// tongues (stability_analysis.cpp) — plus both method errors, relative to max(1, max|ρ|). A point
+// a model cannot take checks nothing.
+void check_shading_basis(const BladeModel& model, const Scene& scene, const CurveWindow& window, const MapOptions& o,
+                         ShadingFidelity& f) {
+  std::vector<std::pair<BladeModel, double>> richer;  // each model and its factor
+  ModelSpec spec = scene.model;
+  spec.terms = reference_terms(spec.basis, spec.terms);
+  richer.emplace_back(assemble_model(scene, spec), basis_tail_factor(basis_convergence(scene.blade, spec.basis)));
+  if (scene.model.basis == BasisKind::sine) {
+    spec = scene.model;
+    spec.basis = BasisKind::legendre;
+    richer.emplace_back(assemble_model(scene, spec), basis_tail_factor(BasisConvergence::exponential));
+  }
+  const std::vector<std::pair<double, double>> points = check_points(o);
+  const std::vector<double> part = run_indexed(points.size(), o.threads, [&](std::size_t k) {
+    const Scene at = window.point(scene, points[k].first, points[k].second);
+    try {
+      const FloquetResult r = point_multipliers(model, at, f.reduction_vectors, o.tolerance / 4, point_work_flops(o));
+      double largest = 0;
+      for (const auto& [other, factor] : richer) {
+        const FloquetResult x = point_multipliers(other, at, f.reduction_vectors, o.tolerance / 4, point_work_flops(o));
+        largest = std::max(largest, factor * std::abs(r.max_abs_multiplier - x.max_abs_multiplier) + r.error_estimate +
+                                        x.error_estimate);
+      }
+      return largest / std::max(1.0, r.max_abs_multiplier);
+    } catch (const NumericalError&) {
+      return std::numeric_limits<double>::quiet_NaN();
+    }
+  });
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    if (!std::isfinite(part[k])) continue;
+    f.basis_checked.push_back({points[k].first, points[k].second, part[k]});
+    f.basis_error = std::max(f.basis_error, part[k]);
+  }
+}
+
+// The shading's reduction: the automatic reduction's vectors doubled until its check meets the tolerance.
+ShadingFidelity reduced_shading(const BladeModel& model, const Scene& scene, const CurveWindow& window,
+                                const MapOptions& o, bool exact_pulse) {
   // Where the reduction would keep the whole Ritz model, the whole model is used (0 vectors), and
   // its reduction part is 0. So it is for the true pulse train, as in `stability`: it is integrated
   // only through the contacts, and its narrow tongues hang on the pulse's high harmonics, which a
   // few vectors miss (on the paper blade's speed plane, 4 vectors per level against the 24-dof
   // model's failed the check).
   for (int vectors = window_vectors(model, scene, window);; vectors *= 2) {
-    if (exact_pulse || reduction_keeps_whole(vectors, model.layout.size())) return ShadingFidelity{0, {}, 0.0, true};
+    if (exact_pulse || reduction_keeps_whole(vectors, model.layout.size())) {
+      ShadingFidelity whole;
+      whole.tolerance_met = true;
+      return whole;
+    }
     ShadingFidelity f = check_shading(model, scene, window, o, vectors);
     if (f.tolerance_met) return f;
   }
+}
+
+}  // namespace
+
+ShadingFidelity shading_fidelity(const BladeModel& model, const Scene& scene, const CurveWindow& window,
+                                 const MapOptions& o, bool exact_pulse) {
+  ShadingFidelity f = reduced_shading(model, scene, window, o, exact_pulse);
+  check_shading_basis(model, scene, window, o, f);
+  return f;
 }
 
 void shade(StabilityMap& map, const BladeModel& model, const Scene& scene, const CurveWindow& window,

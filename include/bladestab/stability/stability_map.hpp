@@ -85,6 +85,11 @@ struct ShadingFidelity {
   std::vector<ShadingCheck> checked;  // the grid points checked and each one's reduction part
   double reduction_error = 0;         // the largest, relative to max(1, max|ρ|)
   bool tolerance_met = false;
+  // The basis checked on the same grid points against the richer basis (reference_terms; the sine
+  // basis also against the same terms in the Legendre basis): the largest part, relative, and the
+  // points it was measured on.
+  double basis_error = 0;
+  std::vector<ShadingCheck> basis_checked;
 };
 
 // The scene's own point on the map: its max|ρ| (on the shading's model, at the map's tolerance)
