@@ -335,13 +335,15 @@ double check_transient_work(const BladeModel& model, const Scene& scene, const T
 // The richer models of the whole-error estimate (assemble_richer_models), or none where they cannot
 // be built or their runs would pass the work limits (with `spent`, the rounds before): `why_not`
 // then says so, else `work` is their estimate as charged. A refusal only leaves out the estimate,
-// so a tenth of the upper bound is compared with the limits (still 2.4× and more above the
-// measured times); a richer run slower than that ends at --max-seconds like any run.
+// and the richer run goes beside the answer on a second core, so half the upper bound is compared
+// with the limits (still about 3× the measured times at 16 and 24 terms; a tenth, before the bound
+// came down to them, let 13 pulses a revolution with their estimate start at 46 s estimated and
+// run 85 s); a richer run slower than that ends at --max-seconds like any run.
 std::vector<BladeModel> checked_richer_models(const Scene& scene, const TransientOptions& o, double spent,
                                               std::string& why_not, double& work) {
   try {
     std::vector<BladeModel> richer = assemble_richer_models(scene);
-    for (const BladeModel& m : richer) work += check_transient_work(m, scene, o, 0.1, spent + work);
+    for (const BladeModel& m : richer) work += check_transient_work(m, scene, o, 0.5, spent + work);
     return richer;
   } catch (const InputError& e) {
     why_not = fmt::format("{}; --no-error-estimate leaves it out", e.what());
