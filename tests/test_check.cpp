@@ -11,6 +11,9 @@
 
 #include <catch2/catch.hpp>
 
+#include "bladestab/ltp/floquet.hpp"
+#include "bladestab/stability/periodic_system.hpp"
+
 #include "bladestab/base/numerical_error.hpp"
 #include "bladestab/blade/damping.hpp"
 #include "bladestab/blade/model.hpp"
@@ -149,6 +152,30 @@ TEST_CASE("check: the stability onset at the worst speed against Floquet either 
   CHECK(max_rho(onset * (1 - 1e-3)) <= 1 + 1e-7);
   CHECK(max_rho(onset * (1 + 1e-3)) > 1 + 1e-7);
   CHECK(r.passed == (onset > 2.0));
+}
+
+TEST_CASE("check: a thin region of higher order inside the range fails the requirement, by Floquet across it",
+          "[check][parallel]") {
+  // passes.toml over 129–131 rad/s under the Fourier series: no region of order <= 4 opens below
+  // F̄ = 10, but mode 3's order-49 region holds 130 rad/s at F̄ = 5 (the whole model under the true
+  // train gives 1.0847 there from 12 terms on, a real −1 multiplier); the worst speed's own Floquet
+  // point, 129 rad/s, is stable.
+  const Scene scene = load_scene(example("passes"), {"requirements.speed_range_rad_s=[129.0, 131.0]",
+                                                     "requirements.max_fmax_over_fcr=5.0",
+                                                     "load.approximation=fourier"});
+  const RubStabilityResult r = check_rub_stability(scene);
+  CHECK_FALSE(r.passed);
+  CHECK_FALSE(r.check_stable);
+  CHECK(r.check_speed_rad_s == Approx(130));
+  CHECK(r.floquet_speeds >= 2);
+  Scene at = scene_at(scene, 130, 130, 5);  // as the check moves the scene (the duty held)
+  at.load.approximation = LoadApproximation::exact;  // the true train the series stands for
+  at.model.terms = 16;                               // converged: 12 terms give 1.08473 too
+  const PeriodicSystem sys = periodic_system(assemble_model(at), at, load_series(at), {ReductionKind::none, 0, 0});
+  const double whole =
+      pulse_train_multipliers(sys, periodic_pulse(pulse_train(at)), {FloquetMethod::monodromy, 0, 1e-8}).max_abs_multiplier;
+  CHECK(whole > 1.05);
+  CHECK(r.max_abs_multiplier == Approx(whole).epsilon(0.01));
 }
 
 // The example scenes end to end, one run of the program each, as separate test cases so that ctest

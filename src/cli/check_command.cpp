@@ -125,10 +125,11 @@ CheckOutcome rub_outcome(const Scene& scene, const RubStabilityResult& r) {
                                          : std::string("no Floquet check (only the unloaded blade)"));
   const std::string scope = fmt::format(
       "θ = {}·Ω over {:g} to {:g} rad/s, load {} ({}), damping {}; regions of order <= {} sought up to F̄ = {:g} "
-      "from the boundary equations at {} speeds",
+      "from the boundary equations at {} speeds{}",
       r.pulses_per_rev, r.speed_lo_rad_s, r.speed_hi_rad_s, to_string(scene.load.profile),
       to_string(scene.load.approximation), to_string(scene.damping.model), r.max_order, r.window_fmax_over_fcr,
-      r.speeds_scanned);
+      r.speeds_scanned,
+      r.floquet_speeds > 0 ? fmt::format("; Floquet at the requirement at {} speeds across it", r.floquet_speeds) : "");
   const std::string floquet =
       fmt::format("Floquet at {:.9g} rad/s, F̄ = {:.6g}: max|ρ| = {:.8g} ({}{})", r.check_speed_rad_s,
                   r.check_fmax_over_fcr, r.max_abs_multiplier, r.check_stable ? "stable" : "unstable",

@@ -83,6 +83,9 @@ struct RubStabilityResult {
   double check_speed_rad_s = 0, check_fmax_over_fcr = 0;
   double max_abs_multiplier = 0;
   bool check_stable = true;
+  // Floquet answers at the requirement across the range where the check holds at the worst speed
+  // (evenly, the ends included): the first unstable one becomes the check's.
+  int floquet_speeds = 0;
   // Where the check's estimate stays above its tolerance (StabilityAnswer::tolerance_unmet): why.
   std::string check_tolerance_unmet;
   double speed_lo_rad_s = 0, speed_hi_rad_s = 0;  // the range checked: its part within the static limits
