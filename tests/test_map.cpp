@@ -31,6 +31,16 @@ MapOptions theta_plane(std::vector<double> theta, std::vector<double> fbar, std:
   return o;
 }
 
+// A speed-plane map's options: shading grid in Ω and F̄ refined to `cells_x` × `cells_y`, trace lines in Ω.
+MapOptions speed_plane(std::vector<double> speeds, std::vector<double> fbar, std::vector<double> trace, int cells_x,
+                       int cells_y) {
+  MapOptions o = theta_plane(std::move(speeds), std::move(fbar), std::move(trace));
+  o.plane = MapPlane::speed_fmax;
+  o.resolution_x = cells_x;
+  o.resolution_y = cells_y;
+  return o;
+}
+
 // The Floquet multipliers at a map point, by the whole model's monodromy (4096 Magnus steps).
 Eigen::VectorXcd multipliers_at(const Scene& base, double speed, double theta, double fbar) {
   Scene s = base;
@@ -440,14 +450,7 @@ TEST_CASE("a map point too slow for the Magnus ladder does not sink the map: its
   // At Ω = 1 rad/s the pulse period is 6.28 s: the reduction check's richer model (4 vectors per
   // load level) needs more than 131072 Magnus steps there; every other point, from 21 rad/s, runs.
   const Scene scene = paper_scene({});
-  MapOptions o;
-  o.plane = MapPlane::speed_fmax;
-  o.grid_x = linspace(1, 101, 6);
-  o.grid_fbar = linspace(0, 2, 5);
-  o.trace = linspace(1, 101, 11);
-  o.resolution_x = 6;
-  o.resolution_y = 5;
-  const StabilityMap map = stability_map(scene, o);
+  const StabilityMap map = stability_map(scene, speed_plane(linspace(1, 101, 6), linspace(0, 2, 5), linspace(1, 101, 11), 6, 5));
   CHECK(map.samples.size() >= 30);
   CHECK(map.shading_fidelity.checked.size() < 12);  // the Ω = 1 check point left out
   CHECK_FALSE(map.shading_fidelity.checked.empty());
@@ -460,14 +463,8 @@ TEST_CASE("the shading's basis part covers, on its check points, the distance to
   // converged model's (1.052 at 136 rad/s, where 16 and 24 terms give 1; the method part alone is
   // 3.5e-6). The reference: 16 terms, which agree with 24 at these points.
   const Scene scene = paper_scene({"model.terms=8", "load.approximation=exact"});
-  MapOptions o;
-  o.plane = MapPlane::speed_fmax;
-  o.grid_x = linspace(100, 140, 21);
-  o.grid_fbar = linspace(4.99, 5.01, 2);
-  o.trace = linspace(100, 140, 5);
-  o.resolution_x = 20;
-  o.resolution_y = 1;
-  const StabilityMap map = stability_map(scene, o);
+  const StabilityMap map =
+      stability_map(scene, speed_plane(linspace(100, 140, 21), linspace(4.99, 5.01, 2), linspace(100, 140, 5), 20, 1));
   const ShadingFidelity& f = map.shading_fidelity;
   REQUIRE(f.basis_checked.size() >= 10);
   Scene rich = scene;
