@@ -155,7 +155,7 @@ TEST_CASE("check: the stability onset at the worst speed against Floquet either 
 }
 
 TEST_CASE("check: a thin region of higher order inside the range fails the requirement, by Floquet across it",
-          "[check][parallel]") {
+          "[check][parallel][long_under_sanitizers]") {
   // passes.toml over 129–131 rad/s under the Fourier series: no region of order <= 4 opens below
   // F̄ = 10, but mode 3's order-49 region holds 130 rad/s at F̄ = 5 (the whole model under the true
   // train gives 1.0847 there from 12 terms on, a real −1 multiplier); the worst speed's own Floquet

@@ -51,7 +51,10 @@ StabilityAnswer decided_floquet(const Scene& scene, double speed, double fbar, d
   floquet.work_flops = work_flops;
   Scene at = at_speed(scene, speed, fbar);
   StabilityAnswer answer = analyse_stability(at, floquet);
-  if (verdict_decided(answer) || at.model.reduction.kind == ReductionKind::none) return answer;
+  // Open: a growth above the rounding of |ρ| = 1 that the estimate does not exceed.
+  const double growth = answer.floquet.max_abs_multiplier - 1;
+  const bool open = growth > 1e-9 && growth <= answer.budget.total();
+  if (!open || at.model.reduction.kind == ReductionKind::none) return answer;
   at.model.reduction = {ReductionKind::none, 0, 0};
   return analyse_stability(at, floquet);
 }
