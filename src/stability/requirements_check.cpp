@@ -51,7 +51,7 @@ StabilityAnswer decided_floquet(const Scene& scene, double speed, double fbar, d
   floquet.work_flops = work_flops;
   Scene at = at_speed(scene, speed, fbar);
   StabilityAnswer answer = analyse_stability(at, floquet);
-  // Open: a growth above the rounding of |ρ| = 1 that the estimate does not exceed.
+  // Open: a growth above the rounding of |ρ| = 1, but within the estimate.
   const double growth = answer.floquet.max_abs_multiplier - 1;
   const bool open = growth > 1e-9 && growth <= answer.budget.total();
   if (!open || at.model.reduction.kind == ReductionKind::none) return answer;
