@@ -64,6 +64,7 @@ import signal
 import subprocess
 import sys
 import tempfile
+import tomllib
 import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -712,6 +713,12 @@ class Context:
         self.workdir = workdir
         with open(scene_path, encoding="utf-8") as f:
             self.scene_text = f.read()
+        # A section table (blade.sections) is read beside the scene: the scenes written here need it too.
+        sections = tomllib.loads(self.scene_text).get("blade", {}).get("sections")
+        if isinstance(sections, str) and not os.path.isabs(sections):
+            target = os.path.join(workdir, sections)
+            os.makedirs(os.path.dirname(target), exist_ok=True)
+            shutil.copy(os.path.join(os.path.dirname(os.path.abspath(scene_path)), sections), target)
         self.original_scene = write_scene(workdir, "original", self.scene_text)
         self.root = os.geteuid() == 0
 
