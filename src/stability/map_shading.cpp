@@ -91,11 +91,6 @@ std::vector<CombinationRegion> combination_islands(const std::vector<NamedSample
   return out;
 }
 
-// The shading's reduction checked on up to 12 points of the grid, spread over it: max|ρ| with the
-// map's vectors against twice as many (which reduce() keeps whole where they would span the Ritz
-// model: the exact reference), each to a quarter of the tolerance; the part is twice the
-// difference (Galerkin projections do not converge monotonically in max|ρ|, as in `stability`)
-// plus both method errors, relative to max(1, max|ρ|).
 namespace {
 
 // Up to 12 points of the grid that check the shading, spread over it: the middles of 12 equal runs.
@@ -113,6 +108,11 @@ std::vector<std::pair<double, double>> check_points(const MapOptions& o) {
 
 }  // namespace
 
+// The shading's reduction checked on up to 12 points of the grid, spread over it: max|ρ| with the
+// map's vectors against twice as many (which reduce() keeps whole where they would span the Ritz
+// model: the exact reference), each to a quarter of the tolerance; the part is twice the
+// difference (Galerkin projections do not converge monotonically in max|ρ|, as in `stability`)
+// plus both method errors, relative to max(1, max|ρ|).
 ShadingFidelity check_shading(const BladeModel& model, const Scene& scene, const CurveWindow& window,
                               const MapOptions& o, int vectors) {
   ShadingFidelity f;
