@@ -32,18 +32,23 @@
 namespace bladestab::cli {
 namespace {
 
+// The threshold of instability on the map's model, 1 + max(tolerance, the method part): within the
+// shading's own accuracy, max|ρ| this close to 1 cannot be told from stable (JSON `stable_below`,
+// the chart's threshold).
+double stable_below(const StabilityMap& m, double tolerance) { return 1 + std::max(tolerance, m.max_error_estimate); }
+
+// The shading's whole error (method, reduction, basis), relative to max(1, max|ρ|), at least the
+// tolerance: the digits of max|ρ| follow it, and a point above stable_below but within it may
+// change its verdict with more terms.
+double shading_error(const StabilityMap& m, double tolerance) {
+  return std::max(tolerance, m.max_error_estimate + m.shading_fidelity.reduction_error + m.shading_fidelity.basis_error);
+}
+
 // The map as its files print it (printed_digits.hpp): max|ρ| to the shading's accuracy, the larger
 // of the tolerance and its estimate (method and reduction), and so a combination's detuning (a
 // fraction of θ read from the angles of multipliers that carry that error); each curve's points to
 // the curves' estimate, a fraction of the window's span, in both coordinates. The shading's
 // estimates get their 2 digits here, the curves' budget where it is written.
-// The shading's whole error, relative to max(1, max|ρ|): at least the tolerance. The digits of
-// max|ρ| follow it; a point is unstable on the map's model above 1 + max(tolerance, method part)
-// (`stable_below`, the chart's threshold), by more than its whole error above 1 + shading_error.
-double shading_error(const StabilityMap& m, double tolerance) {
-  return std::max(tolerance, m.max_error_estimate + m.shading_fidelity.reduction_error + m.shading_fidelity.basis_error);
-}
-
 StabilityMap as_printed(StabilityMap m, double tolerance, const PrintedDigits& digits) {
   const double shading = digits.estimate(shading_error(m, tolerance));
   const auto rho = [&](double& v) { v = digits.relative(v, shading); };
@@ -153,8 +158,7 @@ std::string map_json(const Scene& scene, const BladeModel& model, const MapOptio
   json["shading_reduction_error"] = m.shading_fidelity.reduction_error;
   json["shading_basis_error"] = m.shading_fidelity.basis_error;
   json["shading_basis_points"] = m.shading_fidelity.basis_checked.size();
-  // Within the shading's accuracy, max|ρ| this close to 1 cannot be told from stable.
-  json["stable_below"] = 1 + std::max(o.tolerance, m.max_error_estimate);
+  json["stable_below"] = stable_below(m, o.tolerance);
   Json rows = Json::array();
   for (Eigen::Index j = 0; j < m.max_abs_multiplier.rows(); ++j) {
     const Eigen::RowVectorXd row = m.max_abs_multiplier.row(j);
@@ -316,7 +320,7 @@ void print_map_table(const Scene& scene, const BladeModel& model, const std::str
     const double v = m.max_abs_multiplier.data()[k];
     if (std::isnan(v)) continue;
     ++points;
-    const bool above = v > 1 + std::max(o.tolerance, m.max_error_estimate);
+    const bool above = v > stable_below(m, o.tolerance);
     unstable += above;
     within += above && v <= 1 + shading_error(m, o.tolerance);
   }
@@ -346,8 +350,8 @@ void print_map_table(const Scene& scene, const BladeModel& model, const std::str
                                "against twice as many)", sf.reduction_error, sf.reduction_vectors,
                                sf.checked.size())
                  : std::string("; the whole Ritz model (fewer vectors missed the tolerance)"));
-  fmt::print("          + {:.1e} (basis: {} grid points against {}{})\n", sf.basis_error, sf.basis_checked.size(),
-             fmt::format("{} terms", reference_terms(scene.model.basis, scene.model.terms)),
+  fmt::print("          + {:.1e} (basis: {} grid points against {} terms{})\n", sf.basis_error, sf.basis_checked.size(),
+             reference_terms(scene.model.basis, scene.model.terms),
              scene.model.basis == BasisKind::sine ? fmt::format(" and {} Legendre terms", scene.model.terms) : "");
   if (!m.undecided.empty()) {
     fmt::print("undecided {} shading points, shaded blank: {}\n", m.undecided.size(), with_max_seconds(m.undecided_reason));

@@ -299,8 +299,8 @@ std::string summary_json(const Scene& scene, const BladeModel& model, const Tran
 // step (their step doubling takes 0.31 at 16 terms and 0.27 at 24, t̄c = 0.01 and 0.5), and a
 // propagator product per sample and pulse edge; in clearance mode every revolution's contact
 // windows at most, by RKF78 (13 right-hand sides a step against RKF45's 6). An upper bound: at 16
-// terms, t̄c = 0.5, 10 revolutions, 2.2 min against 6.5 s measured on one core (before: 4.6 min; at
-// 24 terms 37 min, refused, against 41 s). `share`
+// terms, t̄c = 0.5, 10 revolutions, 39 s against 6.5 s measured on one core; at 24 terms 5 min
+// against 41 s. `share`
 // scales it for a run whose refusal loses less than the answer (the richer run of the estimate).
 // `spent`: the estimates of the rounds before (transient_fidelity.hpp), which the limits cover too.
 // Returns this run's estimate (× share).
@@ -336,9 +336,10 @@ double check_transient_work(const BladeModel& model, const Scene& scene, const T
 // be built or their runs would pass the work limits (with `spent`, the rounds before): `why_not`
 // then says so, else `work` is their estimate as charged. A refusal only leaves out the estimate,
 // and the richer run goes beside the answer on a second core, so half the upper bound is compared
-// with the limits (still about 3× the measured times at 16 and 24 terms; a tenth, before the bound
-// came down to them, let 13 pulses a revolution with their estimate start at 46 s estimated and
-// run 85 s); a richer run slower than that ends at --max-seconds like any run.
+// with the limits (still about 3× the measured times at 16 and 24 terms; less would let a run with
+// a slow richer model start and end at --max-seconds with nothing written: 13 pulses a revolution
+// take 85 s, their answer alone 4.3 s); a richer run slower than that ends at --max-seconds like
+// any run.
 std::vector<BladeModel> checked_richer_models(const Scene& scene, const TransientOptions& o, double spent,
                                               std::string& why_not, double& work) {
   try {

@@ -382,7 +382,7 @@ StabilityAnswer analyse_stability(const Scene& scene, const StabilityRequest& re
       a = run_round(scene, *next.fidelity, next_plan, request, ladder_flops, done);
       if (next.fidelity->reduction.vectors > f.reduction.vectors) hold_irregular_reduction(a, before);
     } catch (const NumericalError& e) {
-      a.work_limited = dynamic_cast<const WorkLimitError*>(&e) != nullptr;
+      a.work_limited = is_work_limit(e);
       a.tolerance_unmet = fmt::format("{} did not finish: {}", raising, e.what());
       break;
     }

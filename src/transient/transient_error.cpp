@@ -28,10 +28,6 @@ std::optional<double> relative_method_error(const TransientResult& r, const Tran
   return std::max(propagators, checked);
 }
 
-}  // namespace
-
-namespace {
-
 // The peaks among the quantities: each the largest over the samples of a value per sample.
 constexpr std::array<const char*, 4> peak_names{"peak_tip_lateral_m", "peak_tip_axial_change_m",
                                                 "peak_vibration_energy_j", "peak_tip_axial_m"};
@@ -273,7 +269,7 @@ EstimatedTransient run_transient_with_error(const BladeModel& model, const std::
     } catch (const std::exception& e) {
       speculative.cancel();
       answer.error_unavailable = fmt::format("the run on {} terms failed: {}", m.spec.terms, e.what());
-      answer.work_limited = dynamic_cast<const WorkLimitError*>(&e) != nullptr;
+      answer.work_limited = is_work_limit(e);
       return answer;
     }
   }
@@ -284,7 +280,7 @@ EstimatedTransient run_transient_with_error(const BladeModel& model, const std::
     } catch (const std::exception& e) {
       speculative.cancel();
       answer.error_unavailable = fmt::format("the run at 1/100 of the tolerances failed: {}", e.what());
-      answer.work_limited = dynamic_cast<const WorkLimitError*>(&e) != nullptr;
+      answer.work_limited = is_work_limit(e);
       return answer;
     }
   }

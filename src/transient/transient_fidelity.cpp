@@ -101,7 +101,7 @@ TransientAtTolerance run_transient_to_tolerance(const Scene& scene, double toler
         work_limited = raised->work_limited;
       } catch (const NumericalError& e) {  // its own checks failed; a stop (Ctrl-C, a deadline) goes through
         stop = e.what();
-        work_limited = dynamic_cast<const WorkLimitError*>(&e) != nullptr;
+        work_limited = is_work_limit(e);
       }
     }
     if (!stop.empty()) {

@@ -19,4 +19,7 @@ public:
   explicit WorkLimitError(const std::string& message) : NumericalError(message) {}
 };
 
+// Whether a caught failure is a work limit's (WorkLimitError), which its reporter names.
+inline bool is_work_limit(const std::exception& e) { return dynamic_cast<const WorkLimitError*>(&e) != nullptr; }
+
 }  // namespace bladestab
