@@ -239,13 +239,21 @@ FrequencyMarginResult check_frequency_margin(const Scene& scene, double toleranc
   options.closest_approaches = true;
   int dofs = dof_layout(scene.model, scene.blade.two_planes()).size();
   // Track more modes until the highest one tracked stays above the threshold over the whole range.
+  // A point where the mode does not oscillate (overdamped, 0 Hz: the paper's damping (37) on the
+  // stiff modes) meets no engine-order line: the lowest frequency is over the points that
+  // oscillate, and a mode overdamped throughout is above every threshold, as are the stiffer ones
+  // after it (by |λ|, modes.cpp), whose damping is heavier still.
   for (int count = std::min(4, dofs);; count = std::min(2 * count, dofs)) {
     options.mode_count = count;
     options.work_flops = work_flops;
     const CampbellWithErrors campbell = campbell_with_error_estimate(scene, options, tolerance, progress);
     work_flops -= campbell.work_flops;
     const auto lowest = [](const CampbellCurve& c) {
-      return *std::min_element(c.frequency_hz.begin(), c.frequency_hz.end());
+      double least = std::numeric_limits<double>::infinity();
+      for (double f : c.frequency_hz) {
+        if (f > 0) least = std::min(least, f);
+      }
+      return least;
     };
     const std::vector<CampbellCurve>& curves = campbell.diagram.curves;
     // The diagram's model has the terms raised to the tolerance: as many modes as its dofs.
