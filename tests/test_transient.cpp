@@ -598,3 +598,20 @@ TEST_CASE("60 revolutions at 300 rad/s end at revolution 60 exactly, by both met
     for (std::size_t k = 0; k < r.samples.size(); ++k) CHECK(r.samples[k].revolutions == static_cast<double>(k) / 7);
   }
 }
+
+TEST_CASE("the amplitude spectrum of a sine sampled a prime number of times: its frequency and amplitude",
+          "[transient]") {
+  // 4001 samples at 4 kHz of 2.5 sin(2π·123.4 t) + 0.7: between two bins of either grid. The Hann
+  // window's scalloping keeps the largest bin within 15 % below the amplitude (1.42 dB).
+  constexpr std::size_t n = 4001;
+  const double rate = 4000, f0 = 123.4, a = 2.5;
+  std::vector<double> signal(n);
+  for (std::size_t k = 0; k < n; ++k) signal[k] = a * std::sin(2 * pi * f0 * k / rate) + 0.7;
+  const Spectrum s = amplitude_spectrum(signal, rate);
+  REQUIRE(s.frequency_hz.size() == s.amplitude.size());
+  CHECK(s.frequency_hz.back() == Approx(rate / 2).epsilon(1e-3));
+  CHECK(dominant_frequency(s).value() == Approx(f0).epsilon(1e-4));
+  const double largest = *std::max_element(s.amplitude.begin(), s.amplitude.end());
+  CHECK(largest <= a * 1.001);
+  CHECK(largest >= 0.85 * a);
+}
