@@ -36,6 +36,11 @@ def _study_file(path):
     unknown = set(study) - {"scene", "analysis", "grid", "options"}
     if unknown:
         raise InputError(f"{path}: {sorted(unknown)[0]}: unknown; known: scene, analysis, grid, options")
+    for key, kinds, what in (("scene", str, "a path"), ("analysis", str, "a name"),
+                             ("grid", (dict, list), "a table of value lists or a list of tables"),
+                             ("options", dict, "a table")):
+        if key in study and not isinstance(study[key], kinds):
+            raise InputError(f"{path}: {key} = {study[key]!r}: must be {what}")
     study["scene"] = os.path.join(os.path.dirname(os.path.abspath(path)), study["scene"])
     return study
 
@@ -44,7 +49,10 @@ def _executor(args):
     if args.scheduler:
         from dask.distributed import Client
 
-        return Client(args.scheduler)
+        try:
+            return Client(args.scheduler)
+        except OSError as error:
+            raise InputError(f"--scheduler {args.scheduler}: cannot reach it ({error})") from None
     if args.mpi:
         from mpi4py.futures import MPIPoolExecutor
 

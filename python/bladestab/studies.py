@@ -8,6 +8,8 @@ import hashlib
 import os
 import signal
 
+import tomllib
+
 from bladestab.analyses import ANALYSES
 from bladestab.arguments import command_options, scene_source
 from bladestab.errors import InputError, NumericalError
@@ -33,6 +35,30 @@ def _scene_text(scene):
         except OSError as error:
             raise InputError(f"scene {name}: cannot read it: {error.strerror}") from None
     return name, text
+
+
+def _section_files(name, text, options, plan):
+    """The section tables (blade.sections) the study's points read, as the program resolves them
+    (beside the scene file): from the scene, its fixed overrides and the grid."""
+    try:
+        named = [tomllib.loads(text).get("blade", {}).get("sections")]
+    except (tomllib.TOMLDecodeError, AttributeError):
+        named = []  # the program says what is wrong with the scene
+    named += [options.get("blade.sections")] + list(plan.coords.get("blade.sections", []))
+    base = os.path.dirname(name) if os.sep in name else ""
+    return sorted({os.path.join(base, n) for n in named if isinstance(n, str) and n})
+
+
+def _files_sha256(paths):
+    """{path: SHA-256 of its bytes} of the files that can be read (the program reports the others)."""
+    digests = {}
+    for path in paths:
+        try:
+            with open(path, "rb") as fh:
+                digests[path] = hashlib.sha256(fh.read()).hexdigest()
+        except OSError:
+            continue
+    return digests
 
 
 def _ignore_interrupts():
@@ -77,9 +103,12 @@ def study(scene, grid, analysis, executor=None, store=None, options=None, chunk=
     held = held_study(store)
     # A study resumed takes the store's chunks unless given others (the default depends on the workers).
     plan = Plan(grid, chunk if chunk is not None or held is None else held.get("chunk"), _workers(executor))
+    # What the answers depend on: the grid's keys in their order (the store's dimensions), and the
+    # section tables' contents as well as the scene's text.
     description = {"analysis": command, "scene": name, "scene_sha256": hashlib.sha256(text.encode()).hexdigest(),
+                   "section_tables_sha256": _files_sha256(_section_files(name, text, options, plan)),
                    "options": {k: repr(v) for k, v in options.items()},
-                   "grid": {k: repr(plan.coords[k]) for k in plan.keys}, "chunk": plan.chunk}
+                   "grid": [[k, repr(plan.coords[k])] for k in plan.keys], "chunk": plan.chunk}
     results = StudyStore(store, plan, description)
     tasks = results.pending()
     pool, owned = _executor(executor)

@@ -11,6 +11,9 @@ import numpy as np
 
 from bladestab.errors import InputError
 
+# The store's own variables and dimension (study_store.py), which no grid key may name.
+RESERVED = {"computed", "failed", "failure", "point"}
+
 
 def _values(key, values):
     values = values.tolist() if hasattr(values, "tolist") else values
@@ -19,7 +22,22 @@ def _values(key, values):
     values = list(values)
     if not values:
         raise InputError(f"grid {key}: no values")
+    for value in values:
+        _check_value(key, value)
     return values
+
+
+def _check_value(key, value):
+    """A grid value is what a scene key or an option takes: a number, a bool or a string."""
+    if not isinstance(value, (numbers.Real, str)):
+        raise InputError(f"grid {key}: {value!r}: each value a number, a bool or a string")
+
+
+def _check_keys(keys):
+    for key in keys:
+        if not isinstance(key, str) or key in RESERVED:
+            raise InputError(f"grid {key!r}: a scene key (section.key) or an option, not one of the study's own "
+                             f"variables {', '.join(sorted(RESERVED))}")
 
 
 def _chunk(chunk):
@@ -35,6 +53,7 @@ class Plan:
         if isinstance(grid, dict):
             if not grid:
                 raise InputError("grid: no keys")
+            _check_keys(grid)
             self.keys = list(grid)
             self.dims = list(grid)
             self.coords = {key: _values(key, values) for key, values in grid.items()}
@@ -44,6 +63,10 @@ class Plan:
             if not points or not all(isinstance(p, dict) for p in points):
                 raise InputError("grid: a dict of value lists or a non-empty list of dicts of overrides")
             self.keys = list(dict.fromkeys(k for p in points for k in p))
+            _check_keys(self.keys)
+            for point in points:
+                for key, value in point.items():
+                    _check_value(key, value)
             missing = [k for k in self.keys if any(k not in p for p in points)]
             if missing:
                 raise InputError(f"grid {missing[0]}: not given at every point")

@@ -16,28 +16,55 @@ import zarr
 
 from bladestab.errors import InputError
 
+from bladestab.study_plan import RESERVED
+
 COMPUTED = "computed"
 FAILED = "failed"
 FAILURE = "failure"
-RESERVED = {COMPUTED, FAILED, FAILURE, "point"}
+
+
+def _unusable(store, reason):
+    return InputError(f"store {os.fspath(store)}: {reason}; give a new path (a directory that does not exist yet, "
+                      f"or an empty one) or the store of this study")
 
 
 def held_study(store):
-    """The description of the study a store on disk holds, or None."""
+    """The description of the study a store on disk holds, or None for a path that does not exist
+    yet or an empty directory."""
     if store is None or not os.path.exists(os.fspath(store)):
         return None
-    return zarr.open_group(store, mode="r").attrs.get("bladestab_study")
+    path = os.fspath(store)
+    if os.path.isdir(path) and not os.listdir(path):
+        return None
+    try:
+        held = zarr.open_group(store, mode="r").attrs.get("bladestab_study")
+    except Exception as error:  # zarr's errors for a file, a foreign directory, an unreadable path
+        raise _unusable(store, f"not a Zarr group ({type(error).__name__})") from None
+    if held is None:
+        raise _unusable(store, "a Zarr group that holds no bladestab study")
+    return held
+
+
+def _open_group(store):
+    """The group of `store` (in memory for None), created where it does not exist."""
+    if store is None:
+        return zarr.open_group(zarr.MemoryStore(), mode="a")
+    try:
+        return zarr.open_group(store, mode="a")
+    except Exception as error:  # an unwritable path, a plain file
+        raise _unusable(store, f"cannot be written as a Zarr group ({type(error).__name__}: {error})") from None
 
 
 class StudyStore:
     def __init__(self, store, plan, description):
         self.plan = plan
-        self.group = zarr.open_group(zarr.MemoryStore() if store is None else store, mode="a")
+        self.group = _open_group(store)
         held = self.group.attrs.get("bladestab_study")
         wanted = json.loads(json.dumps(description))
         if held is not None and held != wanted:
             entry = next(k for k in sorted(set(held) | set(wanted)) if held.get(k) != wanted.get(k))
             differs = ("its scene's text is another" if entry == "scene_sha256"
+                       else "its section table's contents are others" if entry == "section_tables_sha256"
                        else f"its {entry} is {held.get(entry)!r}, this one's {wanted.get(entry)!r}")
             raise InputError(f"store {store}: holds another study ({differs}); give a new store to start this one")
         if held is None:
@@ -95,4 +122,10 @@ def open_study(store, keys=None):
     masking of fill values, which would turn a False or a 0 into NaN."""
     dataset = xr.open_zarr(store, consolidated=False, mask_and_scale=False).load()
     keys = keys if keys is not None else [k for k in dataset.data_vars if dataset[k].dims == ("point",)]
+    # Attributes netCDF can hold (Dataset.to_netcdf): the description as JSON text, and no fill
+    # values, which mark nothing in the values as read.
+    if isinstance(dataset.attrs.get("bladestab_study"), (dict, list)):
+        dataset.attrs["bladestab_study"] = json.dumps(dataset.attrs["bladestab_study"])
+    for variable in dataset.variables.values():
+        variable.attrs.pop("_FillValue", None)
     return dataset.set_coords([k for k in keys if k in dataset.data_vars])

@@ -1,5 +1,6 @@
 """What a study's workers run: one task's points through one analysis, each answer reduced to
-its scalar fields (nested objects' fields as "object.field"; strings and lists left out)."""
+its scalar fields (nested objects' fields as "object.field"; strings and lists left out) and
+`passed`, False where the answer is negative (results.Result.passed)."""
 
 from bladestab import _core
 from bladestab.arguments import command_line
@@ -24,7 +25,10 @@ def run_task(command, scene_name, scene_text, options, points):
     for point in points:
         try:
             answer = _core.run(command_line(command, scene_name, {**options, **point}), scene_text, None)
-            answers.append(scalar_fields(json.loads(answer["json"])))
+            fields = scalar_fields(json.loads(answer["json"]))
+            # A negative answer (a check not met, a crosscheck that disagrees) is `passed` False.
+            fields.setdefault("passed", not answer["negative"])
+            answers.append(fields)
         except InputError as error:
             answers.append(("input", str(error)))
         except NumericalError as error:

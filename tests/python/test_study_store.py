@@ -3,6 +3,7 @@ failed, a store's scene checked by its text, a resumed store's chunks, bad chunk
 and Ctrl-C at a terminal (the whole process group) ending a study at once."""
 
 import concurrent.futures
+import json
 import os
 import signal
 import subprocess
@@ -64,6 +65,65 @@ def test_a_store_resumed_on_other_workers_takes_its_chunks(tmp_path):
     assert again.equals(first)
     with pytest.raises(bladestab.InputError, match="chunk"):
         bladestab.study(SCENE, grid, "stability", executor=SERIAL, store=store, chunk=5)
+
+
+def test_a_store_refuses_the_grid_keys_in_another_order(tmp_path):
+    # The keys' order is the store's dimensions': the swapped study had written (150, 7)'s answer
+    # into (350, 1)'s cell.
+    store = str(tmp_path / "s.zarr")
+    speeds, loads = [150.0, 350.0], [1.0, 7.0]
+    bladestab.study(SCENE, {"operation.speed_rad_s": speeds, "load.fmax_over_fcr": loads}, "stability",
+                    executor=SERIAL, store=store)
+    with pytest.raises(bladestab.InputError, match="its grid is"):
+        bladestab.study(SCENE, {"load.fmax_over_fcr": loads, "operation.speed_rad_s": speeds}, "stability",
+                        executor=SERIAL, store=store)
+
+
+def test_a_store_refuses_a_section_table_whose_contents_changed(tmp_path):
+    fan = os.path.join(os.path.dirname(os.path.dirname(SCENE)), "fan_blade")
+    scene, table = tmp_path / "blade.toml", tmp_path / "sections.csv"
+    scene.write_text(open(os.path.join(fan, "blade.toml"), encoding="utf-8").read())
+    text = open(os.path.join(fan, "sections.csv"), encoding="utf-8").read()
+    table.write_text(text)
+    store = str(tmp_path / "s.zarr")
+    grid = {"model.terms": [8]}
+    bladestab.study(str(scene), grid, "modes", executor=SERIAL, store=store)
+    table.write_text(text.replace("0.2,0.0020462", "0.2,0.0030462"))
+    with pytest.raises(bladestab.InputError, match="section table's contents are others"):
+        bladestab.study(str(scene), grid, "modes", executor=SERIAL, store=store)
+
+
+@pytest.mark.parametrize("grid", [{"load.fmax_over_fcr": [1.0, None]}, {"load.fmax_over_fcr": [[1.0, 2.0]]},
+                                  {"point": [1.0]}, {"failed": [1.0]}])
+def test_a_grid_value_or_key_a_store_cannot_hold_is_refused_before_anything_is_written(tmp_path, grid):
+    store = tmp_path / "s.zarr"
+    with pytest.raises(bladestab.InputError, match="grid"):
+        bladestab.study(SCENE, grid, "stability", executor=SERIAL, store=str(store))
+    assert not store.exists()
+
+
+def test_a_store_path_that_holds_something_else_is_refused(tmp_path):
+    (tmp_path / "file").write_text("x")
+    (tmp_path / "other").mkdir()
+    (tmp_path / "other" / "notes.txt").write_text("x")
+    for store in ("file", "other"):
+        with pytest.raises(bladestab.InputError, match=f"store .*{store}: not a Zarr group"):
+            bladestab.study(SCENE, {"load.fmax_over_fcr": [1.0]}, "stability", executor=SERIAL,
+                            store=str(tmp_path / store))
+    (tmp_path / "empty").mkdir()  # an empty directory is a new store
+    dataset = bladestab.study(SCENE, {"load.fmax_over_fcr": [1.0]}, "stability", executor=SERIAL,
+                              store=str(tmp_path / "empty"))
+    dataset.to_netcdf(tmp_path / "study.nc")  # its attributes are netCDF's kinds
+    assert json.loads(dataset.attrs["bladestab_study"])["analysis"] == "stability"
+
+
+def test_a_negative_answer_is_passed_false():
+    # fails.toml fails its requirements (exit 1 from the program); passes.toml meets them.
+    examples = os.path.join(os.path.dirname(os.path.dirname(SCENE)), "ci")
+    for name, passed in (("fails", False), ("passes", True)):
+        dataset = bladestab.study(os.path.join(examples, f"{name}.toml"), {"requirements.frequency_margin": [0.1]},
+                                  "check", executor=SERIAL)
+        assert dataset["passed"].values.tolist() == [passed]
 
 
 @pytest.mark.parametrize("chunk", [0, -1, 2.5, True, "2"])
