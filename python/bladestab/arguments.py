@@ -57,10 +57,10 @@ def option_value(value):
 
 
 def command_line(command, scene_name, options):
-    """The arguments of `bladestab COMMAND SCENE --format json …` for `options`; InputError naming
+    """The arguments of `bladestab COMMAND --format json … -- SCENE` for `options`; InputError naming
     a key that is no option of the command."""
     known = command_options()[command]
-    arguments = [command, scene_name, "--format", "json"]
+    arguments = [command, "--format", "json"]
     for key, value in options.items():
         if "." in key:
             if "=" in key:
@@ -75,7 +75,8 @@ def command_line(command, scene_name, options):
             raise InputError(f"{key}: not an option of {command}; its options: {', '.join(names)} "
                              "(and scene keys as section.key)")
         arguments += _option_arguments(key, option, known, value)
-    return arguments
+    # After "--" the scene is the scene whatever it starts with ("-blade.toml", "-h").
+    return arguments + ["--", scene_name]
 
 
 def _option_arguments(key, option, known, value):

@@ -151,3 +151,13 @@ def test_a_result_is_a_read_only_mapping_of_its_fields():
     assert "stable" in r and "no-such-field" not in r and r.get("no-such-field") is None
     assert list(r) == list(r.keys()) and len(r) == len(r.to_dict()) and r.get("stable") == r.stable
     assert all(field == "…" or "=" in field for field in repr(r).rstrip(">").split(": ", 1)[1].split(", "))
+
+
+def test_a_scene_path_that_starts_with_a_dash_is_the_scene(tmp_path, monkeypatch):
+    # It was read as an option: "-blade.toml" gave "scene is required", "-h" the parser's own text.
+    monkeypatch.chdir(tmp_path)
+    with open(SCENE, encoding="utf-8") as fh:
+        (tmp_path / "-blade.toml").write_text(fh.read())
+    assert bladestab.stability("-blade.toml").to_dict() == bladestab.stability(SCENE).to_dict() | {"scene": "-blade.toml"}
+    with pytest.raises(bladestab.InputError, match="-h: cannot read the scene file"):
+        bladestab.stability("-h")
