@@ -18,6 +18,7 @@
 #include "cli/json_output.hpp"
 #include "cli/printed_digits.hpp"
 
+using bladestab::cli::estimate_text;
 using bladestab::cli::DigitsRule;
 using bladestab::cli::Json;
 using bladestab::cli::PrintedDigits;
@@ -117,6 +118,15 @@ TEST_CASE("JSON documents: lists of numbers on one line, two-space indentation, 
   // JSON has no NaN: an unflagged one is a bug upstream, refused rather than printed as null.
   document["point"]["y"] = std::numeric_limits<double>::infinity();
   CHECK_THROWS_AS(bladestab::cli::json_text(document), std::logic_error);
+}
+
+TEST_CASE("a table's error estimate: 2 digits rounded up, never less than was estimated", "[printed_digits]") {
+  // The largest relative error of the paper blade's 12 modes, 0.015499 (JSON 0.016), and a Campbell
+  // diagram's 9.433e-7 (JSON 9.5e-7): "1.5e-02" and "9.4e-07" had stated less.
+  CHECK(estimate_text(0.015499) == "1.6e-02");
+  CHECK(estimate_text(9.433e-7) == "9.5e-07");
+  CHECK(estimate_text(2.5e-12) == "2.5e-12");  // exact: no floor in a table
+  CHECK(estimate_text(0) == "0.0e+00");
 }
 
 TEST_CASE("a table's number shows exactly the significant digits asked for, as C's %#g without its point",

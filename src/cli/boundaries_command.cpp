@@ -267,9 +267,9 @@ void print_table(const BoundaryOutput& o) {
     const auto shown = [&e](double value, bool estimated) {
       return estimated ? to_significant_digits(value, e.budget.total()) : fmt::format("{:.6g}", value);
     };
-    fmt::print("{:>16} {:>14} {:>10} {:>5} {:>6} {:>9.1e}\n", shown(b.theta_rad_s, !o.in_load),
+    fmt::print("{:>16} {:>14} {:>10} {:>5} {:>6} {:>9}\n", shown(b.theta_rad_s, !o.in_load),
                shown(b.peak_force_n / o.fcr, o.in_load), b.multiplier > 0 ? "+1" : "-1", b.mode, b.order,
-               e.budget.total());
+               estimate_text(e.budget.total()));
   }
   if (o.result.boundaries.empty()) {
     fmt::print("(none {}of order <= {} in the window)\n", o.result.unconverged.empty() ? "" : "converged ",

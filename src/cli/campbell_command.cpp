@@ -174,7 +174,7 @@ void print_table(const Scene& scene, const CampbellWithErrors& r, const std::vec
     }
     const auto frequency = [error](double f) { return f > 0 ? to_significant_digits(f, error) : std::string("0"); };
     fmt::print("{:>4}  {:<9} {:>16} {:>16} {:>9.3f} {:>9}\n", c.mode, family_path(c), frequency(c.frequency_hz.front()),
-               frequency(c.frequency_hz.back()), lowest, oscillates ? fmt::format("{:.1e}", error) : std::string("—"));
+               frequency(c.frequency_hz.back()), lowest, oscillates ? estimate_text(error) : std::string("—"));
   }
   fmt::print("\nengine-order crossings ({}):\n", d.crossings.size());
   fmt::print("{:>4} {:>5} {:>16} {:>14} {:>16} {:>9}\n", "EO", "mode", "speed [rad/s]", "speed [rpm]", "frequency [Hz]",
@@ -182,9 +182,9 @@ void print_table(const Scene& scene, const CampbellWithErrors& r, const std::vec
   for (std::size_t k = 0; k < d.crossings.size(); ++k) {
     const EngineOrderCrossing& x = d.crossings[k];
     const double error = r.crossing_budget[k].total();
-    fmt::print("{:>4} {:>5} {:>16} {:>14} {:>16} {:>9.1e}\n", x.engine_order, x.mode,
+    fmt::print("{:>4} {:>5} {:>16} {:>14} {:>16} {:>9}\n", x.engine_order, x.mode,
                to_significant_digits(x.speed_rad_s, error), to_significant_digits(x.speed_rad_s * rpm_per_rad_s, error),
-               to_significant_digits(x.frequency_hz, error), error);
+               to_significant_digits(x.frequency_hz, error), estimate_text(error));
   }
   if (!files.empty()) fmt::print("\nwritten: {}\n", fmt::join(files, ", "));
 }

@@ -20,6 +20,7 @@
 #include "json_output.hpp"
 #include "number_options.hpp"
 #include "options.hpp"
+#include "printed_digits.hpp"
 #include "progress.hpp"
 #include "static_limits_output.hpp"
 #include "work_limits.hpp"
@@ -59,8 +60,8 @@ CheckOutcome margin_outcome(const Scene& scene, const FrequencyMarginResult& m) 
                            w.mode, w.engine_order, w.speed_rad_s, w.frequency_hz, m.required, scope);
   } else {
     o.detail = fmt::format("closest: mode {} to engine order {} at {:.9g} rad/s ({:.9g} Hz), |f - kΩ/2π|/f = {:.6g} "
-                           "(error estimate {:.1e}), {} the required {:g}; checked {}",
-                           w.mode, w.engine_order, w.speed_rad_s, w.frequency_hz, w.distance, m.error_estimate,
+                           "(error estimate {}), {} the required {:g}; checked {}",
+                           w.mode, w.engine_order, w.speed_rad_s, w.frequency_hz, w.distance, estimate_text(m.error_estimate),
                            m.passed ? "at least" : "below", m.required, scope);
   }
   // The frequency to its tolerance, the margin to its estimate; the speed found by the search has
@@ -134,7 +135,7 @@ CheckOutcome rub_outcome(const Scene& scene, const RubStabilityResult& r) {
       fmt::format("Floquet at {:.9g} rad/s, F̄ = {:.6g}: max|ρ| = {:.8g} ({}{})", r.check_speed_rad_s,
                   r.check_fmax_over_fcr, r.max_abs_multiplier, r.check_stable ? "stable" : "unstable",
                   r.check_tolerance_unmet.empty() ? "" : "; its " + r.check_tolerance_unmet);
-  const std::string estimate = r.onset_converged ? fmt::format("error estimate {:.1e}", r.onset_error_estimate)
+  const std::string estimate = r.onset_converged ? "error estimate " + estimate_text(r.onset_error_estimate)
                                                  : "not converged in the harmonics";
   const std::string unconverged =
       r.unconverged_boundaries == 0

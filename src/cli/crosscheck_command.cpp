@@ -16,6 +16,7 @@
 #include "json_output.hpp"
 #include "number_options.hpp"
 #include "options.hpp"
+#include "printed_digits.hpp"
 #include "progress.hpp"
 #include "work_limits.hpp"
 
@@ -55,15 +56,15 @@ void print_table(const Scene& scene, const std::vector<CrosscheckPoint>& result,
   fmt::print("{:>7} | {:>8} | {:>13} {:>8} | {:>16} {:>8} | {:>6} | {:>15} {:>11}\n", "F̄_max", "load", "Floquet max|ρ|",
              "± est.", "transient growth", "± est.", "agree", "RKF45 Φ: max|ρ|", "‖ΔΦ‖/‖Φ‖");
   for (const CrosscheckPoint& p : result) {
-    fmt::print("{:>7g} | {:>8} | {:>13} {:>8.1e} | {:>16} {:>8.1e} | {:>6} | {:>15} {:>11.1e}\n", p.fmax_over_fcr,
-               "cosine", fixed_to_error(p.floquet_cosine, p.floquet_cosine_error, 7), p.floquet_cosine_error,
-               fixed_to_error(p.transient_cosine_growth, p.transient_cosine_error, 7), p.transient_cosine_error,
+    fmt::print("{:>7g} | {:>8} | {:>13} {:>8} | {:>16} {:>8} | {:>6} | {:>15} {:>11.1e}\n", p.fmax_over_fcr,
+               "cosine", fixed_to_error(p.floquet_cosine, p.floquet_cosine_error, 7), estimate_text(p.floquet_cosine_error),
+               fixed_to_error(p.transient_cosine_growth, p.transient_cosine_error, 7), estimate_text(p.transient_cosine_error),
                p.cosine_agrees() ? "yes" : "NO",
                fixed_to_error(p.rkf45_max_abs_multiplier, p.monodromy_difference * p.rkf45_max_abs_multiplier, 7),
                p.monodromy_difference);
-    fmt::print("{:>7} | {:>8} | {:>13} {:>8.1e} | {:>16} {:>8.1e} | {:>6} |\n", "", "pulse",
-               fixed_to_error(p.floquet_pulse, p.floquet_pulse_error, 7), p.floquet_pulse_error,
-               fixed_to_error(p.transient_pulse_growth, p.transient_pulse_error, 7), p.transient_pulse_error,
+    fmt::print("{:>7} | {:>8} | {:>13} {:>8} | {:>16} {:>8} | {:>6} |\n", "", "pulse",
+               fixed_to_error(p.floquet_pulse, p.floquet_pulse_error, 7), estimate_text(p.floquet_pulse_error),
+               fixed_to_error(p.transient_pulse_growth, p.transient_pulse_error, 7), estimate_text(p.transient_pulse_error),
                p.pulse_agrees() ? "yes" : "NO");
   }
   for (const CrosscheckPoint& p : result) {

@@ -15,8 +15,9 @@ void write_error_budget(Json& json, const ErrorBudget& b, const PrintedDigits& d
 }
 
 std::string describe_error_budget(const ErrorBudget& b) {
-  std::string text = fmt::format("{:.1e} (basis {:.1e}, reduction {:.1e}, load {:.1e}, method {:.1e})", b.total(),
-                                 b.basis, b.reduction, b.load, b.method);
+  std::string text = fmt::format("{} (basis {}, reduction {}, load {}, method {})", estimate_text(b.total()),
+                                 estimate_text(b.basis), estimate_text(b.reduction), estimate_text(b.load),
+                                 estimate_text(b.method));
   for (std::size_t k = 0; k < b.unbounded.size(); ++k) text += (k == 0 ? "; not bounded: " : ", ") + b.unbounded[k];
   return text;
 }

@@ -342,15 +342,16 @@ void print_map_table(const Scene& scene, const BladeModel& model, const std::str
   }
   const ShadingFidelity& sf = m.shading_fidelity;
   fmt::print("shading   {} of {} grid points unstable{}; refined to {} × {} cells with {} Floquet points; "
-             "max|ρ| relative error ≤ {:.1e} (method, every point){}\n",
+             "max|ρ| relative error ≤ {} (method, every point){}\n",
              unstable, points, within > 0 ? fmt::format(" ({} of them by less than the error below)", within) : "",
-             m.cells_x, m.cells_y, m.samples.size(), m.max_error_estimate,
+             m.cells_x, m.cells_y, m.samples.size(), estimate_text(m.max_error_estimate),
              sf.reduction_vectors > 0
-                 ? fmt::format(" + {:.1e} (reduction to {} vectors per load level, {} grid points checked "
-                               "against twice as many)", sf.reduction_error, sf.reduction_vectors,
+                 ? fmt::format(" + {} (reduction to {} vectors per load level, {} grid points checked "
+                               "against twice as many)", estimate_text(sf.reduction_error), sf.reduction_vectors,
                                sf.checked.size())
                  : std::string("; the whole Ritz model (fewer vectors missed the tolerance)"));
-  fmt::print("          + {:.1e} (basis: {} grid points against {} terms{})\n", sf.basis_error, sf.basis_checked.size(),
+  fmt::print("          + {} (basis: {} grid points against {} terms{})\n", estimate_text(sf.basis_error),
+             sf.basis_checked.size(),
              reference_terms(scene.model.basis, scene.model.terms),
              scene.model.basis == BasisKind::sine ? fmt::format(" and {} Legendre terms", scene.model.terms) : "");
   if (!m.undecided.empty()) {

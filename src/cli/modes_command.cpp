@@ -105,14 +105,14 @@ void print_modes_table(const Scene& scene, const ConvergedModes& result) {
   fmt::print("speed     {:.6g} rad/s = {:.6g} rpm, nondimensional {:.6g}; damping {}; solver {}\n", speed,
              speed * rpm_per_rad_s, result.model.blade.nondimensional_speed(speed), to_string(scene.damping.model),
              to_string(sol.solver));
-  fmt::print("accuracy  {} against {}-term models, at most {:.1e}; digits shown are those the error supports\n\n",
+  fmt::print("accuracy  {} against {}-term models, at most {}; digits shown are those the error supports\n\n",
              basis_convergence(scene.blade, result.model.spec.basis) == BasisConvergence::exponential
                  ? "relative change"
                  : "tail of algebraic convergence",
              result.model.spec.basis == BasisKind::sine
                  ? fmt::format("{}- and {}", reference_terms(BasisKind::sine, result.model.spec.terms), result.reference_terms)
                  : fmt::format("{}", result.reference_terms),
-             result.max_relative_error());
+             estimate_text(result.max_relative_error()));
   fmt::print("{:>4}  {:<9} {:>16} {:>16} {:>10} {:>10}\n", "mode", "family", "frequency [Hz]", "Λ", "ζ",
              "error");
   for (std::size_t k = 0; k < sol.modes.size(); ++k) {
@@ -120,9 +120,9 @@ void print_modes_table(const Scene& scene, const ConvergedModes& result) {
     const ErrorBudget budget = result.budget(k);
     // ζ below 1e-12 is rounding in an undamped model's eigenvalues, not damping.
     const double zeta = std::abs(m.damping_ratio) < 1e-12 ? 0.0 : m.damping_ratio;
-    fmt::print("{:>4}  {:<9} {:>16} {:>16} {:>10.3g} {:>10.1e}\n", m.index, to_string(m.family),
+    fmt::print("{:>4}  {:<9} {:>16} {:>16} {:>10.3g} {:>10}\n", m.index, to_string(m.family),
                to_significant_digits(m.frequency_hz, budget.total()), to_significant_digits(m.lambda, budget.total()), zeta,
-               budget.total());
+               estimate_text(budget.total()));
   }
 }
 

@@ -108,6 +108,8 @@ std::string with_figures(double value, int figures) {
   return fmt::format("{:.{}f}", value, figures - 1 - exponent);
 }
 
+std::string estimate_text(double error) { return fmt::format("{:.1e}", PrintedDigits().measure(error)); }
+
 std::string to_significant_digits(double value, double relative_error) {
   return with_figures(value, significant_digits(relative_error));
 }

@@ -54,6 +54,10 @@ int significant_digits(double error);
 // C's %#.*g but without its trailing point, and without the digit past them that fmt's '#' adds ("236.0").
 std::string with_figures(double value, int figures);
 
+// An error estimate as a table prints it: 2 significant digits, rounded up (docs/outputs.md rule 1,
+// without the files' floor), "1.6e-02" for 0.015499.
+std::string estimate_text(double error);
+
 // A table's number to the significant digits its relative error supports (with_figures).
 std::string to_significant_digits(double value, double relative_error);
 

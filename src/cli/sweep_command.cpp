@@ -14,6 +14,7 @@
 #include "json_output.hpp"
 #include "number_options.hpp"
 #include "options.hpp"
+#include "printed_digits.hpp"
 #include "output_files.hpp"
 #include "progress.hpp"
 #include "static_limits_output.hpp"
@@ -114,8 +115,8 @@ void print_table(const Scene& scene, const ParameterSweep& s, const std::vector<
   fmt::print("tracking  by shape (mass-weighted MAC), lowest {:.3f}{}\n", s.min_correlation(),
              by_order == 0 ? std::string()
                            : fmt::format("; by frequency order at {} values where the dofs change", by_order));
-  fmt::print("error     {:.1e} relative, largest over the points (basis against richer models, and rounding, as `modes`)\n\n",
-             s.max_error_estimate());
+  fmt::print("error     {} relative, largest over the points (basis against richer models, and rounding, as `modes`)\n\n",
+             estimate_text(s.max_error_estimate()));
   const std::size_t width = std::max<std::size_t>(12, s.key.size());
   fmt::print("{:>{}}", s.key, width);
   for (const SweptMode& m : s.modes) fmt::print(" {:>14}", fmt::format("{} {}", m.index, to_string(m.family)));

@@ -148,7 +148,8 @@ void print_table(const Scene& scene, const BladeModel& model, const TransientOpt
                  rounding ? fmt::format(" (E's own rounding: {:.2g} J)", s.checks.energy_rounding_j) : std::string());
     }
     if (r.growth.omitted.empty()) {
-      fmt::print("growth     {:.7g} ± {:.2g} per revolution ({})\n", r.growth.growth, r.growth.error_estimate,
+      fmt::print("growth     {:.7g} ± {:.2g} per revolution ({})\n", r.growth.growth,
+                 PrintedDigits().measure(r.growth.error_estimate),
                  !r.continued_log_change.empty()
                      ? fmt::format("the state's change over the last whole revolution{}, carried on by that "
                                    "revolution's propagators for {} revolutions",
