@@ -181,8 +181,9 @@ TEST_CASE("ARPACK shift-invert agrees with dense LAPACK", "[modes][arpack]") {
     const BladeModel m = assemble_model(s);
     for (int k = 0; k < 8; ++k) {
       INFO(damping.size() << " overrides, mode " << k + 1);
-      // Shift-invert resolves the lowest modes best: measured 1e-13 on mode 1, 2e-9 on mode 8 (damped).
-      CHECK(std::abs(arpack.modes[k].eigenvalue - dense.modes[k].eigenvalue) < 1e-8 * std::abs(dense.modes[k].eigenvalue));
+      // Measured: at most 5e-13 over modes 1–8, damped or not (2e-9 on mode 8 before the first-order
+      // form was balanced, arpack_modes.cpp).
+      CHECK(std::abs(arpack.modes[k].eigenvalue - dense.modes[k].eigenvalue) < 1e-11 * std::abs(dense.modes[k].eigenvalue));
       CHECK(modal_assurance(arpack.modes[k].shape, dense.modes[k].shape, m.M) > 1 - 1e-8);
       CHECK(arpack.modes[k].family == dense.modes[k].family);
     }
