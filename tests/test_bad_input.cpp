@@ -590,6 +590,15 @@ TEST_CASE("bad input: issue 24, options read as the scene reads them (bad_input)
     const std::string scene = edited_scene("requirements_foo.toml", "", "", "[requirements]\nfoo = 3\n");
     expect_rejected({"check", scene}, {"requirements.foo = 3", "unknown key", "speed_range_rad_s"});
   }
+  SECTION("a list option before the scene takes one word: the scene stays the scene") {
+    // `--points 1 SCENE` had read "1,SCENE" ("SCENE is not allowed"), `--engine-orders 2 SCENE` alike.
+    const testing_support::Outcome o = testing_support::run_bladestab({"campbell", "--engine-orders", "2", valid_scene, "--speeds", "0:400:5", "--chart",
+                                     "none", "--format", "json"});
+    INFO(o.err);
+    CHECK(WIFEXITED(o.wait_status));
+    CHECK(WEXITSTATUS(o.wait_status) == 0);
+    CHECK(o.out.find("\"engine_orders\": [2]") != std::string::npos);
+  }
   SECTION("crosscheck --points 1,1") {
     expect_rejected({"crosscheck", valid_scene, "--points", "1,1"},
                     {"--points 1,1", "1 is given twice", "distinct numbers, each in [0, 1000]"});

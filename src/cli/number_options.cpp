@@ -119,7 +119,7 @@ CLI::Option* add_number_list_option(CLI::App& command, const std::string& name, 
         refuse_repeat(name, values, numbers, rule);
         target = numbers;
       },
-      help)->type_name("LIST");
+      help)->type_name("LIST")->allow_extra_args(false);  // one word each: `--points 1 SCENE` keeps its scene
 }
 
 CLI::Option* add_integer_list_option(CLI::App& command, const std::string& name, std::vector<int>& target, long lo,
@@ -137,7 +137,7 @@ CLI::Option* add_integer_list_option(CLI::App& command, const std::string& name,
         refuse_repeat(name, values, numbers, rule);
         target = std::vector<int>(numbers.begin(), numbers.end());
       },
-      help)->type_name("LIST");
+      help)->type_name("LIST")->allow_extra_args(false);
 }
 
 }  // namespace bladestab::cli
