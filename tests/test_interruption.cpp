@@ -4,8 +4,11 @@
 // its process group, the --max-seconds deadline — the drawer must not outlive the program, stderr
 // must hold exactly the program's one line, the exit status must be the stop's, and --out must hold
 // no file (no temporary either).
+#include <fcntl.h>
 #include <signal.h>
+#include <stdlib.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <filesystem>
@@ -136,4 +139,56 @@ TEST_CASE("outputs: a stderr that cannot take the whole line still ends the run 
   CHECK(o.err == std::string("bladestab: error: " + (out / "transient.csv").string() + ": cannot write this file")
                      .substr(0, 60));
   CHECK(files_in(out).empty());
+}
+
+namespace {
+
+// Everything the program writes to stderr when stderr is a terminal (a pseudo-terminal here; stdout
+// goes to /dev/null): its progress line and its last line. SIGINT goes to the program once its
+// stderr holds `interrupt_after`.
+std::string terminal_stderr(const std::vector<std::string>& args, const std::string& interrupt_after) {
+  const int master = posix_openpt(O_RDWR | O_NOCTTY);
+  REQUIRE(master >= 0);
+  REQUIRE(grantpt(master) == 0);
+  REQUIRE(unlockpt(master) == 0);
+  const std::string slave = ptsname(master);
+  const pid_t pid = fork();
+  REQUIRE(pid >= 0);
+  if (pid == 0) {
+    const int tty = open(slave.c_str(), O_RDWR), null = open("/dev/null", O_WRONLY);
+    dup2(null, STDOUT_FILENO);
+    dup2(tty, STDERR_FILENO);
+    std::vector<char*> argv{const_cast<char*>(BLADESTAB_EXE)};
+    for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    execv(BLADESTAB_EXE, argv.data());
+    _exit(127);
+  }
+  std::string text;
+  char buffer[4096];
+  bool interrupted = false;
+  for (ssize_t n; (n = read(master, buffer, sizeof buffer)) > 0;) {
+    text.append(buffer, static_cast<std::size_t>(n));
+    if (!interrupted && text.find(interrupt_after) != std::string::npos) interrupted = kill(pid, SIGINT) == 0;
+  }
+  int status = 0;
+  waitpid(pid, &status, 0);
+  close(master);
+  return text;
+}
+
+}  // namespace
+
+TEST_CASE("a run stopped mid-progress on a terminal writes its line over the progress line, not after it",
+          "[interruption]") {
+  // Ctrl-C while "campbell: speeds k/20000" stands: the stop's line had followed it on the same
+  // line ("… ( 7%)bladestab: stopped: …").
+  const std::string text = terminal_stderr({"campbell", scene, "--speeds", "0:400:20000", "--chart", "none", "--out",
+                                            (scratch() / "terminal_progress").string()},
+                                           "campbell: speeds");
+  const std::size_t line = text.find("bladestab: stopped: interrupted (SIGINT)");
+  INFO(text.substr(text.size() > 300 ? text.size() - 300 : 0));
+  REQUIRE(line != std::string::npos);
+  REQUIRE(text.rfind("campbell: speeds", line) != std::string::npos);  // the progress stood there
+  CHECK(text[line - 1] == '\r');
 }

@@ -6,6 +6,7 @@
 
 #include "support/message_text.hpp"
 #include "embedding.hpp"
+#include "progress.hpp"
 
 namespace bladestab::cli {
 
@@ -16,6 +17,7 @@ void print_stderr_line(const char* kind, const std::string& message) {
   // fwrite, its failure ignored: a stderr that cannot take the line (a full disk, a file-size
   // limit) has nowhere to report that, and fmt::print would throw from the run's last handler.
   const std::string text = fmt::format("bladestab: {}: {}\n", kind, line);
+  clear_progress_line();
   std::fwrite(text.data(), 1, text.size(), stderr);
 }
 
