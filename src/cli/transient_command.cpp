@@ -57,6 +57,7 @@ TransientSummary summarize(const TransientResult& r, double sample_rate) {
     s.mean_axial_m += ax[k] / ax.size();
   }
   s.sample_rate_hz = sample_rate;
+  s.sampling = peak_sampling(s);
   s.checks = check_transient(r);
   return s;
 }
@@ -80,8 +81,9 @@ private:
   std::optional<double> tolerance_;
 };
 
-// The samples' times and revolutions are the output grid's, as they are; the energy balance's error
-// is a check (2 digits); the step sizes (no estimate of their own) get 6 digits.
+// The samples' times and revolutions are the output grid's, as they are; the energy balance's error,
+// the contact propagators' bound and the self-check's measures are checks (2 digits, rounded up);
+// the step sizes (no estimate of their own) get 6 digits.
 TransientResult as_printed(TransientResult r, const PrintedRun& shown) {
   using Field = double TransientSample::*;
   for (const Field f : {&TransientSample::tip_lateral_m, &TransientSample::tip_axial_m,
@@ -103,6 +105,12 @@ TransientResult as_printed(TransientResult r, const PrintedRun& shown) {
     r.contact->contact_time_s = shown.value(r.contact->contact_time_s);
     r.contact->peak_force_n = shown.value(r.contact->peak_force_n);
     r.contact->max_overlap_m = shown.value(r.contact->max_overlap_m);
+  }
+  r.exact.contact_error = shown.digits.measure(r.exact.contact_error);
+  if (r.self_check) {
+    r.self_check->difference = shown.digits.measure(r.self_check->difference);
+    r.self_check->allowed = shown.digits.measure(r.self_check->allowed);
+    r.self_check->reference_part = shown.digits.measure(r.self_check->reference_part);
   }
   r.steps.smallest_step = shown.digits.unestimated(r.steps.smallest_step);
   r.steps.largest_step = shown.digits.unestimated(r.steps.largest_step);
@@ -154,6 +162,12 @@ TransientSummary as_printed(TransientSummary s, const PrintedRun& shown) {
   s.peak_axial_m = shown.value(s.peak_axial_m);
   s.mean_axial_m = shown.value(s.mean_axial_m);
   s.checks.energy_error_j = shown.digits.measure(s.checks.energy_error_j);
+  s.checks.energy_rounding_j = shown.digits.measure(s.checks.energy_rounding_j);
+  if (s.sampling) {
+    s.sampling->frequency_hz = shown.digits.unestimated(s.sampling->frequency_hz);
+    s.sampling->samples_per_period = shown.digits.unestimated(s.sampling->samples_per_period);
+    s.sampling->peak_bound = shown.digits.measure(s.sampling->peak_bound);
+  }
   s.checks.vibration_energy_j = shown.value(s.checks.vibration_energy_j);
   return s;
 }
@@ -191,7 +205,7 @@ void method_fields(Json& json, const TransientResult& r) {
                           {"reference_tolerance", c->reference_tolerance},
                           {"relative_difference", c->difference}, {"allowed", c->allowed},
                           {"relative_to", c->relative_to_resolution ? "reference_resolution" : "vibration"},
-                          {"reference_part", c->reference_part}, {"seconds", c->seconds}};
+                          {"reference_part", c->reference_part}};
   }
   if (r.stopped) json["stopped"] = {{"revolution", r.stopped->revolution}, {"reason", r.stopped->reason}};
 }
@@ -203,7 +217,7 @@ void summary_fields(Json& json, const TransientResult& r, const TransientSummary
   json["peak_tip_axial_m"] = s.peak_axial_m;
   json["mean_tip_axial_m"] = s.mean_axial_m;
   json["static_tip_axial_m"] = r.static_tip_axial_m;
-  if (const std::optional<PeakSampling> p = peak_sampling(s)) {
+  if (const std::optional<PeakSampling>& p = s.sampling) {
     json["peak_sampling"] = {{"dominant_frequency_hz", p->frequency_hz}, {"samples_per_period", p->samples_per_period},
                              {"peak_between_samples_bound", std::isfinite(p->peak_bound) ? Json(p->peak_bound) : Json(nullptr)}};
   }
@@ -522,7 +536,7 @@ Command register_transient(CLI::App& app) {
       case OutputFormat::table:
         print_table(scene, run.model, o, printed, printed_summary,
                     s.checks.energy_error_j / std::max(s.checks.vibration_energy_j, 1e-300), shown_error);
-        print_error(shown_error, run.model, peak_sampling(s));
+        print_error(shown_error, run.model, s.sampling);
         fmt::print("written    {}\n", fmt::join(files, ", "));
     }
   };

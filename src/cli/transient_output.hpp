@@ -14,21 +14,23 @@
 
 namespace bladestab::cli {
 
-// The spectra, dominant frequencies, tip peaks and mean of a run, and its checks.
-struct TransientSummary {
-  Spectrum lateral, axial;  // empty for a history of fewer than 4 samples (a run stopped at once)
-  std::optional<double> lateral_hz, axial_hz;
-  double peak_lateral_m = 0, peak_axial_m = 0, mean_axial_m = 0;  // over the samples
-  double sample_rate_hz = 0;
-  TransientChecks checks;
-};
-
 // How finely the samples resolve the faster dominant response (of the tip's lateral and axial
 // deflection): its samples a period n, and how much higher than the samples' largest a sinusoid of
 // that period can peak between them, 1/cos(π/n) − 1 (its crest midway between two samples). The
 // peaks and their estimates are the samples'.
 struct PeakSampling {
   double frequency_hz = 0, samples_per_period = 0, peak_bound = 0;
+};
+
+// The spectra, dominant frequencies, tip peaks and mean of a run, how finely its samples resolve
+// the response (none without a dominant frequency), and its checks.
+struct TransientSummary {
+  Spectrum lateral, axial;  // empty for a history of fewer than 4 samples (a run stopped at once)
+  std::optional<double> lateral_hz, axial_hz;
+  double peak_lateral_m = 0, peak_axial_m = 0, mean_axial_m = 0;  // over the samples
+  double sample_rate_hz = 0;
+  std::optional<PeakSampling> sampling;
+  TransientChecks checks;
 };
 std::optional<PeakSampling> peak_sampling(const TransientSummary& s);
 

@@ -32,11 +32,11 @@ void print_method(const TransientOptions& o, const TransientResult& r) {
   }
   if (const std::optional<SelfCheck>& c = r.self_check) {
     fmt::print("check      against {} (rtol {:g}) to revolution {:.4g}: states differ by {:.2g} of {} "
-               "(allowed {:.2g}), {:.3g} s\n",
+               "(allowed {:.2g})\n",
                c->reference == "rkf78" ? "RKF78 (Boost.Odeint)" : "RKF45", c->reference_tolerance,
                c->until_revolutions, c->difference,
                c->relative_to_resolution ? "the reference's resolution (no vibration above it)" : "the vibration",
-               c->allowed, c->seconds);
+               c->allowed);
   }
   if (r.stopped) fmt::print("stopped    at revolution {:.4g}: {}\n", r.stopped->revolution, r.stopped->reason);
 }
@@ -114,7 +114,7 @@ void print_table(const Scene& scene, const BladeModel& model, const TransientOpt
                millimetres(s.mean_axial_m, estimated(error, "mean_tip_axial_m"), shown.digits),
                1e3 * r.static_tip_axial_m,
                millimetres(s.peak_axial_m, estimated(error, "peak_tip_axial_m"), shown.digits), hz(s.axial_hz));
-    if (const std::optional<PeakSampling> p = peak_sampling(s); p && p->samples_per_period < 20) {
+    if (const std::optional<PeakSampling>& p = s.sampling; p && p->samples_per_period < 20) {
       fmt::print("sampling   the peaks are the samples' largest, their ± too: the {:.5g} Hz response has {:.3g} samples "
                  "a period, between which it can peak up to {} higher; --samples-per-rev resolves it\n",
                  p->frequency_hz, p->samples_per_period,

@@ -1,5 +1,6 @@
 #include "bladestab/stability/periodic_load.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -50,7 +51,9 @@ std::optional<double> PulseTrain::time_in_pulse(double t) const {
   if (t < 0) return std::nullopt;
   const double p = std::floor(t / period_s);
   if (count > 0 && p >= count) return std::nullopt;
-  const double tau = t - p * period_s;
+  // Not below 0: t − p·period rounds to −1e-18 s at some pulse starts where t/period rounds up to p
+  // (sample 600 of 200 a revolution), and a half-sine there pulled the tip (+1.7e-8 N).
+  const double tau = std::max(0.0, t - p * period_s);
   // Half-open window [0, t_c): at a pulse's end the force is already off, so an integrator step
   // that lands there starts the next step with the right-hand limit.
   if (tau >= contact_time_s && contact_time_s < period_s) return std::nullopt;

@@ -129,7 +129,6 @@ double check_stretch(const Scene& scene, const TransientOptions& options);
 struct ReferenceRun {
   Eigen::VectorXd state;
   std::string method;
-  double seconds = 0;
 };
 ReferenceRun reference_run(const BladeModel& model, const Scene& scene, const TransientOptions& options,
                            double check_time, const Cancellation* stop = nullptr);

@@ -12,8 +12,8 @@ SCENE = os.path.join(SOURCE_DIR, "stability_maps", "sinha2005", "blade.toml")
 
 
 def without_wall_times(document):
-    """The document without its wall times ("seconds": a transient's self-check, each check of
-    `check`), which differ from run to run."""
+    """The document without its wall times ("seconds": each check of `check`, as JUnit reports
+    them), which differ from run to run."""
     if isinstance(document, dict):
         return {k: without_wall_times(v) for k, v in document.items() if k != "seconds"}
     if isinstance(document, list):

@@ -128,7 +128,6 @@ struct SelfCheck {
   // `difference` is relative to the vibration, or, where there is none above the reference's
   // resolution (a tip at rest against the casing), to that resolution: rtol of the whole state.
   bool relative_to_resolution = false;
-  double seconds = 0;
 };
 
 struct TransientResult {
