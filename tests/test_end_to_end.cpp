@@ -331,6 +331,18 @@ TEST_CASE("end to end: transient, json, csv and PNG, the static stretch and the 
   check_png(dir / "transient.png", 1500, 1050);
 }
 
+TEST_CASE("end to end: transient, the same run on one and two threads prints the same bytes", "[end_to_end][transient]") {
+  // The self-check's wall time ("seconds") had made every two runs differ in JSON and table.
+  const std::vector<std::string> args{"--revolutions", "1", "--chart", "none", "--out", output_dir("transient_threads").string()};
+  for (const char* format : {"json", "table"}) {
+    std::vector<std::string> one = args, two = args;
+    one.insert(one.end(), {"--format", format, "--threads", "1"});
+    two.insert(two.end(), {"--format", format, "--threads", "2"});
+    INFO(format);
+    CHECK(run("transient", one) == run("transient", two));
+  }
+}
+
 TEST_CASE("end to end: crosscheck, json and csv, the cosine approximation's Floquet max|rho| against Runge-Kutta 7(8)",
           "[end_to_end][crosscheck]") {
   const std::vector<std::string> more{"--points", "5", "--revolutions", "6", "--set", "model.axial=false"};
