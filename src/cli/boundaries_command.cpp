@@ -368,7 +368,7 @@ std::optional<std::string> tolerance_unmet(const Scene& scene, const BoundaryReq
     const ModelSpec& spec = scene.model;
     part = fmt::format("its basis part {:.1e} with model.basis = \"{}\" and {} terms per field: {}", total.basis,
                        to_string(spec.basis), spec.terms,
-                       basis_can_reach(basis_convergence(scene.blade, spec.basis), spec.terms, total.basis,
+                       basis_can_reach(basis_convergence(scene.blade, spec.basis, spec.terms), spec.terms, total.basis,
                                        request.tolerance)
                            ? "raise model.terms"
                            : spec.basis == BasisKind::sine ? "more terms cannot reach it; use model.basis = \"legendre\""

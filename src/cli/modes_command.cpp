@@ -70,11 +70,15 @@ void print_modes_json(const Scene& scene, const ConvergedModes& result, const Pr
                    {"coriolis", result.model.spec.coriolis}};
   json["damping"] = to_string(scene.damping.model);
   json["solver"] = to_string(sol.solver);
-  const BasisConvergence convergence = basis_convergence(scene.blade, result.model.spec.basis);
+  const BasisConvergence convergence =
+      basis_convergence(scene.blade, result.model.spec.basis, result.model.spec.terms);
   json["accuracy"] = {{"method", convergence == BasisConvergence::sine
                                      ? "tail of algebraic convergence from models with N, 2N and 4N terms"
                                  : convergence == BasisConvergence::kinked
                                      ? "tail of algebraic convergence (a section table, rate 2) from a richer model"
+                                 : convergence == BasisConvergence::unresolved
+                                     ? "tail of algebraic convergence (a section table finer than the basis, rate "
+                                       "0.75) from a richer model"
                                      : "relative change against a richer model"},
                       {"reference_terms", result.reference_terms},
                       {"max_relative_error", digits.estimate(result.max_relative_error())}};
@@ -106,7 +110,8 @@ void print_modes_table(const Scene& scene, const ConvergedModes& result) {
              speed * rpm_per_rad_s, result.model.blade.nondimensional_speed(speed), to_string(scene.damping.model),
              to_string(sol.solver));
   fmt::print("accuracy  {} against {}-term models, at most {}; digits shown are those the error supports\n\n",
-             basis_convergence(scene.blade, result.model.spec.basis) == BasisConvergence::exponential
+             basis_convergence(scene.blade, result.model.spec.basis, result.model.spec.terms) ==
+                     BasisConvergence::exponential
                  ? "relative change"
                  : "tail of algebraic convergence",
              result.model.spec.basis == BasisKind::sine

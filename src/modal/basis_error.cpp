@@ -27,6 +27,9 @@ constexpr double min_rate = 0.05, max_rate = 40, max_trusted_rate = 0.9;
 constexpr double exponential_margin = 1.1;
 // The rate a kinked table's estimate trusts (basis_convergence): below the measured 2.5–4.
 constexpr double kinked_trusted_rate = 2;
+// The rate an unresolved table's estimate trusts: below the measured 0.83 (mode 4 of a table with a
+// step at mid-span, 24–96 terms; mode 1: 0.94; the fan blade at 8 terms: about 1.5).
+constexpr double unresolved_trusted_rate = 0.75;
 
 ModalSolution modes_of(const BladeModel& model, const Scene& scene, int count, EigenSolverKind solver) {
   const double speed = scene.operation.speed_rad_s;
@@ -57,8 +60,9 @@ std::optional<double> counterpart(const ModalSolution& reference, ModeFamily fam
 // Exponential convergence (Legendre): exponential_margin · |f₁ − f₂|.
 BasisTail basis_tail(const std::vector<double>& f, const std::vector<int>& n, BasisConvergence convergence) {
   const double d1 = f[0] - f[1];
-  if (convergence == BasisConvergence::kinked) {
-    const double factor = 1 / (1 - std::pow(static_cast<double>(n[0]) / n[1], kinked_trusted_rate));
+  if (convergence == BasisConvergence::kinked || convergence == BasisConvergence::unresolved) {
+    const double rate = convergence == BasisConvergence::kinked ? kinked_trusted_rate : unresolved_trusted_rate;
+    const double factor = 1 / (1 - std::pow(static_cast<double>(n[0]) / n[1], rate));
     return {factor * std::abs(d1) / std::abs(f[1]), factor};
   }
   if (f.size() == 2 || d1 == 0) return {exponential_margin * std::abs(d1) / std::abs(f[1]), exponential_margin};
@@ -140,15 +144,21 @@ ReferenceSolves reference_solves(ModelSpec spec, bool two_planes) {
   return solves;
 }
 
-BasisConvergence basis_convergence(const BladeSpec& blade, BasisKind basis) {
+BasisConvergence basis_convergence(const BladeSpec& blade, BasisKind basis, int terms) {
   if (basis == BasisKind::sine) return BasisConvergence::sine;
-  return blade.sections.size() > 2 ? BasisConvergence::kinked : BasisConvergence::exponential;
+  if (blade.sections.size() <= 2) return BasisConvergence::exponential;
+  double closest = 1;
+  for (std::size_t k = 1; k < blade.sections.size(); ++k) {
+    closest = std::min(closest, blade.sections[k].span_fraction - blade.sections[k - 1].span_fraction);
+  }
+  return closest * terms < 2 ? BasisConvergence::unresolved : BasisConvergence::kinked;
 }
 
 double basis_tail_factor(BasisConvergence convergence) {
   switch (convergence) {
     case BasisConvergence::exponential: return exponential_margin;
     case BasisConvergence::kinked: return 1 / (1 - std::pow(2.0 / 3, kinked_trusted_rate));
+    case BasisConvergence::unresolved: return 1 / (1 - std::pow(2.0 / 3, unresolved_trusted_rate));
     case BasisConvergence::sine: break;
   }
   return 1 / (1 - std::pow(2.0, -max_trusted_rate));
@@ -157,7 +167,8 @@ double basis_tail_factor(BasisConvergence convergence) {
 bool basis_can_reach(BasisConvergence convergence, int terms, double estimate, double tolerance) {
   if (terms >= max_terms) return false;
   // Algebraic convergence: the estimate falls like N^−p (sine: p ≤ 1 asymptotically, v'(0) = 0 is
-  // an O(1/N) error; kinked: about 3). If even p = 2 would need more than max_terms, raising is futile.
+  // an O(1/N) error; kinked: about 3, and an unresolved table as fast once more terms resolve it).
+  // If even p = 2 would need more than max_terms, raising is futile.
   return convergence == BasisConvergence::exponential || terms * std::sqrt(estimate / tolerance) <= max_terms;
 }
 
@@ -213,13 +224,13 @@ ConvergedModes modes_with_error_estimate(const Scene& scene, int count, EigenSol
       rounding.push_back(frequency_rounding(absolute, m.shape.cwiseAbs(), (m.shape.adjoint() * K * m.shape)(0).real()));
     }
     ConvergedModes result{std::move(model), std::move(solution), terms.back(),
-                          compare(models, terms, basis_convergence(scene.blade, spec.basis)), std::move(rounding)};
+                          compare(models, terms, basis_convergence(scene.blade, spec.basis, spec.terms)), std::move(rounding)};
     // The whole estimate of every mode (basis + method), as printed, must meet the tolerance.
     const double estimate = result.worst_budget().total();
     if (!tolerance || estimate <= *tolerance) return result;
     const double rounded = *std::max_element(result.rounding.begin(), result.rounding.end());
     if (rounded > *tolerance) throw tolerance_below_rounding(*tolerance, rounded);
-    const std::optional<int> next = terms_for_tolerance(basis_convergence(scene.blade, spec.basis), spec.terms, estimate,
+    const std::optional<int> next = terms_for_tolerance(basis_convergence(scene.blade, spec.basis, spec.terms), spec.terms, estimate,
                                                              *tolerance);
     if (!next) throw tolerance_not_met(*tolerance, spec, estimate);
     spec.terms = *next;

@@ -143,7 +143,7 @@ public:
       : scene_(scene), options_(options), dense_(dense),
         model_(std::make_unique<BladeModel>(assemble_model_at_any_speed(scene, spec))),
         limits_(campbell_speeds(*model_, options)), terms_{spec.terms},
-        convergence_(basis_convergence(scene.blade, spec.basis)) {
+        convergence_(basis_convergence(scene.blade, spec.basis, spec.terms)) {
     // The speeds within the static limits of the model the curves belong to.
     options_.speeds_rad_s.assign(options.speeds_rad_s.begin() + limits_.first, options.speeds_rad_s.begin() + limits_.end);
     count_ = solve_count(*model_, options_);
@@ -347,7 +347,7 @@ CampbellWithErrors campbell_with_error_estimate(const Scene& scene, const Campbe
   double spent = 0;    // the whole-model eigensolves of the rounds before (EstimateRound::work)
   std::optional<std::pair<int, double>> reached;  // the last round's terms and estimate
   const auto raise = [&](double worst, const EstimateRound& round) {
-    const std::optional<int> next = terms_for_tolerance(basis_convergence(scene.blade, spec.basis), spec.terms,
+    const std::optional<int> next = terms_for_tolerance(basis_convergence(scene.blade, spec.basis, spec.terms), spec.terms,
                                                          worst, tolerance);
     if (!next) throw tolerance_not_met(tolerance, spec, worst);
     spent += round.work();

@@ -449,7 +449,7 @@ public:
     ModelSpec richer = scene_.model;
     richer.terms = reference_terms(richer.basis, richer.terms);
     BoundarySolver richer_solver = solver_for(assemble_model(scene_, richer), load_, result.reduction);
-    compare(result, richer_solver, basis_tail_factor(basis_convergence(scene_.blade, richer.basis)), &ErrorBudget::basis,
+    compare(result, richer_solver, basis_tail_factor(basis_convergence(scene_.blade, richer.basis, scene_.model.terms)), &ErrorBudget::basis,
             "basis: no counterpart with a richer basis");
     if (!load_.cosine_approximation) {
       const LoadSeries longer_series = load_series(scene_, load_.relative_tail / 10, 10 * (load_.harmonics() + 1));

@@ -141,7 +141,7 @@ CurveFidelity check_curves(const Scene& scene, const CurveWindow& w, const Curve
     double ErrorBudget::*part;
   };
   std::vector<Variant> variants{
-      {{&richer, m.reduction, m.approximation}, m, basis_tail_factor(basis_convergence(scene.blade, scene.model.basis)), &ErrorBudget::basis},
+      {{&richer, m.reduction, m.approximation}, m, basis_tail_factor(basis_convergence(scene.blade, scene.model.basis, scene.model.terms)), &ErrorBudget::basis},
       {{m.model, m.reduction, m.approximation + 2}, m, 2, &ErrorBudget::method}};
   if (reduced) {
     variants.push_back({{m.model, {ReductionKind::none, 0, 0}, whole_k}, {m.model, m.reduction, whole_k}, 1,

@@ -355,7 +355,7 @@ void check_shading_basis(const BladeModel& model, const Scene& scene, const Curv
   std::vector<std::pair<BladeModel, double>> richer;  // each model and its factor
   ModelSpec spec = scene.model;
   spec.terms = reference_terms(spec.basis, spec.terms);
-  richer.emplace_back(assemble_model(scene, spec), basis_tail_factor(basis_convergence(scene.blade, spec.basis)));
+  richer.emplace_back(assemble_model(scene, spec), basis_tail_factor(basis_convergence(scene.blade, spec.basis, scene.model.terms)));
   if (scene.model.basis == BasisKind::sine) {
     spec = scene.model;
     spec.basis = BasisKind::legendre;

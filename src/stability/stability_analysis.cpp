@@ -125,7 +125,7 @@ VariantPlan plan_variants(const Scene& scene, const Fidelity& f) {
   richer_basis.model.terms = reference_terms(f.model.basis, f.model.terms);
   // Algebraic convergence: the difference to 2N understates the error up to 2× (sine basis), to
   // 1.5N up to 1.8× (a section table's kinks, basis_tail_factor).
-  const BasisConvergence convergence = basis_convergence(scene.blade, f.model.basis);
+  const BasisConvergence convergence = basis_convergence(scene.blade, f.model.basis, f.model.terms);
   v.basis_factor = convergence == BasisConvergence::exponential ? 1 : convergence == BasisConvergence::sine ? 2
                                                                       : basis_tail_factor(convergence);
   v.basis = add(richer_basis);
@@ -232,7 +232,7 @@ NextRound next_round(const Scene& scene, const Fidelity& f, const StabilityAnswe
   const ErrorBudget& b = a.budget;
   const double scale = std::max(1.0, a.floquet.max_abs_multiplier), allowed = tol * scale;
   const bool basis_reachable =
-      basis_can_reach(basis_convergence(scene.blade, f.model.basis), f.model.terms, b.basis / scale, tol);
+      basis_can_reach(basis_convergence(scene.blade, f.model.basis, f.model.terms), f.model.terms, b.basis / scale, tol);
   Fidelity next = f;
   if (b.basis >= std::max(b.reduction, b.load) && basis_reachable) {
     next.model.terms = std::min(max_terms, reference_terms(f.model.basis, f.model.terms));
