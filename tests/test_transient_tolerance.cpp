@@ -146,8 +146,11 @@ TEST_CASE("the CLI: the peaks are the samples', and peak_sampling bounds a peak 
   testing_support::Json coarse = run("200"), fine = run("4000");
   const double n = coarse["peak_sampling"]["samples_per_period"].number;
   const double bound = coarse["peak_sampling"]["peak_between_samples_bound"].number;
-  CHECK(n == Approx(200 * 300 / (2 * 3.14159265358979323846) / coarse["peak_sampling"]["dominant_frequency_hz"].number).epsilon(1e-9));
-  CHECK(bound == Approx(1 / std::cos(3.14159265358979323846 / n) - 1).epsilon(1e-12));
+  // As printed (docs/outputs.md): n to 6 digits, the bound to 2 digits rounded up.
+  CHECK(n == Approx(200 * 300 / (2 * 3.14159265358979323846) / coarse["peak_sampling"]["dominant_frequency_hz"].number).epsilon(1e-5));
+  const double exact_bound = 1 / std::cos(3.14159265358979323846 / n) - 1;
+  CHECK(bound >= exact_bound);
+  CHECK(bound <= 1.1 * exact_bound);
   CHECK(n < 10);
   for (const char* peak : {"peak_tip_lateral_m", "peak_tip_axial_m"}) {
     CAPTURE(peak, coarse[peak].number, fine[peak].number, bound);
