@@ -10,9 +10,7 @@ import numbers
 import numpy as np
 
 from bladestab.errors import InputError
-
-# The store's own variables and dimension (study_store.py), which no grid key may name.
-RESERVED = {"computed", "failed", "failure", "point"}
+from bladestab.study_store import RESERVED
 
 
 def _values(key, values):

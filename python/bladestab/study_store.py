@@ -16,11 +16,11 @@ import zarr
 
 from bladestab.errors import InputError
 
-from bladestab.study_plan import RESERVED
-
 COMPUTED = "computed"
 FAILED = "failed"
 FAILURE = "failure"
+# The store's own variables and dimension, which no grid key may name (study_plan.py).
+RESERVED = {COMPUTED, FAILED, FAILURE, "point"}
 
 
 def _unusable(store, reason):

@@ -7,7 +7,6 @@
 
 #include <cerrno>
 
-#include <algorithm>
 #include <array>
 #include <atomic>
 #include <chrono>
@@ -64,19 +63,6 @@ void write_line(const char* text) {  // async-signal-safe
   }
 }
 
-// Writes blanks over a progress line left standing (progress.hpp), so that the stop's line starts
-// at the terminal's first column.
-void clear_progress() {  // async-signal-safe
-  char blank[256];
-  const int width = std::min(progress_line_width(), static_cast<int>(sizeof blank) - 3);
-  if (width <= 0) return;
-  blank[0] = '\r';
-  std::memset(blank + 1, ' ', static_cast<std::size_t>(width));
-  blank[width + 1] = '\r';
-  blank[width + 2] = '\0';
-  write_line(blank);
-}
-
 // The deadline takes this lock before it stops the run; a StopDeferral holds it meanwhile.
 std::mutex& commit_lock() {
   static std::mutex lock;
@@ -93,7 +79,7 @@ std::mutex& commit_lock() {
 
 extern "C" void stop_on_signal(int signal_number) {
   end_child_and_remove_temporaries();
-  clear_progress();
+  clear_progress_line();
   write_line(signal_number == SIGINT ? "bladestab: stopped: interrupted (SIGINT)" : "bladestab: stopped: terminated (SIGTERM)");
   write_line(files_note());
   end_process(128 + signal_number);
@@ -129,7 +115,7 @@ void stop_after(double seconds, const std::string& limit) {
     std::this_thread::sleep_for(std::chrono::duration<double>(seconds));
     commit_lock().lock();  // never released: the process ends here
     end_child_and_remove_temporaries();
-    clear_progress();
+    clear_progress_line();
     write_line(message.c_str());
     write_line(files_note());
     end_process(1);

@@ -1,7 +1,9 @@
 #include "progress.hpp"
 
+#include <algorithm>
 #include <atomic>
 #include <cstdio>
+#include <cstring>
 #include <unistd.h>
 
 #include "embedding.hpp"
@@ -15,10 +17,16 @@ std::atomic<int> open_width{0};
 
 }  // namespace
 
-int progress_line_width() { return open_width.load(); }
-
 void clear_progress_line() {
-  if (const int width = open_width.exchange(0); width > 0) std::fprintf(stderr, "\r%*s\r", width, "");
+  char blank[256];
+  const int width = std::min(open_width.exchange(0), static_cast<int>(sizeof blank) - 2);
+  if (width <= 0) return;
+  blank[0] = '\r';
+  std::memset(blank + 1, ' ', static_cast<std::size_t>(width));
+  blank[width + 1] = '\r';
+  // write, not stdio: a signal handler and the deadline's thread call this too. Its failure is
+  // ignored, as the line that follows it ignores its own.
+  [[maybe_unused]] const ssize_t written = ::write(STDERR_FILENO, blank, static_cast<std::size_t>(width) + 2);
 }
 
 std::function<void(int, int)> progress_reporter(const std::string& label, bool enabled) {
