@@ -13,6 +13,7 @@
 #include <complex>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <vector>
 
 #include <catch2/catch.hpp>
@@ -22,7 +23,9 @@
 #include "bladestab/ltp/floquet.hpp"
 #include "bladestab/ltp/linear_periodic_system.hpp"
 #include "bladestab/ltp/magnus.hpp"
+#include "bladestab/ltp/monodromy.hpp"
 #include "bladestab/ltp/pulse_monodromy.hpp"
+#include "bladestab/ltp/reversing_symmetry.hpp"
 #include "bladestab/ltp/step_doubling.hpp"
 #include "reference/mathieu.hpp"
 
@@ -310,7 +313,7 @@ TEST_CASE("LTP kernels: a monodromy ladder stops at its work limit, and a limit 
   FloquetOptions options{FloquetMethod::monodromy, 0, 1e-10, false, {}};
   const FloquetResult free = floquet_multipliers(sys, options);
   REQUIRE(free.steps > 16);
-  options.max_flops = (2.0 * free.steps - 8) * magnus_step_work(sys.state_size());
+  options.max_flops = (2.0 * free.steps - 8) * monodromy_step_work(sys);
   const FloquetResult fitted = floquet_multipliers(sys, options);
   CHECK(fitted.steps == free.steps);
   CHECK((fitted.multipliers - free.multipliers).cwiseAbs().maxCoeff() == 0);
@@ -319,3 +322,43 @@ TEST_CASE("LTP kernels: a monodromy ladder stops at its work limit, and a limit 
   CHECK_THROWS_WITH(floquet_multipliers(sys, options), Catch::Contains("all that the work limit affords"));
 }
 
+
+namespace {
+
+// Two modes as the blade's axial and bending ones: the coefficient loads the first (G₁₁ = 1), the
+// gyroscopic term joins the two, and `cross` couples them in G as the blade's fields never do.
+LinearPeriodicSystem gyroscopic_pair(double damping, std::complex<double> f1, double cross = 0) {
+  Eigen::MatrixXd G(2, 2), C(2, 2);
+  G << 1, cross, cross, 0;
+  C << damping, 0.4, -0.4, damping;
+  return modal_periodic_system({Eigen::Vector2d(1.0, 2.3), G, C}, {0.1, f1}, 2.0, damping == 0);
+}
+
+}  // namespace
+
+TEST_CASE("LTP kernels: an undamped gyroscopic pair under an even coefficient reverses in time, not with damping, an odd "
+          "part of f or a coupling within one class do not",
+          "[ltp]") {
+  const LinearPeriodicSystem even = gyroscopic_pair(0, 0.3);
+  const std::optional<Eigen::VectorXd> r = reversing_signature(even);
+  REQUIRE(r);
+  const Eigen::MatrixXd R = r->asDiagonal();
+  CHECK((R * even.A0 * R + even.A0).isZero(0));
+  CHECK((R * even.B * R + even.B).isZero(0));
+  CHECK_FALSE(reversing_signature(gyroscopic_pair(0.01, 0.3)));
+  CHECK_FALSE(reversing_signature(gyroscopic_pair(0, {0.3, 0.1})));
+  CHECK_FALSE(reversing_signature(gyroscopic_pair(0, 0.3, 0.2)));
+}
+
+TEST_CASE("LTP kernels: the half-period monodromy R U⁻¹ R U is the whole period's, by RKF45 at rtol 1e-12", "[ltp]") {
+  // The stable and the unstable side of the pair's first tongue, and one where U is too ill
+  // conditioned for U⁻¹ (a growth of e^40 per half period), which integrates the second half too.
+  for (const double f1 : {0.3, 1.2, 30.0}) {
+    const LinearPeriodicSystem sys = gyroscopic_pair(0, f1);
+    REQUIRE(reversing_signature(sys));
+    const Eigen::VectorXcd half = monodromy_multipliers(sys, 2048);
+    const Eigen::VectorXcd whole = sorted_eigenvalues(rkf45_monodromy(sys, 1e-12));
+    INFO("f1 = " << f1 << ", max|rho| = " << std::abs(whole(0)));
+    CHECK(multiplier_set_distance(half, whole) <= 1e-8 * std::max(1.0, std::abs(whole(0))));
+  }
+}

@@ -1,6 +1,10 @@
 #include "bladestab/blade/reduction.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <numeric>
+#include <utility>
+#include <vector>
 
 #include "bladestab/base/constants.hpp"
 #include "bladestab/base/input_error.hpp"
@@ -27,14 +31,97 @@ Eigen::MatrixXd m_orthonormal(Eigen::MatrixXd W, const Eigen::MatrixXd& M) {
   return W * gram.eigenvectors().rightCols(n) * g.tail(n).cwiseSqrt().cwiseInverse().asDiagonal();
 }
 
+// A basis V and the sizes of its column blocks (ReducedSystem::blocks).
+struct ReducedBasis {
+  Eigen::MatrixXd V;
+  std::vector<int> blocks;
+};
+
+// The coordinates of the axial field against the others (rotation and bending): the two are
+// coupled by the gyroscopic matrix alone, M, K_S, K_C1 and G having no entry between them
+// (docs/theory.md §2.4). Empty where the model has no axial field or couples it otherwise.
+std::vector<std::pair<int, int>> decoupled_fields(const BladeModel& model) {
+  const int a = model.layout.axial_offset(), na = model.layout.axial_count;
+  const auto uncoupled = [&](const Eigen::MatrixXd& X) {
+    return X.block(0, a, a, na).isZero(0) && X.block(a, 0, na, a).isZero(0);
+  };
+  if (a == 0 || na == 0) return {};
+  if (!(uncoupled(model.M) && uncoupled(model.K_S) && uncoupled(model.K_C1) && uncoupled(model.G))) return {};
+  return {{0, a}, {a, na}};
+}
+
+// An M-orthonormal basis of span(W) whose vectors each lie in one group of decoupled fields: every
+// column of W is cut into its parts in the groups, a part kept where its M-norm is above 1e-8 of
+// the column's (below, it is the rounding of the eigensolver that made the column), and each
+// group's parts made M-orthonormal apart. The reduced M, K(Ω) and G are then block diagonal to the
+// last bit, and so are the modes (reduced_modes): an axial mode stays axial, as in the continuum.
+ReducedBasis field_pure_basis(const Eigen::MatrixXd& W, const BladeModel& model) {
+  const std::vector<std::pair<int, int>> groups = decoupled_fields(model);
+  if (groups.empty()) {
+    Eigen::MatrixXd V = m_orthonormal(W, model.M);
+    const int size = static_cast<int>(V.cols());
+    return {std::move(V), {size}};
+  }
+  std::vector<Eigen::MatrixXd> parts;
+  Eigen::Index columns = 0;
+  for (const auto& [offset, count] : groups) {
+    Eigen::MatrixXd part = Eigen::MatrixXd::Zero(W.rows(), W.cols());
+    int kept = 0;
+    for (Eigen::Index c = 0; c < W.cols(); ++c) {
+      const auto piece = W.col(c).segment(offset, count);
+      const double whole = W.col(c).dot(model.M * W.col(c));
+      const double own = piece.dot(model.M.block(offset, offset, count, count) * piece);
+      if (own > 1e-16 * whole) part.col(kept++).segment(offset, count) = piece;
+    }
+    if (kept == 0) continue;  // no column reaches this group (the automatic reduction without Coriolis: no axial part)
+    part.conservativeResize(Eigen::NoChange, kept);
+    parts.push_back(m_orthonormal(std::move(part), model.M));
+    columns += parts.back().cols();
+  }
+  ReducedBasis basis{Eigen::MatrixXd(W.rows(), columns), {}};
+  Eigen::Index at = 0;
+  for (const Eigen::MatrixXd& part : parts) {
+    basis.V.middleCols(at, part.cols()) = part;
+    at += part.cols();
+    basis.blocks.push_back(static_cast<int>(part.cols()));
+  }
+  return basis;
+}
+
 }  // namespace
+
+ReducedModes reduced_modes(const ReducedSystem& reduced) {
+  const Eigen::Index n = reduced.size();
+  Eigen::VectorXd omega2(n);
+  Eigen::MatrixXd shapes = Eigen::MatrixXd::Zero(n, n);
+  Eigen::Index at = 0;
+  // A system stated without blocks is one block.
+  const std::vector<int> blocks = reduced.blocks.empty() ? std::vector<int>{static_cast<int>(n)} : reduced.blocks;
+  for (const int size : blocks) {
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> block(reduced.K.block(at, at, size, size));
+    if (block.info() != Eigen::Success) return {{}, {}, false};
+    omega2.segment(at, size) = block.eigenvalues();
+    shapes.block(at, at, size, size) = block.eigenvectors();
+    at += size;
+  }
+  // Ascending over the blocks, as one eigensolver would give them.
+  std::vector<Eigen::Index> order(n);
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](Eigen::Index i, Eigen::Index j) { return omega2(i) < omega2(j); });
+  ReducedModes modes{Eigen::VectorXd(n), Eigen::MatrixXd(n, n), true};
+  for (Eigen::Index k = 0; k < n; ++k) {
+    modes.omega2(k) = omega2(order[k]);
+    modes.shapes.col(k) = shapes.col(order[k]);
+  }
+  return modes;
+}
 
 ReducedSystem reduce(const BladeModel& model, double speed, const Eigen::MatrixXd& damping, double min_force_n,
                      const ReductionSpec& spec) {
   if (std::optional<InputError> past = static_limit_error(model, speed)) throw *past;
   const Eigen::MatrixXd C = damping + model.gyroscopic(speed);
   const int dofs = model.layout.size();
-  Eigen::MatrixXd V;
+  ReducedBasis basis;
   const int m = spec.vectors > 0 ? spec.vectors : default_reduction_vectors;
   // A model no larger than the reduced one would be is kept whole.
   if (spec.kind == ReductionKind::automatic && !reduction_keeps_whole(m, dofs)) {
@@ -44,7 +131,7 @@ ReducedSystem reduce(const BladeModel& model, double speed, const Eigen::MatrixX
     const Eigen::MatrixXd corrections = model.stiffness(speed).ldlt().solve(C * unloaded.shapes);
     Eigen::MatrixXd W(dofs, 3 * m);
     W << unloaded.shapes, undamped_modes(model, speed, min_force_n, m).shapes, corrections;
-    V = m_orthonormal(std::move(W), model.M);
+    basis = field_pure_basis(W, model);
   } else {
     const UndampedModes unloaded = undamped_modes(model, speed);
     int kept = dofs;
@@ -53,13 +140,15 @@ ReducedSystem reduce(const BladeModel& model, double speed, const Eigen::MatrixX
       kept = 1;
       while (kept < dofs && f(kept) < spec.cutoff_hz) ++kept;
     }
-    V = unloaded.shapes.leftCols(kept);
+    basis = field_pure_basis(unloaded.shapes.leftCols(kept), model);
   }
+  const Eigen::MatrixXd& V = basis.V;
   ReducedSystem r;
   r.K = V.transpose() * model.stiffness(speed) * V;
   r.C = V.transpose() * C * V;
   r.G = V.transpose() * model.G * V;
-  r.basis = std::move(V);
+  r.basis = std::move(basis.V);
+  r.blocks = std::move(basis.blocks);
   r.full_size = dofs;
   r.undamped = damping.isZero(0);
   return r;

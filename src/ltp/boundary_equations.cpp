@@ -197,15 +197,19 @@ MultiplierGap multiplier_gap(const LinearPeriodicSystem& system, double system_p
   // Φ(T) by Magnus steps doubled from a quarter of the count where h‖A‖ ≤ 2 until StepDoubling
   // accepts Φ entry-wise within `tolerance` relative to its largest entry. (The multipliers
   // themselves would not settle: at a boundary two of them meet in a Jordan pair, where a change
-  // δ in Φ moves them by √δ.)
+  // δ in Φ moves them by √δ.) The whole period is stepped: half of it (reversing_symmetry.hpp)
+  // would carry the rounding of U⁻¹, cond(U) ε, into Φ, and its square root into the gap.
+  const auto monodromy = [&at](int steps) {
+    return magnus_propagator(at.A0, at.B, [&at](double t) { return at.variation(t); }, 0, at.period(), steps);
+  };
   const int safe = minimum_magnus_steps(at), first = std::max(8, safe / 4);
   const double step_work = magnus_step_work(at.state_size());
   StepDoubling ladder(first, max_magnus_steps, safe, step_work, max_flops);
   MultiplierGap result;
   if (ladder.levels() < 2) return result;
-  Eigen::MatrixXd previous = magnus_monodromy(at, first);
+  Eigen::MatrixXd previous = monodromy(first);
   for (int steps = 2 * first; steps <= ladder.last(); steps *= 2) {
-    Eigen::MatrixXd phi = magnus_monodromy(at, steps);
+    Eigen::MatrixXd phi = monodromy(steps);
     result.work = (2.0 * steps - first) * step_work;
     if (!phi.allFinite()) return result;
     const double distance = (phi - previous).cwiseAbs().maxCoeff();

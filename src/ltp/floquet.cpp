@@ -8,7 +8,7 @@
 #include "bladestab/base/constants.hpp"
 #include "bladestab/base/input_error.hpp"
 #include "bladestab/base/numerical_error.hpp"
-#include "bladestab/ltp/magnus.hpp"
+#include "bladestab/ltp/monodromy.hpp"
 #include "bladestab/ltp/step_doubling.hpp"
 #include "ltp/monodromy_checks.hpp"
 
@@ -105,7 +105,7 @@ NumericalError too_many_steps(const LinearPeriodicSystem& sys) {
 Attempt refine_steps(const LinearPeriodicSystem& sys, double tol, double max_flops, LevelCounter& counter) {
   const int safe = minimum_magnus_steps(sys);
   if (safe > max_magnus_steps) throw too_many_steps(sys);
-  StepDoubling ladder(std::max(8, safe / 64), max_magnus_steps, safe, magnus_step_work(sys.state_size()), max_flops);
+  StepDoubling ladder(std::max(8, safe / 64), max_magnus_steps, safe, monodromy_step_work(sys), max_flops);
   counter.plan(ladder.levels() + 1);  // and the checks after
   Eigen::VectorXcd previous;
   for (int steps = ladder.first(); steps <= ladder.last(); steps *= 2) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <tuple>
 #include <vector>
 
@@ -10,6 +11,7 @@
 
 #include "bladestab/base/numerical_error.hpp"
 #include "bladestab/ltp/magnus.hpp"
+#include "bladestab/ltp/reversing_symmetry.hpp"
 #include "ltp/rkf45_propagation.hpp"
 
 namespace bladestab {
@@ -17,7 +19,18 @@ namespace bladestab {
 using cplx = std::complex<double>;
 
 Eigen::MatrixXd magnus_monodromy(const LinearPeriodicSystem& sys, int steps) {
-  return magnus_propagator(sys.A0, sys.B, [&sys](double t) { return sys.variation(t); }, 0, sys.period(), steps);
+  const auto f = [&sys](double t) { return sys.variation(t); };
+  const double T = sys.period();
+  const std::optional<Eigen::VectorXd> r = steps % 2 == 0 ? reversing_signature(sys) : std::nullopt;
+  if (!r) return magnus_propagator(sys.A0, sys.B, f, 0, T, steps);
+  // Φ(T) = R U⁻¹ R U (reversing_symmetry.hpp) where U is well conditioned, as it is for a blade
+  // near stability; a fast-growing U would lose its small directions in U⁻¹, and the second half
+  // is then integrated as the first.
+  const Eigen::MatrixXd U = magnus_propagator(sys.A0, sys.B, f, 0, T / 2, steps / 2);
+  if (!U.allFinite()) return U;
+  const Eigen::PartialPivLU<Eigen::MatrixXd> lu(U);
+  if (!(lu.rcond() > 1e-4)) return magnus_propagator(sys.A0, sys.B, f, T / 2, T, steps / 2) * U;
+  return r->asDiagonal() * lu.solve(r->asDiagonal() * U);
 }
 
 NumericalError monodromy_overflow(double period) {
@@ -25,6 +38,10 @@ NumericalError monodromy_overflow(double period) {
                                     "Re λ > {:.3g} 1/s): the system grows past it within one period, so no multiplier "
                                     "can be printed",
                                     std::log(1e308) / period));
+}
+
+double monodromy_step_work(const LinearPeriodicSystem& sys) {
+  return magnus_step_work(sys.state_size()) * (reversing_signature(sys) ? 0.5 : 1.0);
 }
 
 Eigen::VectorXcd sorted_eigenvalues(const Eigen::MatrixXd& phi) {

@@ -30,15 +30,14 @@ void fix_mode_signs(Eigen::MatrixXd& Phi, const Eigen::MatrixXd& basis) {
 }  // namespace
 
 PeriodicSystem periodic_system(const ReducedSystem& reduced, const LoadSeries& load) {
-  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> modes(reduced.K);  // M = I in the reduced coordinates
-  if (modes.info() != Eigen::Success) {
+  ReducedModes modes = reduced_modes(reduced);
+  if (!modes.converged) {
     throw NumericalError("the modes of the reduced model did not converge: its stiffness is not finite (check "
                          "operation.speed_rad_s and load.fmax_over_fcr)");
   }
-  Eigen::MatrixXd Phi = modes.eigenvectors();
+  Eigen::MatrixXd& Phi = modes.shapes;
   fix_mode_signs(Phi, reduced.basis);
-  ModalForm form{modes.eigenvalues(), Phi.transpose() * reduced.G * Phi,
-                 Phi.transpose() * reduced.C * Phi};
+  ModalForm form{modes.omega2, Phi.transpose() * reduced.G * Phi, Phi.transpose() * reduced.C * Phi};
   PeriodicSystem sys;
   static_cast<LinearPeriodicSystem&>(sys) =
       modal_periodic_system(std::move(form), load.coefficients, load.angular_frequency, reduced.undamped);

@@ -15,7 +15,7 @@
 #include "bladestab/modal/basis_error.hpp"
 #include "bladestab/stability/periodic_system.hpp"
 #include "bladestab/blade/reduction.hpp"
-#include "bladestab/ltp/magnus.hpp"
+#include "bladestab/ltp/monodromy.hpp"
 #include "bladestab/ltp/step_doubling.hpp"
 #include "support/work_pool.hpp"
 
@@ -66,7 +66,7 @@ VariantRho variant_max_rho(const Scene& scene, const Fidelity& f, double tol, do
   };
   const PeriodicSystem sys = system_at(scene, f);
   const int safe = minimum_magnus_steps(sys), first = std::max(8, safe / 16);
-  StepDoubling ladder(first, 8 * first, safe, magnus_step_work(sys.state_size()), max_flops);
+  StepDoubling ladder(first, 8 * first, safe, monodromy_step_work(sys), max_flops);
   if (!f.load.exact_pulse && 8 * first <= max_magnus_steps && ladder.last() == 8 * first) {
     std::optional<double> previous;
     for (int steps = first; steps <= ladder.last(); steps *= 2) {

@@ -42,8 +42,8 @@ UndampedModes kept_modes(const BladeModel& model, const Scene& scene, const Eige
   const double speed = scene.operation.speed_rad_s;
   if (!reduction) return undamped_modes(model, speed);
   const ReducedSystem reduced = reduce(model, speed, C_D, -peak_n, *reduction);
-  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(reduced.K);
-  return {eigen.eigenvalues(), reduced.basis * eigen.eigenvectors()};
+  const ReducedModes modes = reduced_modes(reduced);
+  return {modes.omega2, reduced.basis * modes.shapes};
 }
 
 }  // namespace

@@ -13,6 +13,7 @@
 //   none:      the full Ritz model (the modal form of every mode).
 // Nearly dependent vectors are dropped (their M-Gram eigenvalue is below 1e-10 of unit columns).
 #include <string>
+#include <vector>
 
 #include <Eigen/Dense>
 
@@ -28,8 +29,22 @@ struct ReducedSystem {
   Eigen::MatrixXd G;      // Vᵀ G V, per newton of tip tension
   int full_size = 0;      // dofs of the Ritz model
   bool undamped = false;  // C_D = 0: C is gyroscopic only, the blade's motion Hamiltonian
+  // The sizes of the basis's consecutive column blocks: the bending fields', then the axial
+  // field's, where the model couples the two by the gyroscopic matrix alone (each column lies in
+  // one, so K, G and the modes are block diagonal, exactly); else one block (also when empty).
+  std::vector<int> blocks;
   int size() const { return static_cast<int>(basis.cols()); }
 };
+
+// The modes of a reduced system (M = I): ω² ascending and the eigenvectors Q of K in the reduced
+// coordinates, solved block by block (ReducedSystem::blocks), so that an axial mode has no bending
+// component, to the last bit; `converged` false where K is not finite.
+struct ReducedModes {
+  Eigen::VectorXd omega2;
+  Eigen::MatrixXd shapes;
+  bool converged = false;
+};
+ReducedModes reduced_modes(const ReducedSystem& reduced);
 
 // Modes per load level of the automatic reduction when the spec leaves it to the program.
 constexpr int default_reduction_vectors = 3;

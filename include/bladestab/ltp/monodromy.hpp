@@ -9,8 +9,12 @@
 
 namespace bladestab {
 
-// Φ(T) by the sixth-order Magnus propagator in `steps` equal steps.
+// Φ(T) by the sixth-order Magnus propagator in `steps` equal steps; over half the period (steps/2
+// of them) where the system has a reversing symmetry (reversing_symmetry.hpp).
 Eigen::MatrixXd magnus_monodromy(const LinearPeriodicSystem& system, int steps);
+// The work of one of magnus_monodromy's steps per period (magnus_step_work): half a Magnus step's
+// where it steps half the period.
+double monodromy_step_work(const LinearPeriodicSystem& system);
 // Its eigenvalues, sorted by |ρ|, largest first; NumericalError if Φ(T) overflowed.
 Eigen::VectorXcd monodromy_multipliers(const LinearPeriodicSystem& system, int steps);
 // Φ(T) integrated by RKF45 at relative tolerance `rtol` (all fundamental solutions at once).
