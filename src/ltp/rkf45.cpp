@@ -24,20 +24,27 @@ struct Step {
   Eigen::VectorXd x, error;
 };
 
-// One Fehlberg step from (t, x) with slope k1 = f(t, x).
-Step fehlberg_step(const OdeFunction& f, double t, const Eigen::VectorXd& x, const Eigen::VectorXd& k1, double h,
-                   StepStatistics& stats) {
-  Eigen::VectorXd k2, k3, k4, k5, k6;
-  f(t + c2 * h, x + h * a21 * k1, k2);
-  f(t + c3 * h, x + h * (a31 * k1 + a32 * k2), k3);
-  f(t + c4 * h, x + h * (a41 * k1 + a42 * k2 + a43 * k3), k4);
-  f(t + h, x + h * (a51 * k1 + a52 * k2 + a53 * k3 + a54 * k4), k5);
-  f(t + c6 * h, x + h * (a61 * k1 + a62 * k2 + a63 * k3 + a64 * k4 + a65 * k5), k6);
+// The slopes k2…k6 and the stage argument of a step, kept from step to step: a step allocates nothing.
+struct Stages {
+  Eigen::VectorXd k2, k3, k4, k5, k6, argument;
+};
+
+// One Fehlberg step from (t, x) with slope k1 = f(t, x), into s.
+void fehlberg_step(const OdeFunction& f, double t, const Eigen::VectorXd& x, const Eigen::VectorXd& k1, double h,
+                   Stages& k, Step& s, StepStatistics& stats) {
+  k.argument = x + h * a21 * k1;
+  f(t + c2 * h, k.argument, k.k2);
+  k.argument = x + h * (a31 * k1 + a32 * k.k2);
+  f(t + c3 * h, k.argument, k.k3);
+  k.argument = x + h * (a41 * k1 + a42 * k.k2 + a43 * k.k3);
+  f(t + c4 * h, k.argument, k.k4);
+  k.argument = x + h * (a51 * k1 + a52 * k.k2 + a53 * k.k3 + a54 * k.k4);
+  f(t + h, k.argument, k.k5);
+  k.argument = x + h * (a61 * k1 + a62 * k.k2 + a63 * k.k3 + a64 * k.k4 + a65 * k.k5);
+  f(t + c6 * h, k.argument, k.k6);
   stats.evaluations += 5;
-  Step s;
-  s.x = x + h * (b1 * k1 + b3 * k3 + b4 * k4 + b5 * k5 + b6 * k6);
-  s.error = h * ((b1 - d1) * k1 + (b3 - d3) * k3 + (b4 - d4) * k4 + (b5 - d5) * k5 + b6 * k6);
-  return s;
+  s.x = x + h * (b1 * k1 + b3 * k.k3 + b4 * k.k4 + b5 * k.k5 + b6 * k.k6);
+  s.error = h * ((b1 - d1) * k1 + (b3 - d3) * k.k3 + (b4 - d4) * k.k4 + (b5 - d5) * k.k5 + b6 * k.k6);
 }
 
 // Cubic Hermite interpolation on [t0, t0 + h].
@@ -118,8 +125,8 @@ double first_step(const StepControl& control, const Eigen::VectorXd& x, const Ei
 // error within atol + rtol·|x|), and the next step h either way.
 bool step_accepted(const StepControl& control, const Eigen::VectorXd& x, const Step& s, double step, double t,
                    double span, double& h, StepStatistics& stats) {
-  const Eigen::ArrayXd scale = control.atol + control.rtol * x.array().abs().max(s.x.array().abs());
-  const double err = (s.error.array() / scale).abs().maxCoeff();
+  const double err =
+      (s.error.array().abs() / (control.atol + control.rtol * x.array().abs().max(s.x.array().abs()))).maxCoeff();
   const double factor = err > 0 ? std::clamp(0.9 * std::pow(err, -0.2), 0.2, 5.0) : 5.0;
   if (err <= 1) {
     h = step * factor;
@@ -159,23 +166,25 @@ StepStatistics rkf45_integrate(const OdeFunction& f, Eigen::VectorXd& x, double 
   double h = first_step(control, x, k1, span);
   double t = t0;
   stats.smallest_step = span;
+  Stages stages;
+  Step s;
+  Eigen::VectorXd k_new;
   while (t < t1) {
     const double to_break = *next_break - t;
     bool lands = false;
     double step = h;
     if (control.adaptive && control.max_step > 0) step = std::min(step, control.max_step);
     if (step >= to_break * (1 - 1e-12)) step = to_break, lands = true;
-    Step s = fehlberg_step(f, t, x, k1, step, stats);
+    fehlberg_step(f, t, x, k1, step, stages, s, stats);
     if (control.adaptive && !step_accepted(control, x, s, step, t, span, h, stats)) continue;
     double t_new = lands ? *next_break : t + step;
-    Eigen::VectorXd k_new;
     f(t_new, s.x, k_new);
     ++stats.evaluations;
     evaluate_events(std::nextafter(t_new, t), s.x, event_end);
     const EventZero event = first_event(events, landed_event, event_start, event_end, t, t_new - t, x, k1, s.x, k_new);
     if (event.index >= 0) {  // redo the step to end on the event (shorter, so within tolerance too)
       step = event.t - t;
-      s = fehlberg_step(f, t, x, k1, step, stats);
+      fehlberg_step(f, t, x, k1, step, stages, s, stats);
       t_new = event.t;
       lands = false;
       f(t_new, s.x, k_new);
@@ -190,8 +199,8 @@ StepStatistics rkf45_integrate(const OdeFunction& f, Eigen::VectorXd& x, double 
     stats.smallest_step = std::min(stats.smallest_step, step);
     stats.largest_step = std::max(stats.largest_step, step);
     t = t_new;
-    x = std::move(s.x);
-    k1 = std::move(k_new);
+    x.swap(s.x);
+    k1.swap(k_new);
     evaluate_events(t, x, event_start);
     landed_event = event.index;
     if (event.index >= 0 && events[event.index].on_zero) events[event.index].on_zero(t, x, event.direction);

@@ -13,31 +13,35 @@ namespace {
 constexpr Eigen::Index few_columns = 4;
 
 // Ẋ for X stored column after column in y. A system stated in modal form multiplies by the
-// nonzero blocks of A₀ = [[0, D], [·, ·]] and B = [[0, 0], [·, 0]] only: a quarter of the full
-// products' work for a whole monodromy's columns.
+// nonzero blocks of A₀ = [[0, D], [·, ·]] and B = [[0, 0], [·, 0]] only, a quarter of the full
+// products' work; a few columns (an eigenvector) by Eigen's coefficient-wise product, as its
+// blocked GEMM would spend more time packing the operand than multiplying.
 OdeFunction propagation_rhs(const LinearPeriodicSystem& sys, const CoefficientVariation& variation, Eigen::Index n,
                             Eigen::Index columns, Eigen::MatrixXd& lower_left) {
   const Eigen::Index m = n / 2;
-  const bool blocks = columns > few_columns && sys.modal.has_value();
-  if (blocks) lower_left.resize(m, m);
-  return [&sys, &variation, n, m, columns, blocks, &lower_left](double t, const Eigen::VectorXd& y,
-                                                                 Eigen::VectorXd& dy) {
+  const bool few = columns <= few_columns;
+  if (sys.modal) lower_left.resize(m, m);
+  return [&sys, &variation, n, m, columns, few, &lower_left](double t, const Eigen::VectorXd& y, Eigen::VectorXd& dy) {
     dy.resize(y.size());
     const auto Y = Eigen::Map<const Eigen::MatrixXd>(y.data(), n, columns);
     auto D = Eigen::Map<Eigen::MatrixXd>(dy.data(), n, columns);
-    if (blocks) {
+    const double f = variation.phi(t);
+    if (sys.modal) {
       D.topRows(m).noalias() = sys.A0.topRightCorner(m, m).diagonal().asDiagonal() * Y.bottomRows(m);
-      lower_left = sys.A0.bottomLeftCorner(m, m) + variation.phi(t) * sys.B.bottomLeftCorner(m, m);
-      D.bottomRows(m).noalias() = lower_left * Y.topRows(m);
-      D.bottomRows(m).noalias() += sys.A0.bottomRightCorner(m, m) * Y.bottomRows(m);
-    } else if (columns <= few_columns) {
-      // A few columns (an eigenvector): Eigen's coefficient-wise product, as its blocked GEMM would
-      // spend more time packing the n×n operand than multiplying.
+      lower_left = sys.A0.bottomLeftCorner(m, m) + f * sys.B.bottomLeftCorner(m, m);
+      if (few) {
+        D.bottomRows(m).noalias() = lower_left.lazyProduct(Y.topRows(m));
+        D.bottomRows(m).noalias() += sys.A0.bottomRightCorner(m, m).lazyProduct(Y.bottomRows(m));
+      } else {
+        D.bottomRows(m).noalias() = lower_left * Y.topRows(m);
+        D.bottomRows(m).noalias() += sys.A0.bottomRightCorner(m, m) * Y.bottomRows(m);
+      }
+    } else if (few) {
       D.noalias() = sys.A0.lazyProduct(Y);
-      D.noalias() += variation.phi(t) * sys.B.lazyProduct(Y);
+      D.noalias() += f * sys.B.lazyProduct(Y);
     } else {
       D.noalias() = sys.A0 * Y;
-      D.noalias() += (variation.phi(t) * sys.B) * Y;
+      D.noalias() += (f * sys.B) * Y;
     }
   };
 }
