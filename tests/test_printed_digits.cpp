@@ -158,3 +158,60 @@ TEST_CASE("a table's number shows exactly the significant digits asked for, as C
     CHECK(with_figures(value, figures) == expected);
   }
 }
+
+namespace {
+
+// The rules' textbook definitions by decimal text (the digits a reader sees), apart from the
+// arithmetic the program uses: the decade read from 17 digits, a rounding to n digits as printf's.
+int text_decade(double x) {
+  const std::string t = fmt::format("{:.16e}", x);
+  return std::stoi(t.substr(t.find('e') + 1));
+}
+double text_decimal(long units, int k) { return std::stod(fmt::format("{}e{}", units, k)); }
+double text_significant(double value, int digits) { return std::stod(fmt::format("{:.{}e}", value, digits - 1)); }
+double text_measure(double e) {
+  const int second = text_decade(e) - 1;
+  const long units = std::lround(e / text_decimal(1, second));
+  const double shown = text_decimal(units, second);
+  return shown < e ? text_decimal(units + 1, second) : shown;
+}
+double text_absolute(double value, double error) {
+  if (value == 0) return 0.0;
+  const int last = text_decade(std::max(text_measure(error), bladestab::cli::finest_resolution * std::abs(value)));
+  const int first = text_decade(std::abs(value));
+  if (first < last) {
+    const long units = std::lround(value / text_decimal(1, last));
+    return units == 0 ? 0.0 : text_decimal(units, last);
+  }
+  return text_significant(value, first - last + 1);
+}
+
+}  // namespace
+
+TEST_CASE("printed digits: the rounding's arithmetic gives the digits of the decimal text, ties and powers of ten too",
+          "[printed_digits]") {
+  const PrintedDigits digits;
+  std::mt19937_64 random(2063);
+  std::uniform_real_distribution<double> exponent(-12, 8), unit(0, 1);
+  // Values at powers of ten and halfway between two roundings, where a scaled product's rounding
+  // could decide; then values and errors spread over 20 decades.
+  std::vector<std::pair<double, double>> cases;
+  for (int k = -12; k <= 8; ++k) {
+    const double p = std::pow(10.0, k);
+    for (const double v : {p, std::nextafter(p, 0.0), std::nextafter(p, 2 * p), 1.25 * p, 1.2345 * p, 9.9995 * p}) {
+      for (const double e : {1e-3 * p, 1e-5 * p, 0.05 * p, p}) cases.emplace_back(v, e);
+    }
+  }
+  for (int i = 0; i < 200000; ++i) {
+    const double v = (unit(random) < 0.5 ? -1 : 1) * std::pow(10.0, exponent(random));
+    cases.emplace_back(v, std::abs(v) * std::pow(10.0, -10 * unit(random)));
+  }
+  int differ = 0;
+  for (const auto& [v, e] : cases) {
+    if (digits.absolute(v, e) != text_absolute(v, e) && ++differ <= 5) {
+      WARN(fmt::format("{:.17g} ± {:.17g}: {:.17g}, the text {:.17g}", v, e, digits.absolute(v, e), text_absolute(v, e)));
+    }
+    if (digits.measure(e) != text_measure(e) && ++differ <= 5) WARN(fmt::format("measure {:.17g}", e));
+  }
+  CHECK(differ == 0);
+}
