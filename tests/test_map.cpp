@@ -7,7 +7,6 @@
 
 #include "bladestab/stability/boundaries.hpp"
 #include "bladestab/blade/damping.hpp"
-#include "bladestab/ltp/magnus.hpp"
 #include "bladestab/ltp/monodromy.hpp"
 #include "bladestab/stability/stability_map.hpp"
 #include "bladestab/stability/periodic_system.hpp"
@@ -53,8 +52,7 @@ Eigen::VectorXcd multipliers_at(const Scene& base, double speed, double theta, d
   s.load.fmax_over_fcr = fbar;
   const BladeModel m = assemble_model(s);
   const PeriodicSystem sys = periodic_system(m, speed, damping_matrix(m, s.damping, speed), load_series(s));
-  return sorted_eigenvalues(
-      magnus_propagator(sys.A0, sys.B, [&sys](double t) { return sys.variation(t); }, 0, sys.period(), 4096));
+  return sorted_eigenvalues(magnus_monodromy(sys, 4096, true));
 }
 
 // The multiplier closest to `target` (±1) at a map point.

@@ -37,15 +37,18 @@ struct ReducedBasis {
   std::vector<int> blocks;
 };
 
-// The coordinates of the axial field against the others (rotation and bending): the two are
-// coupled by the gyroscopic matrix alone, M, K_S, K_C1 and G having no entry between them
-// (docs/theory.md §2.4). Empty where the model has no axial field or couples it otherwise.
-std::vector<std::pair<int, int>> decoupled_fields(const BladeModel& model) {
+// The coordinates of the axial field against the others (rotation and bending) of an undamped
+// blade: the two are coupled by the gyroscopic matrix alone, M, K_S, K_C1 and G having no entry
+// between them (docs/theory.md §2.4). Empty where the model has no axial field or couples it
+// otherwise, and with damping, which breaks the symmetry the split serves (its tiny share in a
+// gyroscopic correction would come out as a basis vector of its own and move which nearly
+// dependent directions the Gram step keeps).
+std::vector<std::pair<int, int>> decoupled_fields(const BladeModel& model, const Eigen::MatrixXd& damping) {
   const int a = model.layout.axial_offset(), na = model.layout.axial_count;
   const auto uncoupled = [&](const Eigen::MatrixXd& X) {
     return X.block(0, a, a, na).isZero(0) && X.block(a, 0, na, a).isZero(0);
   };
-  if (a == 0 || na == 0) return {};
+  if (a == 0 || na == 0 || !damping.isZero(0)) return {};
   if (!(uncoupled(model.M) && uncoupled(model.K_S) && uncoupled(model.K_C1) && uncoupled(model.G))) return {};
   return {{0, a}, {a, na}};
 }
@@ -55,8 +58,8 @@ std::vector<std::pair<int, int>> decoupled_fields(const BladeModel& model) {
 // the column's (below, it is the rounding of the eigensolver that made the column), and each
 // group's parts made M-orthonormal apart. The reduced M, K(Ω) and G are then block diagonal to the
 // last bit, and so are the modes (reduced_modes): an axial mode stays axial, as in the continuum.
-ReducedBasis field_pure_basis(const Eigen::MatrixXd& W, const BladeModel& model) {
-  const std::vector<std::pair<int, int>> groups = decoupled_fields(model);
+ReducedBasis field_pure_basis(const Eigen::MatrixXd& W, const BladeModel& model, const Eigen::MatrixXd& damping) {
+  const std::vector<std::pair<int, int>> groups = decoupled_fields(model, damping);
   if (groups.empty()) {
     Eigen::MatrixXd V = m_orthonormal(W, model.M);
     const int size = static_cast<int>(V.cols());
@@ -131,7 +134,7 @@ ReducedSystem reduce(const BladeModel& model, double speed, const Eigen::MatrixX
     const Eigen::MatrixXd corrections = model.stiffness(speed).ldlt().solve(C * unloaded.shapes);
     Eigen::MatrixXd W(dofs, 3 * m);
     W << unloaded.shapes, undamped_modes(model, speed, min_force_n, m).shapes, corrections;
-    basis = field_pure_basis(W, model);
+    basis = field_pure_basis(W, model, damping);
   } else {
     const UndampedModes unloaded = undamped_modes(model, speed);
     int kept = dofs;
@@ -140,7 +143,7 @@ ReducedSystem reduce(const BladeModel& model, double speed, const Eigen::MatrixX
       kept = 1;
       while (kept < dofs && f(kept) < spec.cutoff_hz) ++kept;
     }
-    basis = field_pure_basis(unloaded.shapes.leftCols(kept), model);
+    basis = field_pure_basis(unloaded.shapes.leftCols(kept), model, damping);
   }
   const Eigen::MatrixXd& V = basis.V;
   ReducedSystem r;

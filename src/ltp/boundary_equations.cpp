@@ -197,11 +197,8 @@ MultiplierGap multiplier_gap(const LinearPeriodicSystem& system, double system_p
   // Φ(T) by Magnus steps doubled from a quarter of the count where h‖A‖ ≤ 2 until StepDoubling
   // accepts Φ entry-wise within `tolerance` relative to its largest entry. (The multipliers
   // themselves would not settle: at a boundary two of them meet in a Jordan pair, where a change
-  // δ in Φ moves them by √δ.) The whole period is stepped: half of it (reversing_symmetry.hpp)
-  // would carry the rounding of U⁻¹, cond(U) ε, into Φ, and its square root into the gap.
-  const auto monodromy = [&at](int steps) {
-    return magnus_propagator(at.A0, at.B, [&at](double t) { return at.variation(t); }, 0, at.period(), steps);
-  };
+  // δ in Φ moves them by √δ.) The whole period is stepped (magnus_monodromy).
+  const auto monodromy = [&at](int steps) { return magnus_monodromy(at, steps, true); };
   const int safe = minimum_magnus_steps(at), first = std::max(8, safe / 4);
   const double step_work = magnus_step_work(at.state_size());
   StepDoubling ladder(first, max_magnus_steps, safe, step_work, max_flops);

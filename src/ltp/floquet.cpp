@@ -9,6 +9,7 @@
 #include "bladestab/base/input_error.hpp"
 #include "bladestab/base/numerical_error.hpp"
 #include "bladestab/ltp/monodromy.hpp"
+#include "bladestab/ltp/reversing_symmetry.hpp"
 #include "bladestab/ltp/step_doubling.hpp"
 #include "ltp/monodromy_checks.hpp"
 
@@ -102,14 +103,23 @@ NumericalError too_many_steps(const LinearPeriodicSystem& sys) {
 // multiplier sets (on the paper blade 128 steps are within 1e-8 where that condition asks for
 // 512: the exponential takes A₀'s stiff modes exactly). A level that overflows restarts the
 // ladder's evidence (StepDoubling::overflowed). The levels stop where `max_flops` would be passed.
+// A ladder over half the period (magnus_monodromy) not settled past the safe count is taken to
+// sit at a Jordan pair, where the rounding of U⁻¹ leaves the pair a floor of √(ε cond U): it goes
+// on over the whole period, from the level before taken again over the whole period.
 Attempt refine_steps(const LinearPeriodicSystem& sys, double tol, double max_flops, LevelCounter& counter) {
   const int safe = minimum_magnus_steps(sys);
   if (safe > max_magnus_steps) throw too_many_steps(sys);
   StepDoubling ladder(std::max(8, safe / 64), max_magnus_steps, safe, monodromy_step_work(sys), max_flops);
   counter.plan(ladder.levels() + 1);  // and the checks after
   Eigen::VectorXcd previous;
+  bool whole_period = !reversing_signature(sys);
   for (int steps = ladder.first(); steps <= ladder.last(); steps *= 2) {
-    Eigen::MatrixXd phi = magnus_monodromy(sys, steps);
+    if (!whole_period && steps > safe && previous.size() > 0) {
+      whole_period = true;
+      ladder.start();
+      previous = sorted_eigenvalues(magnus_monodromy(sys, steps / 2, true));
+    }
+    Eigen::MatrixXd phi = magnus_monodromy(sys, steps, whole_period);
     counter.level_done();
     if (!phi.allFinite()) {
       if (ladder.overflowed(steps)) throw monodromy_overflow(sys.period());

@@ -18,10 +18,10 @@ namespace bladestab {
 
 using cplx = std::complex<double>;
 
-Eigen::MatrixXd magnus_monodromy(const LinearPeriodicSystem& sys, int steps) {
+Eigen::MatrixXd magnus_monodromy(const LinearPeriodicSystem& sys, int steps, bool whole_period) {
   const auto f = [&sys](double t) { return sys.variation(t); };
   const double T = sys.period();
-  const std::optional<Eigen::VectorXd> r = steps % 2 == 0 ? reversing_signature(sys) : std::nullopt;
+  const std::optional<Eigen::VectorXd> r = !whole_period && steps % 2 == 0 ? reversing_signature(sys) : std::nullopt;
   if (!r) return magnus_propagator(sys.A0, sys.B, f, 0, T, steps);
   // Φ(T) = R U⁻¹ R U (reversing_symmetry.hpp) where U is well conditioned, as it is for a blade
   // near stability; a fast-growing U would lose its small directions in U⁻¹, and the second half

@@ -10,8 +10,10 @@
 namespace bladestab {
 
 // Φ(T) by the sixth-order Magnus propagator in `steps` equal steps; over half the period (steps/2
-// of them) where the system has a reversing symmetry (reversing_symmetry.hpp).
-Eigen::MatrixXd magnus_monodromy(const LinearPeriodicSystem& system, int steps);
+// of them) where the system has a reversing symmetry (reversing_symmetry.hpp), unless
+// `whole_period`: at a Jordan pair (a stability boundary) two multipliers move like the square
+// root of Φ's rounding, which U⁻¹ raises by U's condition.
+Eigen::MatrixXd magnus_monodromy(const LinearPeriodicSystem& system, int steps, bool whole_period = false);
 // The work of one of magnus_monodromy's steps per period (magnus_step_work): half a Magnus step's
 // where it steps half the period.
 double monodromy_step_work(const LinearPeriodicSystem& system);
