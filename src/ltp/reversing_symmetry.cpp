@@ -22,9 +22,12 @@ std::optional<Eigen::VectorXd> reversing_signature(const LinearPeriodicSystem& s
   for (const std::complex<double>& f : sys.coefficients) {
     if (std::abs(f.imag()) > 1e-14 * std::abs(f)) return std::nullopt;  // f is not even
   }
-  const CouplingPattern pattern{sys.A0, sys.B, 1e-13 * sys.A0.cwiseAbs().maxCoeff(),
-                                1e-13 * sys.B.cwiseAbs().maxCoeff()};
-  const Eigen::Index n = sys.state_size();
+  return reversing_signature(sys.A0, sys.B);
+}
+
+std::optional<Eigen::VectorXd> reversing_signature(const Eigen::MatrixXd& A0, const Eigen::MatrixXd& B) {
+  const CouplingPattern pattern{A0, B, 1e-13 * A0.cwiseAbs().maxCoeff(), 1e-13 * B.cwiseAbs().maxCoeff()};
+  const Eigen::Index n = A0.rows();
   // r_i a_ij r_j = −a_ij: every coupling joins coordinates of opposite sign. Two-colour the
   // coupling graph from each uncoloured coordinate; a coupling within one colour (a diagonal entry
   // among them) leaves no signature.

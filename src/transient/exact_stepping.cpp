@@ -21,14 +21,16 @@
 namespace bladestab {
 namespace {
 
-// ‖X − Y‖_F / ‖Y‖_F over the homogeneous block and, apart, over the forcing column (its scale is
-// the forced response's, not the propagator's).
-double map_distance(const Eigen::MatrixXd& X, const Eigen::MatrixXd& Y) {
-  const Eigen::Index s = X.rows() - 1;
-  const double homogeneous = (X.topLeftCorner(s, s) - Y.topLeftCorner(s, s)).norm() / Y.topLeftCorner(s, s).norm();
-  const double forcing_scale = Y.col(s).head(s).norm();
-  const double forcing = forcing_scale > 0 ? (X.col(s) - Y.col(s)).head(s).norm() / forcing_scale : 0;
-  return std::max(homogeneous, forcing);
+// ‖X − Y‖_F / ‖Y‖_F over the homogeneous block and, apart, over each of the last `forcing`
+// columns (their scale is the forced response's, not the propagator's).
+double map_distance(const Eigen::MatrixXd& X, const Eigen::MatrixXd& Y, int forcing) {
+  const Eigen::Index s = X.rows() - forcing;
+  double largest = (X.topLeftCorner(s, s) - Y.topLeftCorner(s, s)).norm() / Y.topLeftCorner(s, s).norm();
+  for (Eigen::Index c = s; c < X.cols(); ++c) {
+    const double scale = Y.col(c).head(s).norm();
+    if (scale > 0) largest = std::max(largest, (X.col(c) - Y.col(c)).head(s).norm() / scale);
+  }
+  return largest;
 }
 
 // Two times equal up to rounding on the scale of their own stretch: a free flight's length, or an
@@ -85,6 +87,7 @@ ExactStepper::ExactStepper(const BladeModel& model, const Scene& scene, double t
   Q_damping_.block(n, n, n, n) = -Phi_.transpose() * C_D * Phi_;
   rim_speed_ = speed * model.blade.tip_radius();
   tip_lateral_ = model.tip_lateral;
+  mirror_ = contact_mirror(A_free_, B_, pulses_, damped_);
 }
 
 std::vector<double> ExactStepper::kinks() const {
@@ -169,10 +172,14 @@ const ExactStepper::Piece& ExactStepper::contact_piece(double start, double end)
 }
 
 ExactStepper::Integrated ExactStepper::integrate_contact(double start, double end) const {
+  return integrate(A_free_, B_, 1, start, end);
+}
+
+ExactStepper::Integrated ExactStepper::integrate(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, int forcing,
+                                                 double start, double end) const {
   const std::function<double(double)> load = [this](double tau) { return pulses_.force(tau); };
   // From 1/32 of the count where h‖A‖₁ ≤ 2 (the exponential takes the stiff modes exactly).
-  const double norm = A_free_.cwiseAbs().colwise().sum().maxCoeff() +
-                      pulses_.peak_n * B_.cwiseAbs().colwise().sum().maxCoeff();
+  const double norm = A.cwiseAbs().colwise().sum().maxCoeff() + pulses_.peak_n * B.cwiseAbs().colwise().sum().maxCoeff();
   const double safe = std::max(1.0, norm * (end - start) / 2);
   constexpr int most_steps = 1 << 16;
   const double first_level = std::ceil(std::log2(std::max(1.0, safe / 32)));
@@ -186,12 +193,12 @@ ExactStepper::Integrated ExactStepper::integrate_contact(double start, double en
                                      start, end, safe, norm, most_steps));
   }
   const int first = 1 << static_cast<int>(first_level);
-  StepDoubling ladder(first, most_steps, static_cast<int>(std::min(safe, 1e9)), magnus_step_work(A_free_.rows()),
+  StepDoubling ladder(first, most_steps, static_cast<int>(std::min(safe, 1e9)), magnus_step_work(A.rows()),
                       piece_work_flops_);
   Integrated result;
   Eigen::MatrixXd previous;
   for (int steps = first; steps <= ladder.last(); steps *= 2) {
-    Eigen::MatrixXd map = magnus_propagator(A_free_, B_, load, start, end, steps);
+    Eigen::MatrixXd map = magnus_propagator(A, B, load, start, end, steps);
     result.steps += steps;
     if (!map.allFinite()) {
       if (ladder.overflowed(steps)) {
@@ -203,7 +210,7 @@ ExactStepper::Integrated ExactStepper::integrate_contact(double start, double en
       continue;
     }
     if (previous.size() > 0) {
-      if (const std::optional<double> error = ladder.judge(steps, map_distance(map, previous), tolerance_, 1e-15)) {
+      if (const std::optional<double> error = ladder.judge(steps, map_distance(map, previous, forcing), tolerance_, 1e-15)) {
         result.error = *error;
         result.piece = {start, end, std::move(map), {}};
         return result;
@@ -236,6 +243,10 @@ void ExactStepper::prepare(const std::vector<double>& landings, int threads,
              same_time(m.second, offsets->second, pulses_.contact_time_s);
     });
     if (!listed) missing.push_back(*offsets);
+  }
+  if (mirror_) {
+    for (Integrated& piece : mirrored_pieces(missing, threads, progress)) keep(std::move(piece));
+    return;
   }
   std::mutex reporting;
   int done = 0;

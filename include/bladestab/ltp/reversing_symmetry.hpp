@@ -21,5 +21,8 @@ namespace bladestab {
 // the coordinates' transformation (a zero coupling of two modes computes as ~1e-16): the Φ(T)
 // that R gives is then that of a system within 1e-13 of the one stated.
 std::optional<Eigen::VectorXd> reversing_signature(const LinearPeriodicSystem& system);
+// R for A(t) = A₀ + φ(t) B alone, where the caller knows φ to be even about the middle c of the
+// interval it steps: the second half then follows from the first, Φ(c + s, c) = R Φ(c, c − s)⁻¹ R.
+std::optional<Eigen::VectorXd> reversing_signature(const Eigen::MatrixXd& A0, const Eigen::MatrixXd& B);
 
 }  // namespace bladestab

@@ -30,6 +30,8 @@ struct PulseTrain {
   double force_rate(double t) const;
   // max |dF/dt| over a pulse, between its edges.
   double max_force_rate() const;
+  // Whether F is even about the middle of its contact, F(t_c − τ) = F(τ): every profile but the saw-tooth.
+  bool even_profile() const { return profile != PulseProfile::sawtooth; }
   // Pulse starts and ends in [t0, t1]: where F or F' jumps, so integrator steps land there.
   std::vector<double> edges(double t0, double t1) const;
   // The time since the current pulse started, if one is on at t.

@@ -20,7 +20,10 @@
 // Free flight (F = 0) is stepped by e^{A_free h}, one exponential per distinct interval h, exact
 // to rounding. A contact piece is integrated by the sixth-order Magnus propagator (ltp/magnus.hpp)
 // with its steps doubled until the propagator has converged (ltp/step_doubling.hpp), once per
-// distinct piece: an endless train reuses the propagators of its first pulse.
+// distinct piece: an endless train reuses the propagators of its first pulse. Where the pulse is
+// even about the middle c of its contact and the blade undamped, the contact reverses in time
+// (ltp/reversing_symmetry.hpp) and only its first half is integrated: a piece past c is
+// R P(2c − a, 2c − b)⁻¹ R of its mirror image (mirrored_contact.cpp).
 #include <functional>
 #include <limits>
 #include <optional>
@@ -98,6 +101,23 @@ private:
     double error = 0;
   };
   Integrated integrate_contact(double start, double end) const;
+  // The same for ż = (A + F(t) B) z whose last `forcing` columns of B are the forcing (their
+  // constants' rows and columns are zero in A).
+  Integrated integrate(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, int forcing, double start,
+                       double end) const;
+  // The contact system with its forcing column split in two, the part on coordinates where the
+  // reversing signature is −1 and the part where it is +1, and the signature that reverses it
+  // (mirrored_contact.cpp); none where the pulse is not even or the blade damped.
+  struct Mirror {
+    Eigen::MatrixXd A, B;
+    Eigen::VectorXd signature;
+  };
+  static std::optional<Mirror> contact_mirror(const Eigen::MatrixXd& A_free, const Eigen::MatrixXd& B,
+                                              const PulseTrain& pulses, bool damped);
+  // The contact pieces [start, end] (offsets) from their mirror images in the first half of the
+  // contact, its segments integrated on up to `threads` threads.
+  std::vector<Integrated> mirrored_pieces(const std::vector<std::pair<double, double>>& pieces, int threads,
+                                          const std::function<void(int, int)>& progress) const;
   // The cached contact piece [start, end], if any.
   const Piece* cached_contact(double start, double end) const;
   // The contact piece offsets of [a, b] (absolute), if it lies in a contact.
@@ -113,6 +133,7 @@ private:
   Eigen::VectorXd omega_, equilibrium_;
   Eigen::RowVectorXd tip_lateral_;
   std::vector<Piece> contact_, free_;
+  std::optional<Mirror> mirror_;
   ExactSteppingStatistics stats_;
 };
 
