@@ -83,6 +83,16 @@ std::vector<ExactStepper::Integrated> ExactStepper::mirrored_pieces(const std::v
   half.grid.erase(std::unique(half.grid.begin(), half.grid.end(),
                               [&](double x, double y) { return same_offset(x, y, half.contact); }),
                   half.grid.end());
+  // At least a segment a thread: the longest is halved until there are (the contact's two halves
+  // ran side by side before one of them was enough).
+  while (static_cast<int>(half.grid.size()) - 1 < threads) {
+    std::size_t longest = 0;
+    for (std::size_t k = 1; k + 1 < half.grid.size(); ++k) {
+      if (half.grid[k + 1] - half.grid[k] > half.grid[longest + 1] - half.grid[longest]) longest = k;
+    }
+    half.grid.insert(half.grid.begin() + static_cast<std::ptrdiff_t>(longest) + 1,
+                     0.5 * (half.grid[longest] + half.grid[longest + 1]));
+  }
   std::mutex reporting;
   int done = 0;
   const int segments = static_cast<int>(half.grid.size()) - 1;
