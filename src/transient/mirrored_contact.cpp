@@ -83,9 +83,10 @@ std::vector<ExactStepper::Integrated> ExactStepper::mirrored_pieces(const std::v
   half.grid.erase(std::unique(half.grid.begin(), half.grid.end(),
                               [&](double x, double y) { return same_offset(x, y, half.contact); }),
                   half.grid.end());
-  // At least a segment a thread: the longest is halved until there are (the contact's two halves
-  // ran side by side before one of them was enough).
-  while (static_cast<int>(half.grid.size()) - 1 < threads) {
+  // At least two segments, on any number of threads (the propagators, and so the run, must not
+  // depend on it): the longest is halved until there are, so that two threads share the half as
+  // they shared the two halves.
+  while (half.grid.size() < 3) {
     std::size_t longest = 0;
     for (std::size_t k = 1; k + 1 < half.grid.size(); ++k) {
       if (half.grid[k + 1] - half.grid[k] > half.grid[longest + 1] - half.grid[longest]) longest = k;
