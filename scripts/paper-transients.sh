@@ -5,8 +5,8 @@
 # into build/. The runs go two at a time (--chart none), then two Python processes draw the charts
 # (scripts/charts draws many per interpreter: Python and matplotlib start once, not per chart).
 # Each run states its whole error (the same run on 24 terms beside it). Measured on the two idle
-# cores: 70 s wall, 135 s of CPU, most of it the richer runs of t̄c = 0.1/0.3/0.5 (20/60/100 contact
-# pieces per pulse by Magnus on 145 states); 18 s wall without the estimates (--no-error-estimate).
+# cores: 35 s wall, 66 s of CPU, most of it the richer runs of t̄c = 0.1/0.3/0.5 (20/60/100 contact
+# pieces per pulse by Magnus on the 24-term model, half of each contact).
 # The 10 s target is not met (docs/guide/paper-transients.md).
 set -euo pipefail
 cd "$(dirname "$0")/.."
