@@ -1,15 +1,8 @@
 // `bladestab sweep`: frequencies against any scene key, and the static tip compression
 // operation.tip_compression_over_fcr (Sinha's Figs. 7–9) that every command honours.
 #include <cmath>
-#include <cstdlib>
-#include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <string>
 #include <vector>
-
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <catch2/catch.hpp>
 
@@ -18,6 +11,7 @@
 #include "bladestab/blade/static_limits.hpp"
 #include "bladestab/transient/transient.hpp"
 #include "support/json.hpp"
+#include "support/run_cli.hpp"
 #include "support/scenes.hpp"
 
 using namespace bladestab;
@@ -25,8 +19,6 @@ using testing_support::Json;
 using testing_support::paper_scene;
 
 namespace {
-
-namespace fs = std::filesystem;
 
 constexpr double two_pi = 6.28318530717958647692;
 
@@ -49,39 +41,6 @@ double first_omega(const BladeModel& unloaded, double compression_n) {
   const Eigen::MatrixXd K = unloaded.K_S - compression_n * unloaded.G;
   const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> inverse(unloaded.M, K, Eigen::EigenvaluesOnly);
   return 1 / std::sqrt(inverse.eigenvalues().maxCoeff());
-}
-
-struct Run {
-  int status = -1;
-  std::string out, err;
-};
-
-// The program with `args`, stdout and stderr captured.
-Run run_bladestab(const std::string& args) {
-  static int runs = 0;
-  const fs::path dir = fs::temp_directory_path() / ("bladestab_sweep_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  const fs::path out = dir / ("out" + std::to_string(++runs)), err = dir / ("err" + std::to_string(runs));
-  const std::string command = std::string("exec '") + BLADESTAB_EXE + "' " + args + " </dev/null >'" + out.string() +
-                              "' 2>'" + err.string() + "'";
-  Run r;
-  const int status = std::system(command.c_str());
-  r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  const auto read = [](const fs::path& p) {
-    std::ifstream in(p);
-    std::ostringstream text;
-    text << in.rdbuf();
-    return text.str();
-  };
-  r.out = read(out);
-  r.err = read(err);
-  return r;
-}
-
-std::string scratch_dir() {
-  const fs::path dir = fs::temp_directory_path() / ("bladestab_sweep_out_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  return dir.string();
 }
 
 }  // namespace
@@ -164,12 +123,17 @@ TEST_CASE("sweep: the slenderness against the paper's Table 5 (300 rad/s)", "[sw
 }
 
 TEST_CASE("sweep: end to end, JSON and every command honouring the static compression", "[sweep][parallel]") {
-  const std::string scene = "'" + testing_support::paper_scene_path() + "'";
-  const std::string out = " --out '" + scratch_dir() + "' --chart none";
+  const std::string scene = testing_support::paper_scene_path();
+  const std::vector<std::string> out{"--out", testing_support::scratch().string(), "--chart", "none"};
+  const auto run = [&](std::vector<std::string> args, bool files) {
+    if (files) args.insert(args.end(), out.begin(), out.end());
+    return testing_support::run_bladestab(args);
+  };
   SECTION("JSON of a compression sweep") {
-    const Run r = run_bladestab("sweep " + scene + " --key operation.tip_compression_over_fcr --values 0:0.5:3 --count 4 --format json" + out);
-    INFO(r.err);
-    REQUIRE(r.status == 0);
+    const testing_support::Outcome r = run({"sweep", scene, "--key", "operation.tip_compression_over_fcr", "--values",
+                                            "0:0.5:3", "--count", "4", "--format", "json"}, true);
+    INFO(testing_support::describe(r) << "\n" << r.err);
+    REQUIRE(testing_support::describe(r) == "exit status 0");
     const Json j = testing_support::parse_json(r.out);
     CHECK(j["key"].text == "operation.tip_compression_over_fcr");
     REQUIRE(j["values"].size() == 3);
@@ -189,9 +153,10 @@ TEST_CASE("sweep: end to end, JSON and every command honouring the static compre
     CHECK(f1[1] > f1[2]);
 
     SECTION("modes at 0.5 F_cr gives the sweep's value") {
-      const Run m = run_bladestab("modes " + scene + " --set operation.tip_compression_over_fcr=0.5 --count 4 --format json");
-      INFO(m.err);
-      REQUIRE(m.status == 0);
+      const testing_support::Outcome m =
+          run({"modes", scene, "--set", "operation.tip_compression_over_fcr=0.5", "--count", "4", "--format", "json"}, false);
+      INFO(testing_support::describe(m) << "\n" << m.err);
+      REQUIRE(testing_support::describe(m) == "exit status 0");
       const Json modes = testing_support::parse_json(m.out);
       CHECK(modes["tip_compression_over_fcr"].number == 0.5);
       CHECK(modes["modes"][0]["frequency_hz"].number == Approx(f1[2]).epsilon(1e-12));
@@ -199,10 +164,10 @@ TEST_CASE("sweep: end to end, JSON and every command honouring the static compre
   }
   SECTION("stability: max|ρ| changes with the compression") {
     const auto max_rho = [&](const std::string& c) {
-      const Run r = run_bladestab("stability " + scene + " --set operation.tip_compression_over_fcr=" + c +
-                                  " --tolerance 1e-4 --format json");
-      INFO(r.err);
-      REQUIRE(r.status == 0);
+      const testing_support::Outcome r = run({"stability", scene, "--set", "operation.tip_compression_over_fcr=" + c,
+                                              "--tolerance", "1e-4", "--format", "json"}, false);
+      INFO(testing_support::describe(r) << "\n" << r.err);
+      REQUIRE(testing_support::describe(r) == "exit status 0");
       return testing_support::parse_json(r.out)["max_abs_multiplier"].number;
     };
     const double unloaded = max_rho("0"), compressed = max_rho("1");
@@ -210,8 +175,9 @@ TEST_CASE("sweep: end to end, JSON and every command honouring the static compre
     CHECK(std::abs(compressed - unloaded) > 1e-3);
   }
   SECTION("a sweep into buckling stops there (test_static_limits.cpp), one that starts past it is refused") {
-    const Run r = run_bladestab("sweep " + scene + " --set operation.speed_rad_s=0 --key operation.tip_compression_over_fcr --values 1.2:2:3" + out);
-    CHECK(r.status == 2);
+    const testing_support::Outcome r = run({"sweep", scene, "--set", "operation.speed_rad_s=0", "--key",
+                                            "operation.tip_compression_over_fcr", "--values", "1.2:2:3"}, true);
+    CHECK(testing_support::describe(r) == "exit status 2");
     CHECK(r.out.empty());
     CHECK_THAT(r.err, Catch::Matchers::Contains("--values 1.2:2:3") && Catch::Matchers::Contains("statically unstable") &&
                           Catch::Matchers::Contains("operation.tip_compression_over_fcr"));
