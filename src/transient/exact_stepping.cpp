@@ -244,21 +244,25 @@ void ExactStepper::prepare(const std::vector<double>& landings, int threads,
     });
     if (!listed) missing.push_back(*offsets);
   }
-  if (mirror_) {
-    for (Integrated& piece : mirrored_pieces(missing, threads, progress)) keep(std::move(piece));
-    return;
-  }
+  if (missing.empty()) return;
+  std::vector<Integrated> pieces = mirror_ ? mirrored_pieces(missing, threads, progress)
+                                           : integrate_side_by_side(A_free_, B_, 1, missing, threads, progress);
+  for (Integrated& piece : pieces) keep(std::move(piece));
+}
+
+std::vector<ExactStepper::Integrated> ExactStepper::integrate_side_by_side(
+    const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, int forcing, const std::vector<std::pair<double, double>>& intervals,
+    int threads, const std::function<void(int, int)>& progress) const {
   std::mutex reporting;
   int done = 0;
-  std::vector<Integrated> pieces = run_indexed(missing.size(), threads, [&](std::size_t i) {
-    Integrated piece = integrate_contact(missing[i].first, missing[i].second);
+  return run_indexed(intervals.size(), threads, [&](std::size_t i) {
+    Integrated piece = integrate(A, B, forcing, intervals[i].first, intervals[i].second);
     if (progress) {
       const std::lock_guard<std::mutex> lock(reporting);
-      progress(++done, static_cast<int>(missing.size()));
+      progress(++done, static_cast<int>(intervals.size()));
     }
     return piece;
   });
-  for (Integrated& piece : pieces) keep(std::move(piece));
 }
 
 bool ExactStepper::step(double a, double b, Eigen::VectorXd& z, double& work) {

@@ -2,13 +2,11 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
-#include <mutex>
 #include <stdexcept>
 #include <vector>
 
 #include "bladestab/ltp/reversing_symmetry.hpp"
 #include "bladestab/transient/exact_stepping.hpp"
-#include "support/work_pool.hpp"
 
 namespace bladestab {
 namespace {
@@ -94,17 +92,9 @@ std::vector<ExactStepper::Integrated> ExactStepper::mirrored_pieces(const std::v
     half.grid.insert(half.grid.begin() + static_cast<std::ptrdiff_t>(longest) + 1,
                      0.5 * (half.grid[longest] + half.grid[longest + 1]));
   }
-  std::mutex reporting;
-  int done = 0;
-  const int segments = static_cast<int>(half.grid.size()) - 1;
-  std::vector<Integrated> integrated = run_indexed(segments, threads, [&](std::size_t k) {
-    Integrated segment = integrate(mirror_->A, mirror_->B, 2, half.grid[k], half.grid[k + 1]);
-    if (progress) {
-      const std::lock_guard<std::mutex> lock(reporting);
-      progress(++done, segments);
-    }
-    return segment;
-  });
+  std::vector<std::pair<double, double>> segments;
+  for (std::size_t k = 0; k + 1 < half.grid.size(); ++k) segments.emplace_back(half.grid[k], half.grid[k + 1]);
+  std::vector<Integrated> integrated = integrate_side_by_side(mirror_->A, mirror_->B, 2, segments, threads, progress);
   long steps = 0;
   for (Integrated& segment : integrated) {
     half.maps.push_back(std::move(segment.piece.map));

@@ -105,6 +105,11 @@ private:
   // constants' rows and columns are zero in A).
   Integrated integrate(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, int forcing, double start,
                        double end) const;
+  // integrate over each of `intervals` (offsets), on up to `threads` threads; `progress` hears
+  // (done, all) after each, one call at a time.
+  std::vector<Integrated> integrate_side_by_side(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, int forcing,
+                                                 const std::vector<std::pair<double, double>>& intervals, int threads,
+                                                 const std::function<void(int, int)>& progress) const;
   // The contact system with its forcing column split in two, the part on coordinates where the
   // reversing signature is −1 and the part where it is +1, and the signature that reverses it
   // (mirrored_contact.cpp); none where the pulse is not even or the blade damped.
