@@ -23,6 +23,7 @@
 #include "bladestab/stability/stability_analysis.hpp"
 #include "bladestab/transient/crosscheck.hpp"
 #include "bladestab/transient/transient.hpp"
+#include "support/run_cli.hpp"
 
 using namespace bladestab;
 
@@ -268,7 +269,7 @@ TEST_CASE("a section table with a step: the basis estimate at 16 terms covers th
   // 64, 128 terms; mode 4 like N^−0.83). The estimate trusted N^−2 there and stated 1.8/3.8 of what
   // it states now (mode 1: 0.018 against a true 0.031). The reference: the 24-, 48- and 96-term
   // models extrapolated at the rate they show.
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "bladestab_test_step_table";
+  const std::filesystem::path dir = testing_support::scratch() / "step_table";
   std::filesystem::create_directories(dir);
   std::filesystem::copy_file(std::string(BLADESTAB_SOURCE_DIR) + "/stability_maps/fan_blade/blade.toml",
                              dir / "blade.toml", std::filesystem::copy_options::overwrite_existing);
