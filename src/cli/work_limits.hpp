@@ -64,9 +64,8 @@ inline double rkf45_seconds(double steps, int dofs) {
 }
 
 // Seconds of the fast transient method (exact_stepping.hpp) on `modes` modes: `magnus_steps` steps
-// of the Magnus propagator on 2·modes + 1 states (magnus_step_work: measured 0.27 ms a step at 97
-// states and 50 µs at 49 on one core, where it gives 0.91 ms and 0.12 ms), and `intervals` steps of
-// the state by a stored propagator.
+// of the Magnus propagator on 2·modes + 1 states (magnus_step_work), and `intervals` steps of the
+// state by a stored propagator.
 inline double fast_transient_seconds(double magnus_steps, double intervals, int modes) {
   const double m = 2.0 * modes + 1;
   return (magnus_steps * magnus_step_work(static_cast<Eigen::Index>(m)) + intervals * 2 * m * m) /
