@@ -320,7 +320,7 @@ void print(const SceneOptions& options, const Scene& scene, const BladeModel& mo
 // harmonics: 2k for the −1 family, 2k + 1 for +1; n dofs of the reduced model), linearized to
 // twice that in θ. Every run solves both families at k and k + 2 on the scene's model and at k on
 // the richer basis, and an automatic reduction's at min(k, 4) on the whole model: a lower bound of
-// the work, with dgeev's ~26 N³ flops and its matrices (~32 N² bytes) for each.
+// the work (boundary_level_flops) and the memory of the largest (boundary_level_bytes).
 void check_boundary_work(const Scene& scene, const BladeModel& model, const BoundaryRequest& request) {
   const ReductionSpec reduction = boundary_reduction(model, scene, request);
   const PeriodicSystem sys = periodic_system(model, scene, load_series(scene), reduction);
@@ -332,13 +332,13 @@ void check_boundary_work(const Scene& scene, const BladeModel& model, const Boun
   const double flops = boundary_level_flops(k, n, in_theta) + boundary_level_flops(k + 2, n, in_theta) +
                        boundary_level_flops(k, richer, in_theta) +
                        (whole_compared ? boundary_level_flops(k_whole, sys.all_modes, in_theta) : 0.0);
-  const double largest = (in_theta ? 2 : 1) * std::max((2 * k + 5) * static_cast<double>(std::max(n, richer)),
-                                                       (2 * k_whole + 1.0) * (whole_compared ? sys.all_modes : 0));
+  const double bytes = std::max(boundary_level_bytes(k + 2, std::max(n, richer), in_theta),
+                                whole_compared ? boundary_level_bytes(k_whole, sys.all_modes, in_theta) : 0.0);
   check_work(fmt::format("--approximation {} with model.terms = {}", k, scene.model.terms),
              whole_compared ? fmt::format("the boundary equations of {} dofs and the reduction's comparison with the whole "
                                           "model of {} dofs at k = {}", n, sys.all_modes, k_whole)
                              : fmt::format("the boundary equations of {} dofs", n), flops / dense_flops_per_second,
-             32 * largest * largest);
+             bytes);
 }
 
 // --at-theta θ puts the pulses at θ (boundaries.hpp); the scene's contact, t̄_c of a revolution at
@@ -368,8 +368,7 @@ std::optional<std::string> tolerance_unmet(const Scene& scene, const BoundaryReq
     const ModelSpec& spec = scene.model;
     part = fmt::format("its basis part {:.1e} with model.basis = \"{}\" and {} terms per field: {}", total.basis,
                        to_string(spec.basis), spec.terms,
-                       basis_can_reach(basis_convergence(scene.blade, spec.basis, spec.terms), spec.terms, total.basis,
-                                       request.tolerance)
+                       basis_can_reach(scene.blade, spec, total.basis, request.tolerance)
                            ? "raise model.terms"
                            : spec.basis == BasisKind::sine ? "more terms cannot reach it; use model.basis = \"legendre\""
                                                            : "more terms cannot reach it (a section table converges "

@@ -13,6 +13,7 @@
 #include "bladestab/base/input_error.hpp"
 #include "bladestab/base/numerical_error.hpp"
 #include "bladestab/modal/basis_error.hpp"
+#include "bladestab/stability/boundaries.hpp"
 #include "bladestab/stability/requirements_check.hpp"
 #include "bladestab/stability/periodic_load.hpp"
 #include "commands.hpp"
@@ -292,8 +293,8 @@ void print_table(const Scene& scene, const std::vector<CheckOutcome>& checks) {
 // The dense eigensolves the checks cannot do without, before they start: the Campbell diagram's
 // whole-model solves of the scene's model and its richer reference at three sample speeds
 // (~25 (2n)³ flops each), and the converged boundary equations at the worst speed, both families
-// at k = 2 and 4 on the whole model and at k = 2 on the richer one (~26 N³ flops for N = h·n
-// unknowns, h harmonics). A lower bound: the scan and the Floquet checks come on top.
+// at k = 2 and 4 on the whole model and at k = 2 on the richer one (boundary_level_flops and
+// boundary_level_bytes). A lower bound: the scan and the Floquet checks come on top.
 void check_requirements_work(const Scene& scene) {
   const RequirementsSpec& req = *scene.requirements;
   ModelSpec richer = scene.model;
@@ -308,11 +309,8 @@ void check_requirements_work(const Scene& scene) {
   }
   if (req.max_fmax_over_fcr) {
     for (const auto& [k, dofs] : {std::pair{2, n}, {4, n}, {2, nr}}) {
-      for (const int harmonics : {2 * k, 2 * k + 1}) {
-        const double unknowns = harmonics * dofs;
-        flops += 26 * unknowns * unknowns * unknowns;
-        bytes = std::max(bytes, 32 * unknowns * unknowns);
-      }
+      flops += boundary_level_flops(k, static_cast<int>(dofs), false);
+      bytes = std::max(bytes, boundary_level_bytes(k, static_cast<int>(dofs), false));
     }
   }
   check_work(fmt::format("the requirements with model.terms = {}", scene.model.terms),

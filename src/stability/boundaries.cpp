@@ -401,8 +401,16 @@ void compare_whole_at(BoundaryAnalysis& result, BoundarySolver& reduced, Boundar
 double boundary_level_flops(int k, int dofs, bool in_theta) {
   const double linearized = in_theta ? 2 : 1;
   double flops = 0;
-  for (const int harmonics : {2 * k, 2 * k + 1}) flops += 26 * std::pow(linearized * harmonics * dofs, 3);
+  for (const int harmonics : {2 * k, 2 * k + 1}) {
+    const double unknowns = linearized * harmonics * dofs;
+    flops += (3 * unknowns + 800) * unknowns * unknowns;
+  }
   return flops;
+}
+
+double boundary_level_bytes(int k, int dofs, bool in_theta) {
+  const double unknowns = (in_theta ? 2 : 1) * (2 * k + 1.0) * dofs;
+  return 64 * unknowns * unknowns;
 }
 
 int richer_basis_dofs(const ModelSpec& spec, int dofs, int all_dofs) {

@@ -85,8 +85,16 @@ struct BoundaryAnalysis {
 
 // The dense eigensolver work of harmonic level k of the boundary equations on `dofs` dofs: both
 // multiplier signs (2k and 2k + 1 harmonics), each a real eigenproblem of harmonics·dofs unknowns,
-// doubled by the linearization in θ (in_theta), at dgeev's ~26 N³ flops.
+// doubled by the linearization in θ (in_theta), counted as 3 N³ + 800 N² flops at
+// cli::dense_flops_per_second: 1.5–3× the measured time of LAPACK's dgeev with eigenvectors on the
+// boundary equations (one core, 28 Nov 2026: 0.9 ms at N = 72, 8.4 ms at 216, 0.16 s at 754, 0.88 s
+// at 1440; its ~26 N³ flops at 1.1e10 to 8.9e10 per second).
 double boundary_level_flops(int k, int dofs, bool in_theta);
+
+// The memory of the larger eigenproblem of that level (2k + 1 harmonics): ~64 N² bytes for N
+// unknowns (the pencil's matrices, their linearization, dgeev's copy, its eigenvectors real and
+// complex; measured 1.65 GB at N = 5340, the whole model of 178 terms at k = 2 in θ).
+double boundary_level_bytes(int k, int dofs, bool in_theta);
 
 // The automatic reduction is also compared with the whole model at this k (or the answer's, if
 // lower): a few whole-model levels cost about as much as all the reduced ones.
