@@ -164,17 +164,21 @@ double basis_tail_factor(BasisConvergence convergence) {
   return 1 / (1 - std::pow(2.0, -max_trusted_rate));
 }
 
-bool basis_can_reach(BasisConvergence convergence, int terms, double estimate, double tolerance) {
-  if (terms >= max_terms) return false;
+bool basis_can_reach(const BladeSpec& blade, const ModelSpec& spec, double estimate, double tolerance) {
+  if (spec.terms >= max_terms) return false;
+  const auto convergence_at = [&](int terms) { return basis_convergence(blade, spec.basis, terms); };
+  const BasisConvergence convergence = convergence_at(spec.terms);
+  if (convergence == BasisConvergence::exponential) return true;
+  if (convergence == BasisConvergence::unresolved && convergence_at(max_terms) == BasisConvergence::kinked) return true;
   // Algebraic convergence: the estimate falls like N^−p (sine: p ≤ 1 asymptotically, v'(0) = 0 is
-  // an O(1/N) error; kinked: about 3, and an unresolved table as fast once more terms resolve it).
-  // If even p = 2 would need more than max_terms, raising is futile.
-  return convergence == BasisConvergence::exponential || terms * std::sqrt(estimate / tolerance) <= max_terms;
+  // an O(1/N) error; kinked: about 3; a step: about 1). If even p = 2 would need more than
+  // max_terms, raising is futile.
+  return spec.terms * std::sqrt(estimate / tolerance) <= max_terms;
 }
 
-std::optional<int> terms_for_tolerance(BasisConvergence convergence, int terms, double estimate, double tolerance) {
-  if (!basis_can_reach(convergence, terms, estimate, tolerance)) return std::nullopt;
-  return std::min(max_terms, convergence == BasisConvergence::sine ? 2 * terms : terms + 2);
+std::optional<int> terms_for_tolerance(const BladeSpec& blade, const ModelSpec& spec, double estimate, double tolerance) {
+  if (!basis_can_reach(blade, spec, estimate, tolerance)) return std::nullopt;
+  return std::min(max_terms, spec.basis == BasisKind::sine ? 2 * spec.terms : spec.terms + 2);
 }
 
 
@@ -230,8 +234,7 @@ ConvergedModes modes_with_error_estimate(const Scene& scene, int count, EigenSol
     if (!tolerance || estimate <= *tolerance) return result;
     const double rounded = *std::max_element(result.rounding.begin(), result.rounding.end());
     if (rounded > *tolerance) throw tolerance_below_rounding(*tolerance, rounded);
-    const std::optional<int> next = terms_for_tolerance(basis_convergence(scene.blade, spec.basis, spec.terms), spec.terms, estimate,
-                                                             *tolerance);
+    const std::optional<int> next = terms_for_tolerance(scene.blade, spec, estimate, *tolerance);
     if (!next) throw tolerance_not_met(*tolerance, spec, estimate);
     spec.terms = *next;
   }

@@ -231,8 +231,7 @@ struct NextRound {
 NextRound next_round(const Scene& scene, const Fidelity& f, const StabilityAnswer& a, double tol, bool vectors_free) {
   const ErrorBudget& b = a.budget;
   const double scale = std::max(1.0, a.floquet.max_abs_multiplier), allowed = tol * scale;
-  const bool basis_reachable =
-      basis_can_reach(basis_convergence(scene.blade, f.model.basis, f.model.terms), f.model.terms, b.basis / scale, tol);
+  const bool basis_reachable = basis_can_reach(scene.blade, f.model, b.basis / scale, tol);
   Fidelity next = f;
   if (b.basis >= std::max(b.reduction, b.load) && basis_reachable) {
     next.model.terms = std::min(max_terms, reference_terms(f.model.basis, f.model.terms));
