@@ -306,10 +306,11 @@ TEST_CASE("step doubling: a sixth-order ladder is accepted with the bound Δ/15 
 
 TEST_CASE("LTP kernels: a monodromy ladder stops at its work limit, and a limit it fits in changes nothing",
           "[ltp][mathieu]") {
-  // Mathieu inside the first tongue at a = 1, q = 0.2: the ladder from 8 steps converges at some
-  // N, having taken 8 + 16 + … + N = 2N − 8 steps. Exactly that work gives the same multipliers;
-  // one flop less cannot take level N, and the ladder stops as a WorkLimitError.
-  const LinearPeriodicSystem sys = mathieu(1.0, 0.2);
+  // Damped Mathieu inside the first tongue at a = 1, q = 0.2, c = 0.01 (no time reversal: the whole
+  // period at every level): the ladder from 8 steps converges at some N, having taken 8 + 16 + … + N
+  // = 2N − 8 steps. Exactly that work gives the same multipliers; one flop less cannot take level N,
+  // and the ladder stops as a WorkLimitError.
+  const LinearPeriodicSystem sys = mathieu(1.0, 0.2, 0.01);
   FloquetOptions options{FloquetMethod::monodromy, 0, 1e-10, false, {}};
   const FloquetResult free = floquet_multipliers(sys, options);
   REQUIRE(free.steps > 16);
@@ -322,6 +323,30 @@ TEST_CASE("LTP kernels: a monodromy ladder stops at its work limit, and a limit 
   CHECK_THROWS_WITH(floquet_multipliers(sys, options), Catch::Contains("all that the work limit affords"));
 }
 
+TEST_CASE("LTP kernels: a half-period ladder that goes on over the whole period counts its steps as whole",
+          "[ltp][mathieu]") {
+  // Undamped, the same point: the half-period levels 8 … S (S the safe count; half a step's work
+  // each, 2S − 8 steps) do not settle to 1e-10, and the ladder goes on over the whole period: S
+  // again, then 2S … N, 2N − S whole steps at twice the work. Exactly that work gives the same
+  // multipliers; one flop less stops it, as does the work the levels would take if all were halved.
+  const LinearPeriodicSystem sys = mathieu(1.0, 0.2);
+  REQUIRE(reversing_signature(sys));
+  FloquetOptions options{FloquetMethod::monodromy, 0, 1e-10, false, {}};
+  const FloquetResult free = floquet_multipliers(sys, options);
+  const int safe = minimum_magnus_steps(sys);
+  REQUIRE(safe >= 8);
+  REQUIRE(free.steps > safe);  // past the safe count: over the whole period
+  const double half = monodromy_step_work(sys), whole = magnus_step_work(sys.state_size());
+  REQUIRE(whole == 2 * half);
+  options.max_flops = (2.0 * safe - 8) * half + (2.0 * free.steps - safe) * whole;
+  const FloquetResult fitted = floquet_multipliers(sys, options);
+  CHECK(fitted.steps == free.steps);
+  CHECK((fitted.multipliers - free.multipliers).cwiseAbs().maxCoeff() == 0);
+  options.max_flops = std::nextafter(options.max_flops, 0.0);
+  CHECK_THROWS_AS(floquet_multipliers(sys, options), WorkLimitError);
+  options.max_flops = (2.0 * free.steps - 8) * half;
+  CHECK_THROWS_AS(floquet_multipliers(sys, options), WorkLimitError);
+}
 
 namespace {
 

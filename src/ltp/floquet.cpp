@@ -8,6 +8,7 @@
 #include "bladestab/base/constants.hpp"
 #include "bladestab/base/input_error.hpp"
 #include "bladestab/base/numerical_error.hpp"
+#include "bladestab/ltp/magnus.hpp"
 #include "bladestab/ltp/monodromy.hpp"
 #include "bladestab/ltp/reversing_symmetry.hpp"
 #include "bladestab/ltp/step_doubling.hpp"
@@ -105,7 +106,8 @@ NumericalError too_many_steps(const LinearPeriodicSystem& sys) {
 // ladder's evidence (StepDoubling::overflowed). The levels stop where `max_flops` would be passed.
 // A ladder over half the period (magnus_monodromy) not settled past the safe count is taken to
 // sit at a Jordan pair, where the rounding of U⁻¹ leaves the pair a floor of √(ε cond U): it goes
-// on over the whole period, from the level before taken again over the whole period.
+// on over the whole period, from the level before taken again over the whole period: a ladder of
+// its own, counting whole steps in the work left.
 Attempt refine_steps(const LinearPeriodicSystem& sys, double tol, double max_flops, LevelCounter& counter) {
   const int safe = minimum_magnus_steps(sys);
   if (safe > max_magnus_steps) throw too_many_steps(sys);
@@ -113,13 +115,20 @@ Attempt refine_steps(const LinearPeriodicSystem& sys, double tol, double max_flo
   counter.plan(ladder.levels() + 1);  // and the checks after
   Eigen::VectorXcd previous;
   bool whole_period = !reversing_signature(sys);
+  double spent = 0;
   for (int steps = ladder.first(); steps <= ladder.last(); steps *= 2) {
     if (!whole_period && steps > safe && previous.size() > 0) {
       whole_period = true;
-      ladder.start();
+      const double whole_step = magnus_step_work(sys.state_size());
+      ladder = StepDoubling(steps / 2, max_magnus_steps, safe, whole_step, max_flops - spent);
+      if (ladder.last() < steps) break;
+      counter.plan(ladder.levels() + 1);
       previous = sorted_eigenvalues(magnus_monodromy(sys, steps / 2, true));
+      spent += steps / 2 * whole_step;
+      counter.level_done();
     }
     Eigen::MatrixXd phi = magnus_monodromy(sys, steps, whole_period);
+    spent += steps * (whole_period ? magnus_step_work(sys.state_size()) : monodromy_step_work(sys));
     counter.level_done();
     if (!phi.allFinite()) {
       if (ladder.overflowed(steps)) throw monodromy_overflow(sys.period());
