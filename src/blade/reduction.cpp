@@ -60,11 +60,7 @@ std::vector<std::pair<int, int>> decoupled_fields(const BladeModel& model, const
 // last bit, and so are the modes (reduced_modes): an axial mode stays axial, as in the continuum.
 ReducedBasis field_pure_basis(const Eigen::MatrixXd& W, const BladeModel& model, const Eigen::MatrixXd& damping) {
   const std::vector<std::pair<int, int>> groups = decoupled_fields(model, damping);
-  if (groups.empty()) {
-    Eigen::MatrixXd V = m_orthonormal(W, model.M);
-    const int size = static_cast<int>(V.cols());
-    return {std::move(V), {size}};
-  }
+  if (groups.empty()) return {m_orthonormal(W, model.M), {}};
   std::vector<Eigen::MatrixXd> parts;
   Eigen::Index columns = 0;
   for (const auto& [offset, count] : groups) {

@@ -31,6 +31,10 @@ constexpr double kinked_trusted_rate = 2;
 // step at mid-span, 24–96 terms; mode 1: 0.94; the fan blade at 8 terms: about 1.5).
 constexpr double unresolved_trusted_rate = 0.75;
 
+// How much |f_N − f_M| understates the error of f_N when f_N − f_∞ ∝ N^−p (ratio = N/M < 1):
+// 1/(1 − (N/M)^p).
+double algebraic_tail(double ratio, double rate) { return 1 / (1 - std::pow(ratio, rate)); }
+
 ModalSolution modes_of(const BladeModel& model, const Scene& scene, int count, EigenSolverKind solver) {
   const double speed = scene.operation.speed_rad_s;
   return solve_modes(model, system_at(model, speed, damping_matrix(model, scene.damping, speed)), speed, count,
@@ -62,7 +66,7 @@ BasisTail basis_tail(const std::vector<double>& f, const std::vector<int>& n, Ba
   const double d1 = f[0] - f[1];
   if (convergence == BasisConvergence::kinked || convergence == BasisConvergence::unresolved) {
     const double rate = convergence == BasisConvergence::kinked ? kinked_trusted_rate : unresolved_trusted_rate;
-    const double factor = 1 / (1 - std::pow(static_cast<double>(n[0]) / n[1], rate));
+    const double factor = algebraic_tail(static_cast<double>(n[0]) / n[1], rate);
     return {factor * std::abs(d1) / std::abs(f[1]), factor};
   }
   if (f.size() == 2 || d1 == 0) return {exponential_margin * std::abs(d1) / std::abs(f[1]), exponential_margin};
@@ -78,7 +82,7 @@ BasisTail basis_tail(const std::vector<double>& f, const std::vector<int>& n, Ba
     for (int i = 0; i < 60 && hi > lo; ++i) ((ratio(0.5 * (lo + hi)) > r) ? lo : hi) = 0.5 * (lo + hi);
     p = std::min(lo, max_trusted_rate);  // lo: the slower rate of the bracket, the larger tail
   }
-  const double factor = 1 / (1 - std::pow(static_cast<double>(n[0]) / n[1], p));
+  const double factor = algebraic_tail(static_cast<double>(n[0]) / n[1], p);
   return {factor * std::abs(d1) / std::abs(f[1]), factor};
 }
 
@@ -157,11 +161,11 @@ BasisConvergence basis_convergence(const BladeSpec& blade, BasisKind basis, int 
 double basis_tail_factor(BasisConvergence convergence) {
   switch (convergence) {
     case BasisConvergence::exponential: return exponential_margin;
-    case BasisConvergence::kinked: return 1 / (1 - std::pow(2.0 / 3, kinked_trusted_rate));
-    case BasisConvergence::unresolved: return 1 / (1 - std::pow(2.0 / 3, unresolved_trusted_rate));
+    case BasisConvergence::kinked: return algebraic_tail(2.0 / 3, kinked_trusted_rate);
+    case BasisConvergence::unresolved: return algebraic_tail(2.0 / 3, unresolved_trusted_rate);
     case BasisConvergence::sine: break;
   }
-  return 1 / (1 - std::pow(2.0, -max_trusted_rate));
+  return algebraic_tail(0.5, max_trusted_rate);
 }
 
 bool basis_can_reach(const BladeSpec& blade, const ModelSpec& spec, double estimate, double tolerance) {

@@ -31,8 +31,7 @@ struct ReducedSystem {
   bool undamped = false;  // C_D = 0: C is gyroscopic only, the blade's motion Hamiltonian
   // The sizes of the basis's consecutive column blocks: the bending fields', then the axial
   // field's, where the blade is undamped and couples the two by the gyroscopic matrix alone (each
-  // column lies in one, so K, G and the modes are block diagonal, exactly); else one block (also
-  // when empty).
+  // column lies in one, so K, G and the modes are block diagonal, exactly); else empty: one block.
   std::vector<int> blocks;
   int size() const { return static_cast<int>(basis.cols()); }
 };
