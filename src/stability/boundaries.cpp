@@ -500,7 +500,8 @@ private:
 
   // Whether the work spent, one more level (k + 4) of `dofs` and the comparisons at k (two levels
   // each of the richer basis, the reduction's next step and the longer load series; the whole
-  // model at k ≤ 4) fit in request.work_flops.
+  // model at k ≤ 4) fit in half of request.work_flops: the multiplier checks take up to a quarter
+  // (check_work_left_) and the regions' Floquet verdicts about another (instability_regions.cpp).
   bool affordable(int k, int dofs, const ReductionSpec& reduction) const {
     const int all = model_.layout.size();
     const auto levels = [&](int n) {
@@ -513,7 +514,7 @@ private:
     }
     if (reduction.kind == ReductionKind::modal && dofs < all) work += levels(all);
     if (!load_.cosine_approximation) work += levels(dofs);
-    return work <= r_.work_flops;
+    return work <= r_.work_flops / 2;
   }
 
   void converge(BoundarySolver& solver, int first, BoundaryAnalysis& result) {
