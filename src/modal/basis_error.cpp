@@ -168,20 +168,24 @@ double basis_tail_factor(BasisConvergence convergence) {
   return algebraic_tail(0.5, max_trusted_rate);
 }
 
-bool basis_can_reach(const BladeSpec& blade, const ModelSpec& spec, double estimate, double tolerance) {
+bool basis_can_reach(const BladeSpec& blade, const ModelSpec& spec, double estimate, double tolerance,
+                     std::optional<int> before) {
   if (spec.terms >= max_terms) return false;
-  const auto convergence_at = [&](int terms) { return basis_convergence(blade, spec.basis, terms); };
-  const BasisConvergence convergence = convergence_at(spec.terms);
+  const auto unresolved_at = [&](int terms) {
+    return basis_convergence(blade, spec.basis, terms) == BasisConvergence::unresolved;
+  };
+  const BasisConvergence convergence = basis_convergence(blade, spec.basis, spec.terms);
   if (convergence == BasisConvergence::exponential) return true;
-  if (convergence == BasisConvergence::unresolved && convergence_at(max_terms) == BasisConvergence::kinked) return true;
+  if (!unresolved_at(max_terms) && (unresolved_at(spec.terms) || (before && unresolved_at(*before)))) return true;
   // Algebraic convergence: the estimate falls like N^−p (sine: p ≤ 1 asymptotically, v'(0) = 0 is
   // an O(1/N) error; kinked: about 3; a step: about 1). If even p = 2 would need more than
   // max_terms, raising is futile.
   return spec.terms * std::sqrt(estimate / tolerance) <= max_terms;
 }
 
-std::optional<int> terms_for_tolerance(const BladeSpec& blade, const ModelSpec& spec, double estimate, double tolerance) {
-  if (!basis_can_reach(blade, spec, estimate, tolerance)) return std::nullopt;
+std::optional<int> terms_for_tolerance(const BladeSpec& blade, const ModelSpec& spec, double estimate, double tolerance,
+                                       std::optional<int> before) {
+  if (!basis_can_reach(blade, spec, estimate, tolerance, before)) return std::nullopt;
   return std::min(max_terms, spec.basis == BasisKind::sine ? 2 * spec.terms : spec.terms + 2);
 }
 
@@ -212,6 +216,7 @@ ConvergedModes modes_with_error_estimate(const Scene& scene, int count, EigenSol
                                          std::optional<double> tolerance) {
   if (tolerance) check_tolerance(*tolerance);
   ModelSpec spec = scene.model;
+  std::optional<int> before;  // the terms of the round before
   while (true) {
     BladeModel model = assemble_model(scene, spec);
     ModalSolution solution = modes_of(model, scene, count, solver);
@@ -238,8 +243,10 @@ ConvergedModes modes_with_error_estimate(const Scene& scene, int count, EigenSol
     if (!tolerance || estimate <= *tolerance) return result;
     const double rounded = *std::max_element(result.rounding.begin(), result.rounding.end());
     if (rounded > *tolerance) throw tolerance_below_rounding(*tolerance, rounded);
-    const std::optional<int> next = terms_for_tolerance(scene.blade, spec, estimate, *tolerance);
+    const std::optional<int> next =
+        terms_for_tolerance(scene.blade, spec, estimate, *tolerance, before);
     if (!next) throw tolerance_not_met(*tolerance, spec, estimate);
+    before = spec.terms;
     spec.terms = *next;
   }
 }

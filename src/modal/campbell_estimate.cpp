@@ -347,7 +347,8 @@ CampbellWithErrors campbell_with_error_estimate(const Scene& scene, const Campbe
   double spent = 0;    // the whole-model eigensolves of the rounds before (EstimateRound::work)
   std::optional<std::pair<int, double>> reached;  // the last round's terms and estimate
   const auto raise = [&](double worst, const EstimateRound& round) {
-    const std::optional<int> next = terms_for_tolerance(scene.blade, spec, worst, tolerance);
+    const std::optional<int> next =
+        terms_for_tolerance(scene.blade, spec, worst, tolerance, reached ? std::optional(reached->first) : std::nullopt);
     if (!next) throw tolerance_not_met(tolerance, spec, worst);
     spent += round.work();
     reached = std::pair{spec.terms, worst};

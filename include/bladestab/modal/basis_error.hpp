@@ -92,14 +92,18 @@ BasisTail basis_tail(const std::vector<double>& f, const std::vector<int>& n, Ba
 // Whether raising the terms from N (`spec`) on `blade` can bring a basis error `estimate` within
 // `tolerance`: not when N is at the limit of 200, nor for algebraic convergence (sine, kinked, a step
 // no 200 terms resolve) when even a convergence like N^−2 would need more than 200 terms. A table
-// that N terms do not resolve but 200 would is raised regardless: its estimate there shows no rate
-// (the fan blade at 4 terms: 1.1; at 16: 1.4e-5 in `campbell`). Every analysis that raises the
-// terms asks this before it does, so a tolerance out of the basis' reach is said at once.
-bool basis_can_reach(const BladeSpec& blade, const ModelSpec& spec, double estimate, double tolerance);
+// that N terms do not resolve but 200 would is raised regardless, and so is one that the round
+// before (`before`: its terms) did not resolve: an estimate there shows no rate (the fan blade in
+// `campbell`: 1.1 at 4 terms, 0.025 at 10, 3.4e-4 at 12, 1.7e-5 at 14). Every analysis that
+// raises the terms asks this before it does, so a tolerance out of the basis' reach is said at once.
+bool basis_can_reach(const BladeSpec& blade, const ModelSpec& spec, double estimate, double tolerance,
+                     std::optional<int> before = std::nullopt);
 
 // The terms to try next for `tolerance` when the estimate of a model of `spec` on `blade` is
-// `estimate`: sine 2N, Legendre N + 2 (at most 200); none where basis_can_reach says raising is futile.
-std::optional<int> terms_for_tolerance(const BladeSpec& blade, const ModelSpec& spec, double estimate, double tolerance);
+// `estimate` (`before`: the terms of the round before): sine 2N, Legendre N + 2 (at most 200); none
+// where basis_can_reach says raising is futile.
+std::optional<int> terms_for_tolerance(const BladeSpec& blade, const ModelSpec& spec, double estimate, double tolerance,
+                                       std::optional<int> before = std::nullopt);
 
 // ParameterError on `tolerance` unless 0 < tolerance < 1 and tolerance > 1e-12, the
 // eigensolver's rounding that every estimate includes.
