@@ -23,28 +23,16 @@
 namespace bladestab::cli {
 namespace {
 
-// Two fast transients per point: the cosine load's revolution-long contact on the reduced model (3
-// vectors per load level for the automatic reduction, else the whole model's dofs as a bound), the
-// pulse's contact on the whole model (a bound: `stability`'s model for the true train), at about
-// one Magnus step per step of RKF45's cap on the whole model (a bound: a reduced model's stiffest
-// mode is far lower).
-void check_crosscheck_work(const Scene& scene, std::size_t points, double revolutions) {
-  const BladeModel model = assemble_model(scene);
-  const double revolution = two_pi / scene.operation.speed_rad_s, duration = revolutions * revolution;
-  const double cap = transient_step(model, scene, TransientOptions{}, duration).step_s;
-  const ReductionSpec& r = scene.model.reduction;
-  const int whole = model.layout.size();
-  const int reduced = r.kind == ReductionKind::automatic
-                          ? std::min(whole, 3 * (r.vectors > 0 ? r.vectors : default_reduction_vectors))
-                          : whole;
-  const double cosine_steps = points * revolution / cap, pulse_steps = points * scene.load.contact_time_rev * revolution / cap;
-  const double intervals = points * revolutions * 200;
-  check_work(fmt::format("--points with {} values and --revolutions {:g} with model.terms = {}", points, revolutions,
-                         scene.model.terms),
-             fmt::format("{:.3g} Magnus steps of a {}-mode model and {:.3g} of a {}-mode one", cosine_steps, reduced,
-                         pulse_steps, whole),
-             fast_transient_seconds(cosine_steps, intervals, reduced) + fast_transient_seconds(pulse_steps, intervals, whole),
-             transient_history_bytes(revolutions, 200));
+// The Magnus work of the points' monodromies and transients (crosscheck_magnus_work) and the
+// transients' samples, against --max-seconds; their histories against --max-memory.
+void check_crosscheck_work(const Scene& scene, const CrosscheckOptions& o) {
+  const double intervals = o.fmax_over_fcr.size() * o.revolutions * 200;
+  const double states = 2.0 * dof_layout(scene.model, scene.blade.two_planes()).size() + 1;
+  check_work(fmt::format("--points with {} values and --revolutions {:g} with model.terms = {}", o.fmax_over_fcr.size(),
+                         o.revolutions, scene.model.terms),
+             fmt::format("the monodromies and contacts of {} points", o.fmax_over_fcr.size()),
+             (crosscheck_magnus_work(scene, o) + 2 * intervals * states * states) / dense_flops_per_second,
+             transient_history_bytes(o.revolutions, 200));
 }
 
 // The table: per point and load, Floquet max|ρ| and the transient growth, each with its estimate,
@@ -163,11 +151,11 @@ Command register_crosscheck(CLI::App& app) {
   return [=] {
     const Scene scene = options->load();
     if (scene.operation.speed_rad_s <= 0) throw InputError("operation.speed_rad_s = 0: crosscheck needs a speed > 0");
-    check_crosscheck_work(scene, points->size(), *revolutions);
     CrosscheckOptions o;
     o.fmax_over_fcr = *points;
     o.revolutions = *revolutions;
     o.threads = *threads;
+    check_crosscheck_work(scene, o);
     o.progress = progress_reporter("crosscheck: points", options->output_format() == OutputFormat::table);
     const std::vector<CrosscheckPoint> result = crosscheck(scene, o);
     const FiniteResults check("crosscheck");

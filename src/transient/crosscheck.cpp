@@ -1,5 +1,6 @@
 #include "bladestab/transient/crosscheck.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <mutex>
 #include <utility>
@@ -7,6 +8,7 @@
 #include "bladestab/base/constants.hpp"
 #include "bladestab/base/input_error.hpp"
 #include "bladestab/ltp/floquet.hpp"
+#include "bladestab/ltp/magnus.hpp"
 #include "bladestab/ltp/monodromy.hpp"
 #include "bladestab/stability/periodic_system.hpp"
 #include "bladestab/transient/response_analysis.hpp"
@@ -72,13 +74,19 @@ bool CrosscheckPoint::pulse_agrees() const {
 
 namespace {
 
-// The paper's cosine approximation: in the frequency domain (42) on the scene's reduction; in the
-// time domain the cosine profile over a whole revolution, which is the same function.
-void cosine_rows(const BladeModel& model, const Scene& scene, const CrosscheckOptions& o, CrosscheckPoint& p) {
+// The paper's cosine approximation (42) as a load: in the time domain the cosine profile over a
+// whole load period, which is the same function.
+Scene cosine_scene(const Scene& scene) {
   Scene cosine = scene;
   cosine.load.approximation = LoadApproximation::cosine;
   cosine.load.profile = PulseProfile::cosine;
-  cosine.load.contact_time_rev = 1 / load_periods_per_revolution(scene);  // the cosine over a whole load period
+  cosine.load.contact_time_rev = 1 / load_periods_per_revolution(scene);
+  return cosine;
+}
+
+// The cosine approximation in the frequency domain on the scene's reduction and in the time domain.
+void cosine_rows(const BladeModel& model, const Scene& scene, const CrosscheckOptions& o, CrosscheckPoint& p) {
+  const Scene cosine = cosine_scene(scene);
   const PeriodicSystem cosine_system = periodic_system(model, cosine, load_series(cosine), scene.model.reduction);
   const FloquetResult fc = floquet_multipliers(cosine_system, {FloquetMethod::automatic, 0, o.tolerance});
   p.cosine_modes = cosine_system.kept_modes;
@@ -94,6 +102,13 @@ void cosine_rows(const BladeModel& model, const Scene& scene, const CrosscheckOp
   const Eigen::MatrixXd phi_magnus = magnus_monodromy(cosine_system, 2048);
   p.rkf45_max_abs_multiplier = Eigen::EigenSolver<Eigen::MatrixXd>(phi_rkf, false).eigenvalues().cwiseAbs().maxCoeff();
   p.monodromy_difference = (phi_rkf - phi_magnus).norm() / phi_magnus.norm();
+}
+
+// The scene with its true pulse train (load.approximation = "exact").
+Scene exact_train_scene(const Scene& scene) {
+  Scene pulse = scene;
+  pulse.load.approximation = LoadApproximation::exact;
+  return pulse;
 }
 
 // The true pulse train's system and the reduction it is built on: the scene's where it names one
@@ -115,8 +130,7 @@ std::pair<PeriodicSystem, ReductionSpec> pulse_system(const BladeModel& model, c
 // Magnus steps of the stiffest mode over the whole period (16,384 a revolution for the paper blade
 // at 16 terms, 3 s a point), and on a reduction it can open a tongue the model does not have.
 void pulse_rows(const BladeModel& model, const Scene& scene, const CrosscheckOptions& o, CrosscheckPoint& p) {
-  Scene pulse = scene;
-  pulse.load.approximation = LoadApproximation::exact;
+  const Scene pulse = exact_train_scene(scene);
   const PulseTrain train = pulse_train(pulse);
   const auto [system, reduction] = pulse_system(model, pulse, train);
   const FloquetResult ft = pulse_train_multipliers(system, periodic_pulse(train), {FloquetMethod::monodromy, 0, o.tolerance});
@@ -130,14 +144,29 @@ void pulse_rows(const BladeModel& model, const Scene& scene, const CrosscheckOpt
   p.transient_pulse_omitted = growth.omitted;
 }
 
+// The time domain integrates an impulse as a rectangle t_c long, the frequency domain takes its
+// jump limit (docs/theory.md §3.2): two loads, where the check compares two methods on one.
+void refuse_impulse(const Scene& base) {
+  if (base.load.profile != PulseProfile::impulse) return;
+  throw InputError("load.profile = \"impulse\": the transients integrate it as a rectangle t_c long and the Floquet "
+                   "analysis takes its jump limit, two different loads; crosscheck compares its methods on one: "
+                   "give load.profile = \"rectangular\" for the rectangle");
+}
+
+// The scene of the point at F̄_max = fbar: a periodic load.
+Scene point_scene(const Scene& base, double fbar) {
+  Scene scene = base;
+  scene.load.fmax_over_fcr = fbar;
+  scene.load.pulse_count = 0;
+  return scene;
+}
+
 // One point of the cross-check at F̄_max = fbar.
 CrosscheckPoint crosscheck_point(const BladeModel& model, const Scene& base, double fbar, const CrosscheckOptions& o) {
   CrosscheckPoint p;
   p.fmax_over_fcr = fbar;
   p.load_periods_per_revolution = load_periods_per_revolution(base);
-  Scene scene = base;
-  scene.load.fmax_over_fcr = fbar;
-  scene.load.pulse_count = 0;  // a periodic load
+  const Scene scene = point_scene(base, fbar);
   cosine_rows(model, scene, o, p);
   pulse_rows(model, scene, o, p);
   return p;
@@ -149,14 +178,28 @@ double load_periods_per_revolution(const Scene& scene) {
   return two_pi / scene.operation.speed_rad_s / pulse_train(scene).period_s;
 }
 
+double crosscheck_magnus_work(const Scene& base, const CrosscheckOptions& o) {
+  refuse_impulse(base);
+  if (o.fmax_over_fcr.empty()) return 0;
+  const BladeModel model = assemble_model(base);
+  // The systems at the largest load stand for every point's: their steps grow with the load.
+  const Scene scene = point_scene(base, *std::max_element(o.fmax_over_fcr.begin(), o.fmax_over_fcr.end()));
+  const Scene cosine = cosine_scene(scene);
+  const PeriodicSystem c = periodic_system(model, cosine, load_series(cosine), scene.model.reduction);
+  // The Floquet ladder and the transient's revolution of contact pieces (each at most twice the safe
+  // count), and the 2048-step monodromy compared with RKF45's.
+  double work = (2.0 * minimum_magnus_steps(c) * (1 + load_periods_per_revolution(base)) + 2048) *
+                magnus_step_work(c.state_size() + 1);
+  const Scene pulse = exact_train_scene(scene);
+  const PulseTrain train = pulse_train(pulse);
+  const PeriodicSystem p = pulse_system(model, pulse, train).first;
+  // Its contact, in the Floquet ladder and in the transient.
+  work += 4.0 * minimum_magnus_steps(p) * train.contact_time_s / train.period_s * magnus_step_work(p.state_size() + 1);
+  return static_cast<double>(o.fmax_over_fcr.size()) * work;
+}
+
 std::vector<CrosscheckPoint> crosscheck(const Scene& base, const CrosscheckOptions& o) {
-  // The time domain integrates an impulse as a rectangle t_c long, the frequency domain takes its
-  // jump limit (docs/theory.md §3.2): two loads, where the check compares two methods on one.
-  if (base.load.profile == PulseProfile::impulse) {
-    throw InputError("load.profile = \"impulse\": the transients integrate it as a rectangle t_c long and the Floquet "
-                     "analysis takes its jump limit, two different loads; crosscheck compares its methods on one: "
-                     "give load.profile = \"rectangular\" for the rectangle");
-  }
+  refuse_impulse(base);
   const BladeModel model = assemble_model(base);
   std::mutex progress_lock;
   int done = 0;

@@ -51,6 +51,13 @@ struct CrosscheckOptions {
 
 std::vector<CrosscheckPoint> crosscheck(const Scene& scene, const CrosscheckOptions& options);
 
+// The Magnus work of crosscheck(scene, options) before it starts, in eigensolver flops
+// (magnus_step_work): per point, the systems it integrates (the cosine load's on the scene's
+// reduction, the true train's on the model `stability` takes for it; both built at the largest
+// load) at twice the steps where h‖A‖₂ ≤ 2 (minimum_magnus_steps) for each ladder, the bound its
+// ladders converge within.
+double crosscheck_magnus_work(const Scene& scene, const CrosscheckOptions& options);
+
 // Load periods T_p in a revolution: pulses_per_rev, unless load.pulse_frequency_hz sets T_p.
 double load_periods_per_revolution(const Scene& scene);
 
