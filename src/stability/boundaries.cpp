@@ -399,10 +399,9 @@ void compare_whole_at(BoundaryAnalysis& result, BoundarySolver& reduced, Boundar
 }  // namespace
 
 double boundary_level_flops(int k, int dofs, bool in_theta) {
-  const double linearized = in_theta ? 2 : 1;
   double flops = 0;
   for (const int harmonics : {2 * k, 2 * k + 1}) {
-    const double unknowns = linearized * harmonics * dofs;
+    const double unknowns = (in_theta ? 2 : 1) * harmonics * dofs;
     flops += (3 * unknowns + 800) * unknowns * unknowns;
   }
   return flops;
