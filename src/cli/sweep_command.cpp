@@ -134,11 +134,13 @@ void print_table(const Scene& scene, const ParameterSweep& s, const std::vector<
 }
 
 // Each value solves its model whole with the richer ones of its error estimate, as `modes` does
-// (modes_with_error_estimate). A sweep of model.terms is estimated at its largest value.
+// (modes_with_error_estimate). A sweep of model.terms is estimated at its largest value, one of
+// the damping as damped.
 void check_sweep_work(const Scene& scene, const ParameterSweepOptions& o) {
   ModelSpec spec = scene.model;
   if (o.key == "model.terms") spec.terms = static_cast<int>(*std::max_element(o.values.begin(), o.values.end()));
-  const EigensolveWork work = converged_modes_work(spec, scene.blade.two_planes());
+  const bool damped = scene.damping.model != DampingModel::none || o.key.rfind("damping.", 0) == 0;
+  const EigensolveWork work = converged_modes_work(spec, scene.blade.two_planes(), damped);
   check_work(fmt::format("--values {} with model.terms = {}", echoed(o.values_text), spec.terms),
              fmt::format("the eigensolves of {} values", o.values.size()),
              o.values.size() * work.flops / dense_flops_per_second, work.bytes);

@@ -53,8 +53,8 @@ std::string with_max_seconds(const std::string& message) {
   return fmt::format("{} (--max-seconds {:g})", message, work_limits().seconds);
 }
 
-EigensolveWork converged_modes_work(const ModelSpec& spec, bool two_planes) {
-  const ReferenceSolves solves = reference_solves(spec, two_planes);
+EigensolveWork converged_modes_work(const ModelSpec& spec, bool two_planes, bool damped) {
+  const ReferenceSolves solves = reference_solves(spec, two_planes, damped);
   return {solves.flops, eigensolve_bytes(solves.largest_dofs)};
 }
 

@@ -47,7 +47,7 @@ inline double eigensolve_bytes(double dofs) { return 6 * 8 * 4 * dofs * dofs; }
 struct EigensolveWork {
   double flops = 0, bytes = 0;
 };
-EigensolveWork converged_modes_work(const ModelSpec& spec, bool two_planes);
+EigensolveWork converged_modes_work(const ModelSpec& spec, bool two_planes, bool damped);
 
 // Bytes of a transient's history of `revolutions` at `samples_per_revolution`: each sample with its
 // CSV line and chart series takes about 600.

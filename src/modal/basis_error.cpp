@@ -137,11 +137,11 @@ int reference_terms(BasisKind basis, int terms) {
   return std::min(richer, max_terms + 40);
 }
 
-ReferenceSolves reference_solves(ModelSpec spec, bool two_planes) {
+ReferenceSolves reference_solves(ModelSpec spec, bool two_planes, bool damped) {
   ReferenceSolves solves;
   for (int model = 0; model <= (spec.basis == BasisKind::sine ? 2 : 1); ++model) {
     const int dofs = dof_layout(spec, two_planes).size();
-    solves.flops += whole_eigensolve_flops(dofs);
+    solves.flops += whole_eigensolve_flops(dofs, damped);
     solves.largest_dofs = std::max(solves.largest_dofs, dofs);
     spec.terms = reference_terms(spec.basis, spec.terms);
   }

@@ -53,7 +53,7 @@ struct ReferenceSolves {
   double flops = 0;
   int largest_dofs = 0;
 };
-ReferenceSolves reference_solves(ModelSpec spec, bool two_planes);
+ReferenceSolves reference_solves(ModelSpec spec, bool two_planes, bool damped);
 
 // How fast the Ritz basis converges on a blade, which sets how far one comparison |f_N − f_ref|
 // understates the error and whether more terms can reach a tolerance:
