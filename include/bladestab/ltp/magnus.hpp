@@ -18,7 +18,7 @@ Eigen::MatrixXd magnus_propagator(const Eigen::MatrixXd& A0, const Eigen::Matrix
 // LAPACK eigensolver (boundary_level_flops, cli::dense_flops_per_second): the degree-18
 // exponential's five products, a squaring, and the product with the propagator so far, 14 n³
 // flops, run about 7 times as fast as dgeev's; forming the step's exponent adds ~13 n² at the speed
-// of memory. Measured on one core (bench/magnus_step.cpp, 28 Nov 2026): 1.5 µs a step at n = 13,
+// of memory. Measured on one core (bench/work_calibration.cpp, 28 Nov 2026): 1.5 µs a step at n = 13,
 // 5.7 µs at 25, 0.23 ms at 97, 0.87 ms at 146, 6.5 ms at 270; this counts 1.6–2.5× those (2.8 µs,
 // 14 µs, 0.55 ms, 1.8 ms and 11 ms at 4 Gflop/s).
 inline double magnus_step_work(Eigen::Index states) {

@@ -18,12 +18,12 @@ enum class EigenSolverKind { automatic, dense, arpack };
 const char* to_string(EigenSolverKind);
 
 // The work of one whole dense eigensolve of the first-order system of a model with `dofs` dofs
-// (2·dofs states), in flops at cli::dense_flops_per_second (4e9/s). Damped (or statically
-// unstable) the complex Schur form of dense_eigenpairs: 200 n³ + 10⁴ n², 1.3–2.9× its measured time
-// from 48 to 400 dofs; undamped the Hermitian form of a conservative gyroscopic system, 4–5× faster:
-// 40 n³ + 8000 n², 2.2–4× its measured time (one core, 28 Nov 2026: 2.6 ms at 48 dofs, 31 ms at
-// 170, 0.25 s at 400; damped 7.3 ms, 0.12 s, 1.1 s); a blade past its static limit takes the complex
-// form undamped too, about as the damped count says at 170 dofs.
+// (2·dofs states), in flops at cli::dense_flops_per_second (4e9/s). Damped, the complex Schur form
+// of dense_eigenpairs: 200 n³ + 10⁴ n², 1.4–3.7× its measured time from 48 to 400 dofs; undamped,
+// the Hermitian form of a conservative gyroscopic system, 4–5× faster: 40 n³ + 8000 n², 2.8–4.6×
+// (bench/work_calibration.cpp, one core, 28 Nov 2026: 2.0 ms at 48 dofs, 34 ms at 170, 0.21 s at
+// 400; damped 8.3 ms, 0.12 s, 0.97 s). A blade past its static limit takes the complex form
+// undamped too: there the undamped count is about its time (0.9× at 170 dofs).
 inline double whole_eigensolve_flops(double dofs, bool damped) {
   return damped ? (200 * dofs + 1e4) * dofs * dofs : (40 * dofs + 8000) * dofs * dofs;
 }
