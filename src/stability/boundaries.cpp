@@ -192,9 +192,10 @@ struct Compared {
 
 // The boundaries of the window (of order ≤ max_order) at k, each compared with k + 2, and those
 // that appear only at k + 2, compared with k + 4 (dropped if they have no counterpart there:
-// a root of one truncation only).
+// a root of one truncation only); without k + 4 (`with_next` false: the work limit does not afford
+// it), those are kept without a counterpart, so not converged.
 std::vector<Compared> compare_at(BoundarySolver& solver, int k, bool in_load, const std::pair<double, double>& window,
-                                 int max_order) {
+                                 int max_order, bool with_next) {
   const auto inside = [&](const Boundary& b) {
     return b.order <= max_order && value_of(b, in_load) >= window.first && value_of(b, in_load) <= window.second;
   };
@@ -216,6 +217,10 @@ std::vector<Compared> compare_at(BoundarySolver& solver, int k, bool in_load, co
   std::vector<Boundary> fresh;
   for (std::size_t j = 0; j < mid.size(); ++j) {
     if (!seen[j] && inside(mid[j])) fresh.push_back(mid[j]);
+  }
+  if (!with_next) {
+    for (const Boundary& b : fresh) out.push_back({b, k + 2, std::nullopt});
+    return out;
   }
   if (fresh.empty()) return out;
   const std::vector<Boundary>& hi = solver.at(k + 4);
@@ -358,7 +363,7 @@ void converge_in_harmonics(BoundarySolver& solver, const BoundaryRequest& r, int
     at_level(k);
     const bool within_harmonics = k + 6 <= r.max_approximation;  // k + 2 would need k + 6 harmonics
     const bool last = !within_harmonics || !affordable(k + 2);
-    std::vector<Compared> compared = compare_at(solver, k, in_load, result.window, r.max_order);
+    std::vector<Compared> compared = compare_at(solver, k, in_load, result.window, r.max_order, affordable(k));
     double worst = 0;
     for (const Compared& c : compared) worst = std::max(worst, method_part(c));
     if (worst > r.tolerance && !last) continue;
@@ -397,20 +402,6 @@ void compare_whole_at(BoundaryAnalysis& result, BoundarySolver& reduced, Boundar
 }
 
 }  // namespace
-
-double boundary_level_flops(int k, int dofs, bool in_theta) {
-  double flops = 0;
-  for (const int harmonics : {2 * k, 2 * k + 1}) {
-    const double unknowns = (in_theta ? 2 : 1) * harmonics * dofs;
-    flops += (3 * unknowns + 800) * unknowns * unknowns;
-  }
-  return flops;
-}
-
-double boundary_level_bytes(int k, int dofs, bool in_theta) {
-  const double unknowns = (in_theta ? 2 : 1) * (2 * k + 1.0) * dofs;
-  return 64 * unknowns * unknowns;
-}
 
 int richer_basis_dofs(const ModelSpec& spec, int dofs, int all_dofs) {
   return dofs < all_dofs ? dofs : dofs * reference_terms(spec.basis, spec.terms) / spec.terms;
