@@ -193,14 +193,13 @@ void print_table(const Scene& scene, const CampbellWithErrors& r, const std::vec
 // its richer reference, at the three sample speeds of the reduced sweep (undamped, automatic
 // solver) or at every speed (the dense sweep); whole_eigensolve_flops each.
 void check_campbell_work(const Scene& scene, std::size_t speeds, EigenSolverKind solver) {
-  const bool reduced = scene.damping.model == DampingModel::none && solver == EigenSolverKind::automatic;
+  const bool reduced = !scene.damping.damped() && solver == EigenSolverKind::automatic;
   const double solves = reduced ? std::min<double>(3, speeds) : speeds;
   ModelSpec richer = scene.model;
   richer.terms = reference_terms(scene.model.basis, scene.model.terms);
   double flops = 0, bytes = 0;
   for (const ModelSpec& spec : {scene.model, richer}) {
-    flops += solves * whole_eigensolve_flops(dof_layout(spec, scene.blade.two_planes()).size(),
-                                             scene.damping.model != DampingModel::none);
+    flops += solves * whole_eigensolve_flops(dof_layout(spec, scene.blade.two_planes()).size(), scene.damping.damped());
     bytes = std::max(bytes, eigensolve_bytes(dof_layout(spec, scene.blade.two_planes()).size()));
   }
   check_work(fmt::format("--speeds with model.terms = {}", scene.model.terms),

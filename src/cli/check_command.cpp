@@ -303,7 +303,7 @@ void check_requirements_work(const Scene& scene) {
   double flops = 0, bytes = 0;
   if (req.frequency_margin) {
     for (const double dofs : {n, nr}) {
-      flops += 3 * whole_eigensolve_flops(dofs, scene.damping.model != DampingModel::none);
+      flops += 3 * whole_eigensolve_flops(dofs, scene.damping.damped());
       bytes = std::max(bytes, eigensolve_bytes(dofs));
     }
   }

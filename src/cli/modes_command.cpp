@@ -155,8 +155,7 @@ void print_modes(const SceneOptions& options, const Scene& scene, const Converge
 // for the Legendre basis, two for the sine basis, as modes_with_error_estimate solves them),
 // whole_eigensolve_flops each. model.terms = 200: estimated 7.7 s, taking 2.2 s (damped 32 s, 5.2 s).
 void check_modes_work(const Scene& scene) {
-  const EigensolveWork work =
-      converged_modes_work(scene.model, scene.blade.two_planes(), scene.damping.model != DampingModel::none);
+  const EigensolveWork work = converged_modes_work(scene.model, scene.blade.two_planes(), scene.damping.damped());
   check_work(fmt::format("model.terms = {}", scene.model.terms),
              fmt::format("the eigensolves of {}-dof models", dof_layout(scene.model, scene.blade.two_planes()).size()),
              work.flops / dense_flops_per_second, work.bytes);

@@ -139,7 +139,7 @@ void print_table(const Scene& scene, const ParameterSweep& s, const std::vector<
 void check_sweep_work(const Scene& scene, const ParameterSweepOptions& o) {
   ModelSpec spec = scene.model;
   if (o.key == "model.terms") spec.terms = static_cast<int>(*std::max_element(o.values.begin(), o.values.end()));
-  const bool damped = scene.damping.model != DampingModel::none || o.key.rfind("damping.", 0) == 0;
+  const bool damped = scene.damping.damped() || o.key.rfind("damping.", 0) == 0;
   const EigensolveWork work = converged_modes_work(spec, scene.blade.two_planes(), damped);
   check_work(fmt::format("--values {} with model.terms = {}", echoed(o.values_text), spec.terms),
              fmt::format("the eigensolves of {} values", o.values.size()),

@@ -105,7 +105,7 @@ PathWithinLimits campbell_speeds(const BladeModel& model, const CampbellOptions&
 // The least work of a round at `spec`, in flops: the screen's whole solves, at three speeds, of the
 // model and of its richer models (EstimateRound::work).
 double least_round_work(const Scene& scene, const ModelSpec& spec) {
-  return 3 * reference_solves(spec, scene.blade.two_planes(), scene.damping.model != DampingModel::none).flops;
+  return 3 * reference_solves(spec, scene.blade.two_planes(), scene.damping.damped()).flops;
 }
 
 // The round at `spec` would pass CampbellOptions::work_flops; `reached`: the terms and whole
@@ -198,7 +198,7 @@ public:
       const int samples = static_cast<int>(sweep.sample_speeds().size());
       return samples > 0 ? std::max(3, samples) : 3 + (swept_ ? speeds : 0);
     };
-    const bool damped = scene_.damping.model != DampingModel::none;
+    const bool damped = scene_.damping.damped();
     double flops = solves(*base_) * whole_eigensolve_flops(model_->M.rows(), damped);
     for (const Reference& r : refs_) flops += solves(*r.sweep) * whole_eigensolve_flops(r.model->M.rows(), damped);
     return flops;

@@ -405,7 +405,7 @@ void require_certified(const SpeedModes& modes) {
 }
 
 bool reduced_sweep_applies(const BladeModel& model, const DampingSpec& damping) {
-  if (damping.model != DampingModel::none) return false;
+  if (damping.damped()) return false;
   const DofLayout& l = model.layout;
   const int n = l.size();
   const auto axial = [&](int i) { return i >= l.axial_offset() && i < l.axial_offset() + l.axial_count; };

@@ -427,7 +427,7 @@ DampingSpec read_damping(const toml::table& root, const std::string& source, dou
   DampingSpec d;
   d.model = damping.choice("model", damping_names);
   damping.known({"ratio", "frequencies_hz"});
-  if (d.model != DampingModel::none) {
+  if (d.damped()) {
     d.ratio = damping.number("ratio", limits::damping_ratio, "damping ratio ζ");
   }
   if (d.model == DampingModel::rayleigh) {

@@ -158,7 +158,7 @@ WorstSpeed worst_speed(const Scene& scene, const BladeModel& model, int vectors,
   const double step = (hi - lo) / (scan_speeds - 1);
   // Undamped, a tip inside the range is the worst point (onset 0); the lowest order first.
   std::optional<Tip> tip;
-  if (scene.damping.model == DampingModel::none) {
+  if (!scene.damping.damped()) {
     for (const Tip& t : undamped_tips(scene, model, speeds)) {
       if (!tip || t.order < tip->order || (t.order == tip->order && t.mode < tip->mode)) tip = t;
     }

@@ -75,6 +75,7 @@ struct DampingSpec {
   DampingModel model = DampingModel::none;
   double ratio = 0;                    // ζ
   std::vector<double> frequencies_hz;  // rayleigh: the two frequencies that get ratio ζ exactly
+  bool damped() const { return model != DampingModel::none; }
 };
 
 // The paper's damping C_D = (2ζ/Ω) K_S (37) needs a speed Ω > 0: InputError naming damping.model and
