@@ -111,7 +111,8 @@ NumericalError too_many_steps(const LinearPeriodicSystem& sys) {
 Attempt refine_steps(const LinearPeriodicSystem& sys, double tol, double max_flops, LevelCounter& counter) {
   const int safe = minimum_magnus_steps(sys);
   if (safe > max_magnus_steps) throw too_many_steps(sys);
-  StepDoubling ladder(std::max(8, safe / 64), max_magnus_steps, safe, monodromy_step_work(sys), max_flops);
+  const double whole_step = magnus_step_work(sys.state_size()), level_step = monodromy_step_work(sys);
+  StepDoubling ladder(std::max(8, safe / 64), max_magnus_steps, safe, level_step, max_flops);
   counter.plan(ladder.levels() + 1);  // and the checks after
   Eigen::VectorXcd previous;
   bool whole_period = !reversing_signature(sys);
@@ -119,7 +120,6 @@ Attempt refine_steps(const LinearPeriodicSystem& sys, double tol, double max_flo
   for (int steps = ladder.first(); steps <= ladder.last(); steps *= 2) {
     if (!whole_period && steps > safe && previous.size() > 0) {
       whole_period = true;
-      const double whole_step = magnus_step_work(sys.state_size());
       ladder = StepDoubling(steps / 2, max_magnus_steps, safe, whole_step, max_flops - spent);
       if (ladder.last() < steps) break;
       counter.plan(ladder.levels() + 1);
@@ -128,7 +128,7 @@ Attempt refine_steps(const LinearPeriodicSystem& sys, double tol, double max_flo
       counter.level_done();
     }
     Eigen::MatrixXd phi = magnus_monodromy(sys, steps, whole_period);
-    spent += steps * (whole_period ? magnus_step_work(sys.state_size()) : monodromy_step_work(sys));
+    spent += steps * (whole_period ? whole_step : level_step);
     counter.level_done();
     if (!phi.allFinite()) {
       if (ladder.overflowed(steps)) throw monodromy_overflow(sys.period());
