@@ -12,6 +12,7 @@ import concurrent.futures
 import json
 import os
 import statistics
+import tempfile
 import time
 
 import bladestab
@@ -73,7 +74,9 @@ def local_figures(tasks):
         figures["task_overhead_local_processes_s"] = task_overhead(pool, tasks)
     from dask.distributed import Client, LocalCluster
 
-    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster, \
+    with tempfile.TemporaryDirectory() as scratch, \
+            LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None,
+                         local_directory=scratch) as cluster, \
             Client(cluster) as client:
         figures["task_overhead_dask_s"] = task_overhead(client.get_executor(), tasks)
     return figures

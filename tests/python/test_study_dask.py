@@ -14,8 +14,10 @@ from study_reference import GRID, assert_equals_serial, serial
 
 
 @pytest.fixture(scope="module")
-def client():
-    cluster = LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None)
+def client(tmp_path_factory):
+    # The workers' scratch space under pytest's temporary directory, not /tmp/dask-worker-space.
+    cluster = LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None,
+                           local_directory=str(tmp_path_factory.mktemp("dask")))
     with Client(cluster) as client:
         yield client
     cluster.close()
