@@ -334,8 +334,9 @@ TEST_CASE("check: the Campbell estimate starts no round its work limit cannot af
   options.engine_orders = {1};
   options.mode_count = 2;
   // The first round's least work: the screen's three whole solves of the 8-term model (24 dofs) and
-  // of its 10-term reference (30 dofs), 25 (2n)³ flops each.
-  const double first_round = 3 * 200 * (std::pow(24.0, 3) + std::pow(30.0, 3));
+  // of its 12-term reference (36 dofs), Hermitian within the static limits: (12 n + 4000) n² flops each.
+  const auto hermitian = [](double n) { return (12 * n + 4000) * n * n; };
+  const double first_round = 3 * (hermitian(24) + hermitian(36));
   options.work_flops = 0.99 * first_round;
   CHECK_THROWS_WITH(campbell_with_error_estimate(scene, options, 1e-6),
                     Catch::Contains("the diagram at model.terms = 8 would pass all that the work limit affords"));

@@ -313,3 +313,44 @@ TEST_CASE("fan blade: modes from 4 terms raise them to a tolerance that the reso
     CHECK(difference <= m.budget(k).total());
   }
 }
+
+TEST_CASE("fan blade: modes raise the terms for 20 modes to 1e-6, the highest resolved only from ~30 terms",
+          "[fan-blade][modes][slow]") {
+  // Modes 15–20 have estimates of 0.1–8 at 16–24 terms: not resolved yet, or without a counterpart
+  // in the richer model. That shows no rate: the terms grow by half until it does, then by 2 (the
+  // answer came at 36 terms). Extrapolating such an estimate at N^−4 refused 1e-6 at once.
+  // Reference: the 90-term model, a dense solve.
+  const Scene scene = fan_blade({});
+  const ConvergedModes m = modes_with_error_estimate(scene, 20, EigenSolverKind::dense, 1e-6);
+  const std::vector<Mode> rich = dense_modes(scene, 90, scene.operation.speed_rad_s);
+  for (int k = 0; k < 20; ++k) {
+    const Mode& mode = m.solution.modes[k];
+    const double difference = std::abs(mode.frequency_hz / rich[k].frequency_hz - 1);
+    INFO("mode " << k + 1 << " at " << m.model.spec.terms << " terms: " << mode.frequency_hz << " Hz, 90 terms "
+                 << rich[k].frequency_hz << " Hz, estimate " << m.budget(k).total());
+    CHECK(m.budget(k).total() <= 1e-6);
+    CHECK(difference <= m.budget(k).total());
+  }
+}
+
+TEST_CASE("terms_for_tolerance: a kinked table's frequency estimate that shows no rate, or falls faster than N^-4, "
+          "is raised",
+          "[fan-blade][modes]") {
+  const BladeSpec blade = fan_blade({}).blade;
+  ModelSpec spec = fan_blade({}).model;
+  spec.terms = 36;
+  // Not resolved (0.1 and more): raised by half, whatever the tolerance.
+  CHECK(terms_for_tolerance(blade, spec, 1.0, 1e-9) == 54);
+  // 2.4e-3 at 54 terms after 0.2 at 36: a rate of 10.9, a mode still being resolved.
+  spec.terms = 54;
+  CHECK(terms_for_tolerance(blade, spec, 2.4e-3, 1e-6, BasisRound{36, 0.2}) == 56);
+  // The same estimate after 3e-3 at 52 terms: a rate of 5.9, still being resolved; after 2.5e-3 at
+  // 50 terms, a rate of 0.5: even at N^−4, 1e-6 would need 378 terms.
+  CHECK(terms_for_tolerance(blade, spec, 2.4e-3, 1e-6, BasisRound{52, 3e-3}) == 56);
+  CHECK_FALSE(terms_for_tolerance(blade, spec, 2.4e-3, 1e-6, BasisRound{50, 2.5e-3}));
+  // 3.4e-4 at 12 terms (campbell's estimate there): N^−4 reaches 1e-6 at 52 terms. A multiplier,
+  // which depends on the shapes (converging at half the rate), is granted N^−2 only: 221 terms.
+  spec.terms = 12;
+  CHECK(terms_for_tolerance(blade, spec, 3.4e-4, 1e-6) == 14);
+  CHECK_FALSE(basis_can_reach(blade, spec, 3.4e-4, 1e-6));
+}

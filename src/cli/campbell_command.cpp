@@ -191,7 +191,8 @@ void print_table(const Scene& scene, const CampbellWithErrors& r, const std::vec
 
 // The whole-model eigensolves a diagram cannot do without, before they start: the scene's model and
 // its richer reference, at the three sample speeds of the reduced sweep (undamped, automatic
-// solver) or at every speed (the dense sweep); whole_eigensolve_flops each.
+// solver) or at every speed (the dense sweep); whole_eigensolve_flops each, within the static limits
+// (the diagram's speeds are those within them).
 void check_campbell_work(const Scene& scene, std::size_t speeds, EigenSolverKind solver) {
   const bool reduced = !scene.damping.damped() && solver == EigenSolverKind::automatic;
   const double solves = reduced ? std::min<double>(3, speeds) : speeds;
@@ -199,7 +200,8 @@ void check_campbell_work(const Scene& scene, std::size_t speeds, EigenSolverKind
   richer.terms = reference_terms(scene.model.basis, scene.model.terms);
   double flops = 0, bytes = 0;
   for (const ModelSpec& spec : {scene.model, richer}) {
-    flops += solves * whole_eigensolve_flops(dof_layout(spec, scene.blade.two_planes()).size(), scene.damping.damped());
+    flops += solves * whole_eigensolve_flops(dof_layout(spec, scene.blade.two_planes()).size(), scene.damping.damped(),
+                                             true);
     bytes = std::max(bytes, eigensolve_bytes(dof_layout(spec, scene.blade.two_planes()).size()));
   }
   check_work(fmt::format("--speeds with model.terms = {}", scene.model.terms),
@@ -236,7 +238,7 @@ Command register_campbell(CLI::App& app) {
     CampbellOptions campbell{speed_list, *orders, *count, options->eigen_solver()};
     campbell.threads = *threads;
     campbell.speeds_text = *speeds;
-    campbell.work_flops = work_limits().seconds * dense_flops_per_second / 2;
+    campbell.work_flops = work_limits().seconds * dense_flops_per_second;
     const bool for_people = options->output_format() == OutputFormat::table;
     const CampbellWithErrors result =
         campbell_with_error_estimate(scene, campbell, *tolerance, progress_reporter("campbell: speeds", for_people));

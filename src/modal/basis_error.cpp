@@ -30,6 +30,15 @@ constexpr double kinked_trusted_rate = 2;
 // The rate an unresolved table's estimate trusts: below the measured 0.83 (mode 4 of a table with a
 // step at mid-span, 24–96 terms; mode 1: 0.94; the fan blade at 8 terms: about 1.5).
 constexpr double unresolved_trusted_rate = 0.75;
+// The fastest rates granted when asking whether raising is futile: for a kinked table's
+// frequencies the upper measured 4 (terms_for_tolerance); for the rest, and for what depends on
+// the shapes (multipliers, transients: a shape converges at half its eigenvalue's rate), 2, twice
+// the sine basis' asymptotic 1 and a step's about 1.
+constexpr double kinked_fastest_rate = 4, other_fastest_rate = 2;
+// An estimate from this on (relative) shows no rate: the mode is not yet resolved by the basis
+// (pre-asymptotic), or has no counterpart in the richer model (1). The fan blade's modes 80–90 at
+// 16–40 terms: estimates 1–8.4 with no trend, 1e-7 at 60 terms.
+constexpr double unresolved_estimate = 0.1;
 
 // How much |f_N − f_M| understates the error of f_N when f_N − f_∞ ∝ N^−p (ratio = N/M < 1):
 // 1/(1 − (N/M)^p).
@@ -137,11 +146,11 @@ int reference_terms(BasisKind basis, int terms) {
   return std::min(richer, max_terms + 40);
 }
 
-ReferenceSolves reference_solves(ModelSpec spec, bool two_planes, bool damped) {
+ReferenceSolves reference_solves(ModelSpec spec, bool two_planes, bool damped, bool within_static_limits) {
   ReferenceSolves solves;
   for (int model = 0; model <= (spec.basis == BasisKind::sine ? 2 : 1); ++model) {
     const int dofs = dof_layout(spec, two_planes).size();
-    solves.flops += whole_eigensolve_flops(dofs, damped);
+    solves.flops += whole_eigensolve_flops(dofs, damped, within_static_limits);
     solves.largest_dofs = std::max(solves.largest_dofs, dofs);
     spec.terms = reference_terms(spec.basis, spec.terms);
   }
@@ -168,27 +177,68 @@ double basis_tail_factor(BasisConvergence convergence) {
   return algebraic_tail(0.5, max_trusted_rate);
 }
 
-bool basis_can_reach(const BladeSpec& blade, const ModelSpec& spec, double estimate, double tolerance,
-                     std::optional<int> before) {
+namespace {
+
+// basis_can_reach with the fastest rate granted a kinked table, `kinked_rate`.
+bool reachable(const BladeSpec& blade, const ModelSpec& spec, double estimate, double tolerance,
+               std::optional<BasisRound> before, double kinked_rate) {
   if (spec.terms >= max_terms) return false;
   const auto unresolved_at = [&](int terms) {
     return basis_convergence(blade, spec.basis, terms) == BasisConvergence::unresolved;
   };
   const BasisConvergence convergence = basis_convergence(blade, spec.basis, spec.terms);
   if (convergence == BasisConvergence::exponential) return true;
-  if (!unresolved_at(max_terms) && (unresolved_at(spec.terms) || (before && unresolved_at(*before)))) return true;
+  if (!unresolved_at(max_terms) && (unresolved_at(spec.terms) || (before && unresolved_at(before->terms)))) return true;
   // Algebraic convergence: the estimate falls like N^−p (sine: p ≤ 1 asymptotically, v'(0) = 0 is
-  // an O(1/N) error; kinked: about 3; a step: about 1). If even p = 2 would need more than
-  // max_terms, raising is futile.
-  return spec.terms * std::sqrt(estimate / tolerance) <= max_terms;
+  // an O(1/N) error; a step: about 1; kinked: frequencies 2.5–4). If even the fastest of these
+  // would need more than max_terms, raising is futile.
+  const double rate = convergence == BasisConvergence::kinked ? kinked_rate : other_fastest_rate;
+  return spec.terms * std::pow(estimate / tolerance, 1 / rate) <= max_terms;
+}
+
+// A kinked table's frequency estimate that shows no rate: 0.1 or more (a mode not resolved yet, or
+// without a counterpart), or fallen faster than N^−4 since the round before (a mode being resolved).
+bool frequency_shows_no_rate(const BladeSpec& blade, const ModelSpec& spec, double estimate,
+                             std::optional<BasisRound> before) {
+  if (basis_convergence(blade, spec.basis, spec.terms) != BasisConvergence::kinked) return false;
+  if (estimate >= unresolved_estimate) return true;
+  return before && before->terms < spec.terms && before->estimate > estimate &&
+         std::log(before->estimate / estimate) >
+             kinked_fastest_rate * std::log(static_cast<double>(spec.terms) / before->terms);
+}
+
+}  // namespace
+
+bool basis_can_reach(const BladeSpec& blade, const ModelSpec& spec, double estimate, double tolerance,
+                     std::optional<BasisRound> before) {
+  return reachable(blade, spec, estimate, tolerance, before, other_fastest_rate);
 }
 
 std::optional<int> terms_for_tolerance(const BladeSpec& blade, const ModelSpec& spec, double estimate, double tolerance,
-                                       std::optional<int> before) {
-  if (!basis_can_reach(blade, spec, estimate, tolerance, before)) return std::nullopt;
-  return std::min(max_terms, spec.basis == BasisKind::sine ? 2 * spec.terms : spec.terms + 2);
+                                       std::optional<BasisRound> before) {
+  if (spec.terms >= max_terms) return std::nullopt;
+  const bool no_rate = frequency_shows_no_rate(blade, spec, estimate, before);
+  if (!no_rate && !reachable(blade, spec, estimate, tolerance, before, kinked_fastest_rate)) return std::nullopt;
+  if (spec.basis == BasisKind::sine) return std::min(max_terms, 2 * spec.terms);
+  // A mode not yet resolved tells nothing of the terms it needs: grow them geometrically.
+  const int step = estimate >= unresolved_estimate ? std::max(2, spec.terms / 2) : 2;
+  return std::min(max_terms, spec.terms + step);
 }
 
+int resolvable_mode_count(const BladeSpec& blade, const ModelSpec& spec) {
+  ModelSpec richest = spec;
+  richest.terms = max_terms;
+  return dof_layout(richest, blade.two_planes()).size() / 2;
+}
+
+void check_mode_count(const BladeSpec& blade, const ModelSpec& spec, int count) {
+  const int resolvable = resolvable_mode_count(blade, spec);
+  if (count > resolvable) {
+    throw ParameterError("count", fmt::format("{}: more modes than raising the terms can resolve, at most {} (half the "
+                                              "dofs of {} terms per field); ask for fewer",
+                                              count, resolvable, max_terms));
+  }
+}
 
 void check_tolerance(double tolerance) {
   if (!(tolerance > 0 && tolerance < 1)) throw ParameterError("tolerance", fmt::format("{}: must be in (0, 1)", tolerance));
@@ -214,9 +264,12 @@ ParameterError tolerance_below_rounding(double tolerance, double rounding) {
 
 ConvergedModes modes_with_error_estimate(const Scene& scene, int count, EigenSolverKind solver,
                                          std::optional<double> tolerance) {
-  if (tolerance) check_tolerance(*tolerance);
+  if (tolerance) {
+    check_tolerance(*tolerance);
+    check_mode_count(scene.blade, scene.model, count);
+  }
   ModelSpec spec = scene.model;
-  std::optional<int> before;  // the terms of the round before
+  std::optional<BasisRound> before;  // the round before
   while (true) {
     BladeModel model = assemble_model(scene, spec);
     ModalSolution solution = modes_of(model, scene, count, solver);
@@ -246,7 +299,7 @@ ConvergedModes modes_with_error_estimate(const Scene& scene, int count, EigenSol
     const std::optional<int> next =
         terms_for_tolerance(scene.blade, spec, estimate, *tolerance, before);
     if (!next) throw tolerance_not_met(*tolerance, spec, estimate);
-    before = spec.terms;
+    before = BasisRound{spec.terms, estimate};
     spec.terms = *next;
   }
 }

@@ -103,17 +103,18 @@ PathWithinLimits campbell_speeds(const BladeModel& model, const CampbellOptions&
 }
 
 // The least work of a round at `spec`, in flops: the screen's whole solves, at three speeds, of the
-// model and of its richer models (EstimateRound::work).
+// model and of its richer models (EstimateRound::work). Its speeds are within the static limits
+// (campbell_speeds).
 double least_round_work(const Scene& scene, const ModelSpec& spec) {
-  return 3 * reference_solves(spec, scene.blade.two_planes(), scene.damping.damped()).flops;
+  return 3 * reference_solves(spec, scene.blade.two_planes(), scene.damping.damped(), true).flops;
 }
 
 // The round at `spec` would pass CampbellOptions::work_flops; `reached`: the terms and whole
 // estimate of the round before, if any.
 WorkLimitError round_past_work_limit(double tolerance, const ModelSpec& spec,
-                                     const std::optional<std::pair<int, double>>& reached) {
+                                     const std::optional<BasisRound>& reached) {
   const std::string before =
-      reached ? fmt::format("at model.terms = {} their estimate is {:.2g}; ", reached->first, reached->second) : "";
+      reached ? fmt::format("at model.terms = {} their estimate is {:.2g}; ", reached->terms, reached->estimate) : "";
   return WorkLimitError(fmt::format("the Campbell frequencies cannot be brought within the tolerance {:g}: {}the "
                                     "diagram at model.terms = {} would pass all that the work limit affords",
                                     tolerance, before, spec.terms));
@@ -189,9 +190,10 @@ public:
     return s;
   }
 
-  // The whole-model eigensolves the round has taken, in flops (whole_eigensolve_flops): each
-  // model's at its reduced sweep's samples, or at the screen's three speeds and, once the diagram
-  // is solved, at every speed where it is solved densely. The reduced solves are not counted.
+  // The whole-model eigensolves the round has taken, in flops (whole_eigensolve_flops, within the
+  // static limits): each model's at its reduced sweep's samples, or at the screen's three speeds
+  // and, once the diagram is solved, at every speed where it is solved densely. The reduced solves
+  // are not counted.
   double work() const {
     const int speeds = static_cast<int>(options_.speeds_rad_s.size());
     const auto solves = [&](const SpeedSweep& sweep) {
@@ -199,8 +201,8 @@ public:
       return samples > 0 ? std::max(3, samples) : 3 + (swept_ ? speeds : 0);
     };
     const bool damped = scene_.damping.damped();
-    double flops = solves(*base_) * whole_eigensolve_flops(model_->M.rows(), damped);
-    for (const Reference& r : refs_) flops += solves(*r.sweep) * whole_eigensolve_flops(r.model->M.rows(), damped);
+    double flops = solves(*base_) * whole_eigensolve_flops(model_->M.rows(), damped, true);
+    for (const Reference& r : refs_) flops += solves(*r.sweep) * whole_eigensolve_flops(r.model->M.rows(), damped, true);
     return flops;
   }
 
@@ -341,18 +343,19 @@ ErrorBudget CampbellWithErrors::worst_at(std::size_t speed) const {
 CampbellWithErrors campbell_with_error_estimate(const Scene& scene, const CampbellOptions& options, double tolerance,
                                                 const std::function<void(int, int)>& progress) {
   check_tolerance(tolerance);
+  check_mode_count(scene.blade, scene.model, options.mode_count);
   CampbellOptions wanted = options;
   wanted.reduction_tolerance = tolerance / 20;
   ModelSpec spec = scene.model;
   bool dense = false;  // set when a reduced sweep could not certify some speed
   double spent = 0;    // the whole-model eigensolves of the rounds before (EstimateRound::work)
-  std::optional<std::pair<int, double>> reached;  // the last round's terms and estimate
+  std::optional<BasisRound> reached;  // the last round's terms and estimate
   const auto raise = [&](double worst, const EstimateRound& round) {
     const std::optional<int> next =
-        terms_for_tolerance(scene.blade, spec, worst, tolerance, reached ? std::optional(reached->first) : std::nullopt);
+        terms_for_tolerance(scene.blade, spec, worst, tolerance, reached);
     if (!next) throw tolerance_not_met(tolerance, spec, worst);
     spent += round.work();
-    reached = std::pair{spec.terms, worst};
+    reached = BasisRound{spec.terms, worst};
     spec.terms = *next;
   };
   while (true) {
@@ -377,8 +380,9 @@ CampbellWithErrors campbell_with_error_estimate(const Scene& scene, const Campbe
         raise(worst, round);
         continue;
       }
+      const double work = round.work();  // before the result takes the round's model
       CampbellWithErrors result = round.with_engine_order_budgets(std::move(solved), tolerance);
-      result.work_flops = spent + round.work();
+      result.work_flops = spent + work;
       return result;
     } catch (const ReducedSweepUnavailable&) {
       dense = true;

@@ -12,6 +12,7 @@
 #include "bladestab/blade/damping.hpp"
 #include "bladestab/base/input_error.hpp"
 #include "bladestab/stability/instability_regions.hpp"
+#include "bladestab/modal/basis_error.hpp"
 #include "bladestab/modal/modes.hpp"
 #include "bladestab/base/numerical_error.hpp"
 #include "bladestab/stability/periodic_system.hpp"
@@ -243,7 +244,8 @@ FrequencyMarginResult check_frequency_margin(const Scene& scene, double toleranc
   // stiff modes) meets no engine-order line: the lowest frequency is over the points that
   // oscillate, and a mode overdamped throughout is above every threshold, as are the stiffer ones
   // after it (by |λ|, modes.cpp), whose damping is heavier still.
-  for (int count = std::min(4, dofs);; count = std::min(2 * count, dofs)) {
+  const int resolvable = resolvable_mode_count(scene.blade, scene.model);
+  for (int count = std::min({4, dofs, resolvable});; count = std::min({2 * count, dofs, resolvable})) {
     options.mode_count = count;
     options.work_flops = work_flops;
     const CampbellWithErrors campbell = campbell_with_error_estimate(scene, options, tolerance, progress);
@@ -258,7 +260,12 @@ FrequencyMarginResult check_frequency_margin(const Scene& scene, double toleranc
     const std::vector<CampbellCurve>& curves = campbell.diagram.curves;
     // The diagram's model has the terms raised to the tolerance: as many modes as its dofs.
     dofs = dof_layout(campbell.model.spec, scene.blade.two_planes()).size();
-    if (lowest(curves.back()) < result.threshold_hz && count < dofs) continue;
+    if (lowest(curves.back()) < result.threshold_hz && count < dofs) {
+      if (count < resolvable) continue;
+      throw InputError(fmt::format("requirements.engine_orders: the margin to engine order {} needs every mode below "
+                                   "{:.6g} Hz, more than the {} modes that raising the terms can resolve",
+                                   k_max, result.threshold_hz, resolvable));
+    }
     std::vector<int> checked;  // the curves below the threshold, at least the lowest
     for (const CampbellCurve& c : curves) {
       if (lowest(c) < result.threshold_hz || checked.empty()) checked.push_back(c.mode);

@@ -53,7 +53,7 @@ struct ReferenceSolves {
   double flops = 0;
   int largest_dofs = 0;
 };
-ReferenceSolves reference_solves(ModelSpec spec, bool two_planes, bool damped);
+ReferenceSolves reference_solves(ModelSpec spec, bool two_planes, bool damped, bool within_static_limits = false);
 
 // How fast the Ritz basis converges on a blade, which sets how far one comparison |f_N − f_ref|
 // understates the error and whether more terms can reach a tolerance:
@@ -89,21 +89,39 @@ struct BasisTail {
 };
 BasisTail basis_tail(const std::vector<double>& f, const std::vector<int>& n, BasisConvergence convergence);
 
+// The terms and the whole estimate of a round of raising before the present one.
+struct BasisRound {
+  int terms = 0;
+  double estimate = 0;
+};
+
 // Whether raising the terms from N (`spec`) on `blade` can bring a basis error `estimate` within
 // `tolerance`: not when N is at the limit of 200, nor for algebraic convergence (sine, kinked, a step
 // no 200 terms resolve) when even a convergence like N^−2 would need more than 200 terms. A table
 // that N terms do not resolve but 200 would is raised regardless, and so is one that the round
-// before (`before`: its terms) did not resolve: an estimate there shows no rate (the fan blade in
+// before (`before`) did not resolve: an estimate there shows no rate (the fan blade in
 // `campbell`: 1.1 at 4 terms, 0.025 at 10, 3.4e-4 at 12, 1.7e-5 at 14). Every analysis that
-// raises the terms asks this before it does, so a tolerance out of the basis' reach is said at once.
+// raises the terms asks this (or terms_for_tolerance) before it does, so a tolerance out of the
+// basis' reach is said at once.
 bool basis_can_reach(const BladeSpec& blade, const ModelSpec& spec, double estimate, double tolerance,
-                     std::optional<int> before = std::nullopt);
+                     std::optional<BasisRound> before = std::nullopt);
 
-// The terms to try next for `tolerance` when the estimate of a model of `spec` on `blade` is
-// `estimate` (`before`: the terms of the round before): sine 2N, Legendre N + 2 (at most 200); none
-// where basis_can_reach says raising is futile.
+// The terms to try next for frequencies within `tolerance` when the estimate of a model of `spec`
+// on `blade` is `estimate` (`before`: the round before): sine 2N, Legendre N + 2, or 1.5N for an
+// estimate of 0.1 or more (at most 200); none where raising is futile. As basis_can_reach, but a
+// kinked table's frequencies converge like N^−2.5 to N^−4, and N^−4 is granted them; and an
+// estimate that shows no rate is raised regardless: 0.1 or more (a mode the basis does not resolve
+// yet, or without a counterpart in the richer model), or fallen faster than N^−4 since the round
+// before (a mode being resolved: the fan blade's 90th, ≥ 0.1 at 36 terms, 2.4e-3 at 54, 1e-6 at 65).
 std::optional<int> terms_for_tolerance(const BladeSpec& blade, const ModelSpec& spec, double estimate, double tolerance,
-                                       std::optional<int> before = std::nullopt);
+                                       std::optional<BasisRound> before = std::nullopt);
+
+// The modes that raising the terms can resolve: half the dofs of the richest model (200 terms per
+// field), the part of a Ritz spectrum that ever converges (the fan blade's 90th mode took 330 dofs
+// at 1e-6).
+int resolvable_mode_count(const BladeSpec& blade, const ModelSpec& spec);
+// ParameterError on `count` (the modes asked for, lowest first) beyond resolvable_mode_count.
+void check_mode_count(const BladeSpec& blade, const ModelSpec& spec, int count);
 
 // ParameterError on `tolerance` unless 0 < tolerance < 1 and tolerance > 1e-12, the
 // eigensolver's rounding that every estimate includes.

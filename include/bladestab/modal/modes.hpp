@@ -18,14 +18,17 @@ enum class EigenSolverKind { automatic, dense, arpack };
 const char* to_string(EigenSolverKind);
 
 // The work of one whole dense eigensolve of the first-order system of a model with `dofs` dofs
-// (2·dofs states), in flops at cli::dense_flops_per_second (4e9/s). Damped, the complex Schur form
-// of dense_eigenpairs: 200 n³ + 10⁴ n², 1.4–3.7× its measured time from 48 to 400 dofs; undamped,
-// the Hermitian form of a conservative gyroscopic system, 4–5× faster: 40 n³ + 8000 n², 2.8–4.6×
-// (bench/work_calibration.cpp, one core, 28 Nov 2026: 2.0 ms at 48 dofs, 34 ms at 170, 0.21 s at
-// 400; damped 8.3 ms, 0.12 s, 0.97 s). A blade past its static limit takes the complex form
-// undamped too: there the undamped count is about its time (0.9× at 170 dofs).
-inline double whole_eigensolve_flops(double dofs, bool damped) {
-  return damped ? (200 * dofs + 1e4) * dofs * dofs : (40 * dofs + 8000) * dofs * dofs;
+// (2·dofs states), in flops at cli::dense_flops_per_second (4e9/s); measured by
+// bench/work_calibration.cpp (one core, 28 Nov 2026: undamped 2.0 ms at 48 dofs, 34 ms at 170,
+// 0.20 s at 400; damped 8.3 ms, 0.12 s, 0.91 s).
+//  - damped, the complex Schur form of dense_eigenpairs: 200 n³ + 10⁴ n², 1.4–4× its time;
+//  - undamped within the static limits (`within_static_limits`), the Hermitian form of a
+//    conservative gyroscopic system: 12 n³ + 4000 n², 1.4–1.7×;
+//  - undamped where the limits are not known beforehand: 40 n³ + 8000 n², as a blade past its
+//    static limit takes the complex form undamped too, whose time that count is about (0.9× at 170 dofs).
+inline double whole_eigensolve_flops(double dofs, bool damped, bool within_static_limits = false) {
+  if (damped) return (200 * dofs + 1e4) * dofs * dofs;
+  return within_static_limits ? (12 * dofs + 4000) * dofs * dofs : (40 * dofs + 8000) * dofs * dofs;
 }
 
 // Eigenvalues λ (one per conjugate pair, Im λ ≥ 0) with their dof-space vectors q.
