@@ -15,6 +15,7 @@
 #include "bladestab/scene/scene_limits.hpp"
 #include "bladestab/modal/modes.hpp"
 #include "bladestab/modal/basis_error.hpp"
+#include "bladestab/stability/boundaries.hpp"
 #include "bladestab/stability/stability_map.hpp"
 #include "chart.hpp"
 #include "error_output.hpp"
@@ -238,19 +239,27 @@ std::pair<int, int> parse_resolution(const std::string& text) {
 // the boundaries, about 10 per effective cell of the resolution's width and height (12 500 on the
 // paper's 400 × 200 map, where the estimate takes 6000). The true pulse train (exact_pulse) is
 // shaded on the whole model, its monodromy ~170 (2n)³ flops a point for 2n states (35 ms at 16
-// terms), and its narrow tongues take about twice the refinement (4395 points at 100 × 50).
-void check_map_work(const BladeModel& model, const MapOptions& o, bool exact_pulse) {
+// terms), and its narrow tongues take about twice the refinement (4395 points at 100 × 50). Curves
+// (the cosine approximation) are first checked against the whole Ritz model at min(K, 4)
+// harmonics on three of the lines (check_curves, boundary_level_flops): on the fan blade at 46
+// terms (230 dofs) ~40 s, where a line of the reduced model takes 0.1 s.
+void check_map_work(const BladeModel& model, const MapOptions& o, LoadApproximation load) {
+  const bool exact_pulse = load == LoadApproximation::exact;
   const double reduced_modes = 20, dofs = model.layout.size(), states = 2 * dofs;
   const double unknowns = (2 * o.approximation + 1) * reduced_modes;
+  const double whole_check = o.trace.empty() || load != LoadApproximation::cosine
+                                 ? 0
+                                 : 3 * boundary_level_flops(std::min(o.approximation, 4), static_cast<int>(dofs), true);
   const double line_seconds = 2 * 26 * unknowns * unknowns * unknowns / dense_flops_per_second;
   const double point_seconds = exact_pulse ? 170 * states * states * states / dense_flops_per_second
                                            : 4e-3 + 20 * dofs * dofs * dofs / dense_flops_per_second;
   const double grid = static_cast<double>(o.grid_x.size()) * o.grid_fbar.size();
   const double points = grid + (exact_pulse ? 20.0 : 10.0) * (o.resolution_x + o.resolution_y);
-  const double seconds = (o.trace.size() * line_seconds + points * point_seconds) / o.threads;
+  const double seconds =
+      (o.trace.size() * line_seconds + points * point_seconds + whole_check / dense_flops_per_second) / o.threads;
   // The grid of max|ρ|, the samples and cells of the refinement, and each traced line's boundaries.
   const double bytes = points * 64 + o.trace.size() * 4096.0;
-  const std::string cause = points * point_seconds > o.trace.size() * line_seconds
+  const std::string cause = points * point_seconds > o.trace.size() * line_seconds + whole_check / dense_flops_per_second
                                 ? fmt::format("a grid of {} × {} points refined to --resolution {}x{}", o.grid_x.size(),
                                               o.grid_fbar.size(), o.resolution_x, o.resolution_y)
                                 : fmt::format("--trace {} at --approximation {}", o.trace.size(), o.approximation);
@@ -429,7 +438,7 @@ Command register_map(CLI::App& app) {
     o.engine_order = *order > 0 ? *order : scene.load.pulses_per_rev;
     const BladeModel model = assemble_model(scene);
     set_plane_grids(*command, scene, model, {*theta, *speeds, *trace}, o);
-    check_map_work(model, o, scene.load.approximation == LoadApproximation::exact);
+    check_map_work(model, o, scene.load.approximation);
     const bool for_people = options->output_format() == OutputFormat::table;
     const StabilityMap m = stability_map(scene, o, progress_reporter("map: points", for_people));
 
