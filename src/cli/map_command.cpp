@@ -255,8 +255,8 @@ void check_map_work(const BladeModel& model, const MapOptions& o, LoadApproximat
                                            : 4e-3 + 20 * dofs * dofs * dofs / dense_flops_per_second;
   const double grid = static_cast<double>(o.grid_x.size()) * o.grid_fbar.size();
   const double points = grid + (exact_pulse ? 20.0 : 10.0) * (o.resolution_x + o.resolution_y);
-  const double seconds =
-      (o.trace.size() * line_seconds + points * point_seconds + whole_check / dense_flops_per_second) / o.threads;
+  // On one thread: a refusal that depended on --threads would be an answer that does.
+  const double seconds = o.trace.size() * line_seconds + points * point_seconds + whole_check / dense_flops_per_second;
   // The grid of max|ρ|, the samples and cells of the refinement, and each traced line's boundaries.
   const double bytes = points * 64 + o.trace.size() * 4096.0;
   const std::string cause = points * point_seconds > o.trace.size() * line_seconds + whole_check / dense_flops_per_second
@@ -264,7 +264,7 @@ void check_map_work(const BladeModel& model, const MapOptions& o, LoadApproximat
                                               o.grid_fbar.size(), o.resolution_x, o.resolution_y)
                                 : fmt::format("--trace {} at --approximation {}", o.trace.size(), o.approximation);
   check_work(fmt::format("{} with model.terms = {}", cause, model.spec.terms),
-             fmt::format("the map of a {}-dof model on {} threads", model.layout.size(), o.threads), seconds, bytes);
+             fmt::format("the map of a {}-dof model", model.layout.size()), seconds, bytes);
 }
 
 // Every speed of the speed plane within the blade's static limits, before any point is solved:
