@@ -203,20 +203,24 @@ public:
     return flops + (swept_ ? sweep_work() : 0);
   }
 
-  // The diagram's solves at every speed, in flops: of the reduced basis where a sweep is reduced,
-  // 12 m³ for m vectors (200 m³ damped: about 1.7–1.9× their time), else of the whole model. With
-  // many modes the reduced basis nears the whole model (the fan blade's 64 modes at 201 speeds
-  // took 5 s, 3.2× its whole solves at the samples).
+  // The diagram's work, in flops: at every speed, the solves of the reduced basis where a sweep is
+  // reduced, 12 m³ for m vectors (200 m³ damped: about 1.7–1.9× their time), else of the whole
+  // model, and the points' budgets, which map each shape into each richer sweep's coordinates and
+  // find its counterpart there (point_budget: two complex products of m_richer × m); and for the
+  // closest approaches (check's margin), a golden-section search of each curve to each line, ~40
+  // solves. With many modes the reduced basis nears the whole model (the fan blade's 64 modes at
+  // 201 speeds took 5 s, 3.2× its whole solves at the samples).
   double sweep_work() const {
     const double speeds = static_cast<double>(options_.speeds_rad_s.size());
     const bool damped = scene_.damping.damped();
-    const auto at_every_speed = [&](const SpeedSweep& sweep, const BladeModel& model) {
-      if (sweep.sample_speeds().empty()) return speeds * whole_eigensolve_flops(model.M.rows(), damped, true);
+    const auto one_solve = [&](const SpeedSweep& sweep, const BladeModel& model) {
+      if (sweep.sample_speeds().empty()) return whole_eigensolve_flops(model.M.rows(), damped, true);
       const double m = sweep.vectors();
-      return speeds * (damped ? 200 : 12) * m * m * m;
+      return (damped ? 200 : 12) * m * m * m;
     };
-    double flops = at_every_speed(*base_, *model_);
-    for (const Reference& r : refs_) flops += at_every_speed(*r.sweep, *r.model);
+    const double m = base_->vectors(), lines = static_cast<double>(options_.engine_orders.size());
+    double flops = (speeds + (options_.closest_approaches ? 40 * tracked_ * lines : 0)) * one_solve(*base_, *model_);
+    for (const Reference& r : refs_) flops += speeds * (one_solve(*r.sweep, *r.model) + tracked_ * 16 * m * r.sweep->vectors());
     return flops;
   }
 
