@@ -194,7 +194,7 @@ public:
   // limits): each model's whole solves at its reduced sweep's samples, or at the screen's three
   // speeds, and once the diagram is solved, sweep_work().
   double work() const {
-    const double damped = scene_.damping.damped();
+    const bool damped = scene_.damping.damped();
     const auto samples = [](const SpeedSweep& sweep) {
       return std::max<double>(3, static_cast<double>(sweep.sample_speeds().size()));
     };
