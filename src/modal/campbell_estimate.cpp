@@ -209,14 +209,17 @@ public:
   // find its counterpart there (point_budget: two complex products of m_richer × m); and for the
   // closest approaches (check's margin), a golden-section search of each curve to each line, ~40
   // solves. With many modes the reduced basis nears the whole model (the fan blade's 64 modes at
-  // 201 speeds took 5 s, 3.2× its whole solves at the samples).
+  // 201 speeds took 5 s, 3.2× its whole solves at the samples); with few, a reduced speed's fixed
+  // work (its matrices, modes and bounds) is about 0.1 ms, counted as 1e6 flops (the paper blade's
+  // 8 modes at 20000 speeds: 8.7 s for two rounds).
   double sweep_work() const {
+    constexpr double reduced_speed_overhead = 1e6;
     const double speeds = static_cast<double>(options_.speeds_rad_s.size());
     const bool damped = scene_.damping.damped();
     const auto one_solve = [&](const SpeedSweep& sweep, const BladeModel& model) {
       if (sweep.sample_speeds().empty()) return whole_eigensolve_flops(model.M.rows(), damped, true);
       const double m = sweep.vectors();
-      return (damped ? 200 : 12) * m * m * m;
+      return (damped ? 200 : 12) * m * m * m + reduced_speed_overhead;
     };
     const double m = base_->vectors(), lines = static_cast<double>(options_.engine_orders.size());
     double flops = (speeds + (options_.closest_approaches ? 40 * tracked_ * lines : 0)) * one_solve(*base_, *model_);
