@@ -326,7 +326,7 @@ TEST_CASE("fan blade: modes from 4 terms raise them to a tolerance that the reso
 
 TEST_CASE("fan blade: modes raise the terms for 20 modes to 1e-6 where the 20th is not resolved yet",
           "[fan-blade][modes][slow]") {
-  // At 16 terms mode 20's estimate is 0.14 (modes 13–18: 7e-4 to 0.07): not resolved yet, which
+  // At 16 terms mode 20's estimate is 0.14 (modes 13 and 15–18: 7e-4 to 0.07): not resolved yet, which
   // shows no rate. The terms grow by half to 24 (1.8e-5), then by 2 to 36. Extrapolated at N^−2,
   // 0.14 refused 1e-6 at once (16·√(1.4e5) ≈ 6000 terms). Reference: the 90-term model, a dense solve.
   const Scene scene = fan_blade({});

@@ -247,19 +247,22 @@ void check_map_work(const BladeModel& model, const MapOptions& o, LoadApproximat
   const bool exact_pulse = load == LoadApproximation::exact;
   const double reduced_modes = 20, dofs = model.layout.size(), states = 2 * dofs;
   const double unknowns = (2 * o.approximation + 1) * reduced_modes;
-  const double whole_check = o.trace.empty() || load != LoadApproximation::cosine
-                                 ? 0
-                                 : 3 * boundary_level_flops(std::min(o.approximation, 4), static_cast<int>(dofs), true);
+  const bool curves_checked = !o.trace.empty() && load == LoadApproximation::cosine;
+  const double whole_check_seconds =
+      curves_checked ? 3 * boundary_level_flops(std::min(o.approximation, 4), static_cast<int>(dofs), true) /
+                           dense_flops_per_second
+                     : 0;
   const double line_seconds = 2 * 26 * unknowns * unknowns * unknowns / dense_flops_per_second;
   const double point_seconds = exact_pulse ? 170 * states * states * states / dense_flops_per_second
                                            : 4e-3 + 20 * dofs * dofs * dofs / dense_flops_per_second;
   const double grid = static_cast<double>(o.grid_x.size()) * o.grid_fbar.size();
   const double points = grid + (exact_pulse ? 20.0 : 10.0) * (o.resolution_x + o.resolution_y);
   // On one thread: a refusal that depended on --threads would be an answer that does.
-  const double seconds = o.trace.size() * line_seconds + points * point_seconds + whole_check / dense_flops_per_second;
+  const double curve_seconds = o.trace.size() * line_seconds + whole_check_seconds;
+  const double seconds = curve_seconds + points * point_seconds;
   // The grid of max|ρ|, the samples and cells of the refinement, and each traced line's boundaries.
   const double bytes = points * 64 + o.trace.size() * 4096.0;
-  const std::string cause = points * point_seconds > o.trace.size() * line_seconds + whole_check / dense_flops_per_second
+  const std::string cause = points * point_seconds > curve_seconds
                                 ? fmt::format("a grid of {} × {} points refined to --resolution {}x{}", o.grid_x.size(),
                                               o.grid_fbar.size(), o.resolution_x, o.resolution_y)
                                 : fmt::format("--trace {} at --approximation {}", o.trace.size(), o.approximation);

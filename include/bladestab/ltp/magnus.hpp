@@ -25,5 +25,4 @@ inline double magnus_step_work(Eigen::Index states) {
   const double n = static_cast<double>(states);
   return 2 * n * n * n + 40 * n * n;
 }
-
 }  // namespace bladestab
